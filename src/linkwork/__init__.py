@@ -1,0 +1,1 @@
+"""linkwork: kinematics of planar mechanisms."""
