@@ -1,0 +1,177 @@
+"""Mechanism files: TOML text -> validated `Mechanism`, with errors that name key and line.
+
+`resolve` turns a user's mechanism argument (a path or `library:NAME`) into text;
+`load_text` validates it against `schema.MechanismFile` and builds the model.
+"""
+
+from __future__ import annotations
+
+import json
+import re
+import tomllib
+from importlib import resources
+from pathlib import Path
+
+import numpy as np
+from pydantic import ValidationError
+
+from ..errors import InputError, MechanismFileError, ModelError, UnknownMechanismError
+from ..model import (CircularSlot, ConstantSpeed, Gear, Mechanism, PolynomialLaw, Prismatic,
+                     Revolute, Slot, TabulatedLaw)
+from ..units import check_length_unit, parse_quantity
+from . import schema
+
+LIBRARY_PREFIX = "library:"
+
+
+def library_names() -> list[str]:
+    root = resources.files("linkwork") / "library"
+    return sorted(p.name[:-5] for p in root.iterdir() if p.name.endswith(".toml"))
+
+
+def resolve(spec: str | Path) -> tuple[str, str]:
+    """(source label, TOML text) of a mechanism given as a path or as `library:NAME`."""
+    spec = str(spec)
+    if spec.startswith(LIBRARY_PREFIX):
+        name = spec[len(LIBRARY_PREFIX):]
+        if name not in library_names():
+            close = [n for n in library_names() if name.lower() in n or n in name.lower()]
+            hint = f"; did you mean {', '.join(close)}?" if close else "; `linkwork library` lists them"
+            raise UnknownMechanismError(f"the library has no mechanism '{name}'{hint}")
+        return spec, (resources.files("linkwork") / "library" / f"{name}.toml").read_text()
+    path = Path(spec)
+    if not path.is_file():
+        raise UnknownMechanismError(
+            f"no mechanism file '{spec}' (give a path, or library:NAME for a shipped mechanism)")
+    return spec, path.read_text(encoding="utf-8")
+
+
+def load(spec: str | Path) -> Mechanism:
+    """Load a mechanism from a file path or `library:NAME`."""
+    source, text = resolve(spec)
+    return load_text(text, source=source)
+
+
+def _line_of(text: str, loc: tuple) -> int | None:
+    """Best-effort line number (1-based) of the key path `loc` in TOML `text`."""
+    lines = text.splitlines()
+    start, found = 0, None
+    keys = [str(k) for k in loc if not isinstance(k, int)]
+    for depth, key in enumerate(keys):
+        pat = re.compile(
+            rf'^\s*(\[\s*([\w."-]*\.)?"?{re.escape(key)}"?\s*\]|"?{re.escape(key)}"?\s*=)'
+            rf'|[{{,]\s*"?{re.escape(key)}"?\s*=')
+        for i in range(start, len(lines)):
+            if pat.search(lines[i]):
+                found, start = i + 1, i
+                break
+        else:
+            break
+    return found
+
+
+def load_text(text: str, *, source: str = "<text>") -> Mechanism:
+    """Validate mechanism-file `text` and build the `Mechanism`."""
+    try:
+        raw = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        m = re.search(r"line (\d+)", str(exc))
+        raise MechanismFileError(f"not valid TOML: {exc}", source=source,
+                                 line=int(m.group(1)) if m else None) from None
+    try:
+        spec = schema.MechanismFile.model_validate(raw)
+    except ValidationError as exc:
+        err = exc.errors()[0]
+        loc = tuple(err["loc"])
+        # drop the discriminator tag pydantic inserts into union locations
+        clean = tuple(k for k in loc if k not in {"revolute", "prismatic", "slot", "circular-slot",
+                                                  "gear", "polynomial", "table", "float", "int",
+                                                  "str", "list[union[float,int]]",
+                                                  "list[float]", "list[int]"}
+                      and not str(k).startswith(("function-", "union[", "list[")))
+        key = ".".join(str(k) for k in clean)
+        msg = err["msg"]
+        if err["type"] == "extra_forbidden":
+            msg = "unknown key (check its spelling)"
+        elif err["type"] == "missing":
+            msg = "required key is missing"
+        raise MechanismFileError(msg, source=source, key=key, line=_line_of(text, clean)) from None
+    try:
+        return _build(spec, text, source)
+    except (ModelError, InputError) as exc:
+        raise MechanismFileError(str(exc), source=source) from None
+
+
+def _axis(value, angle_unit: str, where: str) -> np.ndarray:
+    """Unit direction from a vector [x, y] or an angle (file's angle unit unless written)."""
+    if isinstance(value, list):
+        v = np.array(value, dtype=float)
+    else:
+        ang = _angle_in_rad(value, angle_unit, f"joint '{where}' axis angle")
+        v = np.array([np.cos(ang), np.sin(ang)])
+    n = float(np.hypot(*v))
+    if n == 0.0:
+        raise ModelError(f"joint '{where}': the axis is the zero vector")
+    return v / n
+
+
+def _angle_in_rad(value, angle_unit: str, kind: str) -> float:
+    if isinstance(value, str):
+        return parse_quantity(value, default_unit="rad", kind=kind) if any(c.isalpha() for c in value) \
+            else _angle_in_rad(float(value), angle_unit, kind)
+    return float(value) if angle_unit.startswith("rad") else float(np.radians(value))
+
+
+def _build(spec: schema.MechanismFile, text: str, source: str) -> Mechanism:
+    unit = check_length_unit(spec.units.length)
+    joints = []
+    for name, j in spec.joints.items():
+        point = j.point or name
+        links = tuple(j.links)
+        if isinstance(j, schema.RevoluteSpec):
+            joints.append(Revolute(name, point, links))
+        elif isinstance(j, schema.PrismaticSpec):
+            joints.append(Prismatic(name, point, links, _axis(j.axis, spec.units.angle, name)))
+        elif isinstance(j, schema.SlotSpec):
+            joints.append(Slot(name, point, links, _axis(j.axis, spec.units.angle, name)))
+        elif isinstance(j, schema.CircularSlotSpec):
+            joints.append(CircularSlot(name, point, links, j.center))
+        elif isinstance(j, schema.GearSpec):
+            radii = tuple(float(r) for r in j.radii)
+            if j.kind != "rack" and len(radii) != 2:
+                raise ModelError(f"gear '{name}': give two pitch radii")
+            joints.append(Gear(name, links, j.carrier, radii if len(radii) == 2 else (radii[0], np.inf),
+                               j.kind, j.point if j.point else (name if name in spec.points else None)))
+    driver_specs = list(spec.drivers or []) + ([spec.driver] if spec.driver else [])
+    if not driver_specs:
+        raise MechanismFileError("no [driver] given: name the joint that drives the mechanism",
+                                 source=source, key="driver")
+    drivers = []
+    joint_kinds = {j.name: j for j in joints}
+    for d in driver_specs:
+        jk = joint_kinds.get(d.joint)
+        prismatic = isinstance(jk, Prismatic)
+        if d.law is not None:
+            scale = 1.0 if prismatic else (1.0 if spec.units.angle.startswith("rad") else np.pi / 180)
+            if isinstance(d.law, schema.PolynomialLawSpec):
+                law = PolynomialLaw(tuple(scale * c for c in d.law.coefficients), float(d.law.duration))
+            else:
+                if len(d.law.time) != len(d.law.value):
+                    raise ModelError(f"driver '{d.joint}': law table has {len(d.law.time)} times "
+                                     f"but {len(d.law.value)} values")
+                if np.any(np.diff(d.law.time) <= 0):
+                    raise ModelError(f"driver '{d.joint}': law table times must increase")
+                law = TabulatedLaw(tuple(map(float, d.law.time)), tuple(scale * v for v in d.law.value))
+        else:
+            speed = 1.0 if d.speed is None else parse_quantity(
+                d.speed, default_unit=f"{unit}/s" if prismatic else "rad/s", kind=f"driver '{d.joint}' speed")
+            law = ConstantSpeed(speed=speed)
+        drivers.append({"joint": d.joint, "reference": d.reference, "law": law})
+    return Mechanism.build(name=spec.name, points=spec.points, links=spec.links, joints=joints,
+                           drivers=drivers, frame=spec.frame, length_unit=unit,
+                           description=spec.description)
+
+
+def dump_schema() -> str:
+    """The published JSON schema of mechanism files."""
+    return json.dumps(schema.MechanismFile.model_json_schema(), indent=2)

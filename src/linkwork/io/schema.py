@@ -1,0 +1,106 @@
+"""The mechanism file format, as pydantic models: the single source of its JSON schema.
+
+Files written in the documented shape must keep loading; new keys may be added. Unknown keys
+are errors (a typo must not be ignored silently).
+"""
+
+from __future__ import annotations
+
+from typing import Annotated, Literal, Union
+
+from pydantic import BaseModel, ConfigDict, Field, field_validator
+
+Number = Union[float, int]
+Coordinates = Annotated[list[Number], Field(min_length=2, max_length=2)]
+# an axis is a direction vector [x, y] or an angle (degrees unless a unit is written)
+Axis = Union[Coordinates, Number, str]
+
+
+class _Strict(BaseModel):
+    model_config = ConfigDict(extra="forbid", frozen=True)
+
+
+class Units(_Strict):
+    length: str = "mm"
+    angle: Literal["deg", "degree", "rad", "radian"] = "deg"
+
+
+class RevoluteSpec(_Strict):
+    type: Literal["revolute"]
+    links: Annotated[list[str], Field(min_length=2, max_length=2)]
+    point: str | None = Field(None, description="hinge point; defaults to the joint's name")
+
+
+class PrismaticSpec(_Strict):
+    type: Literal["prismatic"]
+    links: Annotated[list[str], Field(min_length=2, max_length=2)]
+    axis: Axis = Field(description="guide direction, fixed in the first link")
+    point: str | None = None
+
+
+class SlotSpec(_Strict):
+    type: Literal["slot"]
+    links: Annotated[list[str], Field(min_length=2, max_length=2)]
+    axis: Axis = Field(description="slot direction, fixed in the first link; the pin belongs to the second")
+    point: str | None = None
+
+
+class CircularSlotSpec(_Strict):
+    type: Literal["circular-slot"]
+    links: Annotated[list[str], Field(min_length=2, max_length=2)]
+    center: str = Field(description="centre of the arc, a point of the first (slotted) link")
+    point: str | None = None
+
+
+class GearSpec(_Strict):
+    type: Literal["gear"]
+    links: Annotated[list[str], Field(min_length=2, max_length=2)]
+    carrier: str = "frame"
+    radii: Annotated[list[Number], Field(min_length=1, max_length=2)]
+    kind: Literal["external", "internal", "rack"] = "external"
+    point: str | None = None
+
+
+JointSpec = Annotated[
+    Union[RevoluteSpec, PrismaticSpec, SlotSpec, CircularSlotSpec, GearSpec],
+    Field(discriminator="type"),
+]
+
+
+class PolynomialLawSpec(_Strict):
+    type: Literal["polynomial"]
+    coefficients: list[Number] = Field(description="input(t) = sum c_k t^k, in degrees (or the length unit) and seconds")
+    duration: Number = 1.0
+
+
+class TableLawSpec(_Strict):
+    type: Literal["table"]
+    time: list[Number] = Field(min_length=4)
+    value: list[Number] = Field(min_length=4)
+
+
+class DriverSpec(_Strict):
+    joint: str
+    reference: str | None = None
+    speed: Number | str | None = Field(
+        None, description="constant speed: '60 rpm', '2 rad/s', '100 mm/s'; a bare number is rad/s (or length unit/s)")
+    law: Annotated[Union[PolynomialLawSpec, TableLawSpec], Field(discriminator="type")] | None = None
+
+
+class MechanismFile(_Strict):
+    name: str
+    description: str = ""
+    units: Units = Units()
+    frame: str = "frame"
+    points: dict[str, Coordinates]
+    links: dict[str, list[str]]
+    joints: dict[str, JointSpec]
+    driver: DriverSpec | None = None
+    drivers: list[DriverSpec] | None = None
+
+    @field_validator("points")
+    @classmethod
+    def _some_points(cls, v: dict) -> dict:
+        if not v:
+            raise ValueError("a mechanism needs at least one point")
+        return v

@@ -1,0 +1,7 @@
+"""Kinematics: solving a `Mechanism` into a `Solution` (positions, velocities, accelerations)."""
+
+from .motion import whole_motion
+from .solution import LinkMotion, PointMotion, Solution, Status
+from .solver import solve
+
+__all__ = ["LinkMotion", "PointMotion", "Solution", "Status", "solve", "whole_motion"]

@@ -1,0 +1,422 @@
+"""Solving one group (see `linkwork.structure.groups`) for all samples at once.
+
+Positions: the dyads and one-link groups in closed form (circle–circle, circle–line, line through
+a point), keeping the branch of the design position; any other group (triads, gear groups, the
+Heusinger group) by Newton's method on that group alone, batched over samples.
+
+Derivatives: for every group, by linear solves on the group's constraint Jacobian. The k-th
+Taylor coefficient of the unknown poses enters the k-th coefficient of the constraint residuals
+linearly, J·q⁽ᵏ⁾/k! = −r_k, where r_k comes from evaluating the constraints on jets with the
+unknown coefficient set to zero; so one code path gives velocities, accelerations and jerks.
+The RRR dyad has a hand-written fast path for velocities and accelerations (the hot path of
+four-bars, six-bars and Jansen's linkage).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..model import Driver, Mechanism, Prismatic, Revolute, Slot
+from ..structure import Group
+from .constraints import driver_residual, joint_residuals
+from .jet import Jet
+
+NEWTON_TOL = 1e-12  # relative to the mechanism's length scale
+SINGULAR_CONDITION = 1e8
+
+
+def _perp(v: np.ndarray) -> np.ndarray:
+    return np.stack([-v[..., 1], v[..., 0]], axis=-1)
+
+
+def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    return a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0]
+
+
+def _rot(theta: np.ndarray, s: np.ndarray) -> np.ndarray:
+    c, sn = np.cos(theta), np.sin(theta)
+    return np.stack([c * s[0] - sn * s[1], sn * s[0] + c * s[1]], axis=-1)
+
+
+def _angle(v: np.ndarray) -> np.ndarray:
+    return np.arctan2(v[..., 1], v[..., 0])
+
+
+@dataclass
+class State:
+    """Work arrays of a solve: Q[k, n, link, (x, y, θ)] = k-th Taylor coefficient of link poses."""
+
+    mech: Mechanism
+    Q: np.ndarray
+    inputs: dict[str, np.ndarray]  # driver joint -> (K+1, N) Taylor coefficients of its input
+
+    @property
+    def order(self) -> int:
+        return self.Q.shape[0] - 1
+
+    def li(self, link: str) -> int:
+        return self.mech.link_index[link]
+
+    def world(self, link: str, s: np.ndarray) -> np.ndarray:
+        """(N, 2) positions of the point with design coordinates s on `link`."""
+        q = self.Q[0, :, self.li(link)]
+        return q[:, :2] + _rot(q[:, 2], s)
+
+    def point_derivatives(self, link: str, s: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Position, velocity, acceleration (N, 2) of a point fixed in `link`."""
+        q = self.Q[:, :, self.li(link)]
+        th, w, a = q[0, :, 2], q[1, :, 2], 2 * q[2, :, 2]
+        rs = _rot(th, s)
+        pos = q[0, :, :2] + rs
+        vel = q[1, :, :2] + w[:, None] * _perp(rs)
+        acc = 2 * q[2, :, :2] + a[:, None] * _perp(rs) - (w * w)[:, None] * rs
+        return pos, vel, acc
+
+    def set_pose(self, link: str, point_w: np.ndarray, s: np.ndarray, theta: np.ndarray) -> None:
+        """Place `link` so that its design point s is at point_w and its angle is θ."""
+        i = self.li(link)
+        self.Q[0, :, i, :2] = point_w - _rot(theta, s)
+        self.Q[0, :, i, 2] = theta
+
+
+# ---------------------------------------------------------------------------- jets of poses
+def _pose_fn(state: State, group_links: tuple[str, ...], U: np.ndarray | None, order: int):
+    """pose(link) over jets of batch shape (N, M). Unknown links read U (order+1, N, M, k, 3);
+    known links read Q, broadcast over M."""
+    cache: dict[str, tuple] = {}
+    gidx = {ln: i for i, ln in enumerate(group_links)}
+
+    def pose(link: str):
+        if link not in cache:
+            if U is not None and link in gidx:
+                c = U[: order + 1, :, :, gidx[link], :]
+            else:
+                c = state.Q[: order + 1, :, state.li(link), :][:, :, None, :]
+            x, y, th = Jet(c[..., 0]), Jet(c[..., 1]), Jet(c[..., 2])
+            cs, sn = th.cos_sin()
+            cache[link] = (x, y, th, cs, sn)
+        return cache[link]
+
+    return pose
+
+
+def _residuals(state: State, group: Group, U: np.ndarray, order: int) -> list[Jet]:
+    mech = state.mech
+    pose = _pose_fn(state, group.links, U, order)
+    res: list[Jet] = []
+    for jn in group.joints:
+        res.extend(joint_residuals(mech, mech.joint(jn), pose))
+    for d in mech.drivers:
+        if d.joint in group.drivers:
+            value = Jet(state.inputs[d.joint][: order + 1, :, None])
+            res.append(driver_residual(mech, d, pose, value))
+    return res
+
+
+def group_jacobian(state: State, group: Group) -> np.ndarray:
+    """(N, 3k, 3k) Jacobian of the group's constraints with respect to its link poses."""
+    N, k = state.Q.shape[1], group.size
+    m = 3 * k
+    U = np.zeros((2, N, m, k, 3))
+    U[0] = state.Q[0][:, [state.li(ln) for ln in group.links]][:, None]
+    U[1] = np.eye(m).reshape(m, k, 3)[None]
+    # only the unknowns' directions are wanted: known links and inputs held still
+    still = State(state.mech, np.stack([state.Q[0], np.zeros_like(state.Q[0])]),
+                  {k: np.stack([v[0], np.zeros_like(v[0])]) for k, v in state.inputs.items()})
+    res = _residuals(still, group, U, 1)
+    return np.stack([r.c[1] for r in res], axis=1)
+
+
+def _scaled(J: np.ndarray, scale: float) -> np.ndarray:
+    """Jacobian with angle columns in length units, so its condition number is unit-free."""
+    Js = J.copy()
+    Js[..., 2::3] /= scale
+    return Js
+
+
+def _solve(J: np.ndarray, r: np.ndarray, ok: np.ndarray) -> np.ndarray:
+    out = np.full(r.shape, np.nan)
+    if ok.any():
+        out[ok] = np.linalg.solve(J[ok], r[ok][..., None])[..., 0]
+    return out
+
+
+def derivatives_generic(state: State, group: Group, ok: np.ndarray) -> np.ndarray:
+    """Fill the velocity (and higher) coefficients of the group's links; return the condition."""
+    idx = [state.li(ln) for ln in group.links]
+    J = group_jacobian(state, group)
+    finite = ok & np.isfinite(J).all(axis=(1, 2))
+    cond = np.full(J.shape[0], np.inf)
+    if finite.any():
+        cond[finite] = np.linalg.cond(_scaled(J[finite], state.mech.length_scale))
+    good = finite & (cond < 1e14)
+    for k in range(1, state.order + 1):
+        U = state.Q[:, :, idx, :][:, :, None].copy()
+        U[k] = 0.0
+        res = _residuals(state, group, U, k)
+        r = np.stack([x.c[k][:, 0] for x in res], axis=1)
+        sol = _solve(J, -r, good)
+        state.Q[k][:, idx, :] = sol.reshape(-1, group.size, 3)
+    return cond
+
+
+# ---------------------------------------------------------------------------- group kinds
+def _classify(mech: Mechanism, group: Group) -> tuple[str, dict]:
+    """Recognise the groups with closed-form positions; 'generic' otherwise."""
+    joints = [mech.joint(j) for j in group.joints]
+    g = set(group.links)
+    if group.drivers:
+        return ("driver", {}) if group.size == 1 else ("generic", {})
+    kinds = sorted(j.kind for j in joints)
+    if group.size == 2 and kinds == ["revolute"] * 3:
+        inner = [j for j in joints if set(j.links) <= g]
+        outer = [j for j in joints if not set(j.links) <= g]
+        if len(inner) == 1 and len(outer) == 2:
+            (a, c) = outer
+            l1 = a.links[0] if a.links[0] in g else a.links[1]
+            l2 = c.links[0] if c.links[0] in g else c.links[1]
+            if l1 != l2:
+                return "RRR", dict(a=a, b=inner[0], c=c, l1=l1, l2=l2)
+    if group.size == 1:
+        (ln,) = group.links
+        rev = [j for j in joints if isinstance(j, Revolute)]
+        slot = [j for j in joints if isinstance(j, Slot)]
+        if len(rev) == 1 and len(slot) == 1 and len(joints) == 2:
+            s = slot[0]
+            if s.links[1] == ln:
+                return "rod-in-slot", dict(pivot=rev[0], line=s, rod=ln)
+            return "slotted-lever", dict(pivot=rev[0], line=s, lever=ln)
+    if group.size == 2 and len(joints) == 3:
+        rev = [j for j in joints if isinstance(j, Revolute)]
+        pri = [j for j in joints if isinstance(j, Prismatic)]
+        if len(rev) == 2 and len(pri) == 1:
+            p = pri[0]
+            if p.links[1] in g and p.links[0] not in g:  # block on a known guide: RRP
+                block = p.links[1]
+                inner = [j for j in rev if set(j.links) == g]
+                outer = [j for j in rev if not set(j.links) <= g]
+                if len(inner) == 1 and len(outer) == 1:
+                    rod = next(ln for ln in g if ln != block)
+                    if rod in outer[0].links:
+                        return "RRP", dict(pivot=outer[0], hinge=inner[0], guide=p, rod=rod, block=block)
+            if set(p.links) == g:  # block slides in the lever: RPR
+                lever, block = p.links
+                outer = [j for j in rev if not set(j.links) <= g]
+                if len(outer) == 2:
+                    lj = next((j for j in outer if lever in j.links), None)
+                    bj = next((j for j in outer if block in j.links), None)
+                    if lj is not None and bj is not None:
+                        return "RPR", dict(pivot=lj, pin=bj, guide=p, lever=lever, block=block)
+    return "generic", {}
+
+
+def _other(j, link: str) -> str:
+    return j.links[1] if j.links[0] == link else j.links[0]
+
+
+def _circle_line(state: State, centre: np.ndarray, radius: float, q: np.ndarray, e: np.ndarray,
+                 branch: float) -> np.ndarray:
+    """Point on the line q + λe (unit e) at distance `radius` from `centre`, on `branch`."""
+    w = q - centre
+    b = np.einsum("ij,ij->i", e, w)
+    disc = b * b - (np.einsum("ij,ij->i", w, w) - radius * radius)
+    disc = np.where((disc < 0) & (disc > -1e-12 * radius * radius), 0.0, disc)
+    lam = -b + branch * np.sqrt(disc)
+    return q + lam[:, None] * e
+
+
+def _design_branch(b: float) -> float:
+    return 1.0 if b >= 0 else -1.0
+
+
+class GroupSolver:
+    """Solves one group: positions (closed form or Newton) and derivatives."""
+
+    def __init__(self, mech: Mechanism, group: Group) -> None:
+        self.mech, self.group = mech, group
+        self.kind, self.parts = _classify(mech, group)
+
+    # ------------------------------------------------------------------ positions
+    def positions(self, state: State, guess: np.ndarray | None = None) -> np.ndarray:
+        """Fill the group's poses in Q[0]; return the per-sample assembly mask."""
+        fn = getattr(self, f"_pos_{self.kind.replace('-', '_')}")
+        return fn(state, guess) if self.kind == "generic" else fn(state)
+
+    def _pos_driver(self, state: State) -> np.ndarray:
+        mech = self.mech
+        (ln,) = self.group.links
+        d: Driver = next(d for d in mech.drivers if d.joint in self.group.drivers)
+        j = mech.joint(d.joint)
+        base = state.Q[0, :, state.li(d.base)]
+        u = state.inputs[d.joint][0]
+        if isinstance(j, Prismatic):
+            theta = base[:, 2]
+            shift = u[:, None] * _rot(theta, j.axis)
+            state.Q[0, :, state.li(ln), :2] = base[:, :2] + shift
+            state.Q[0, :, state.li(ln), 2] = theta
+        else:
+            theta = base[:, 2] + (u - mech.driver_input_at_design(d))
+            H = mech.points[j.point]
+            state.set_pose(ln, state.world(d.base, H), H, theta)
+        return np.isfinite(u) & np.isfinite(base).all(axis=1)
+
+    def _pos_RRR(self, state: State) -> np.ndarray:
+        p = self.parts
+        P = self.mech.points
+        A, B, C = P[p["a"].point], P[p["b"].point], P[p["c"].point]
+        Aw = state.world(_other(p["a"], p["l1"]), A)
+        Cw = state.world(_other(p["c"], p["l2"]), C)
+        L1, L2 = np.hypot(*(B - A)), np.hypot(*(B - C))
+        branch = _design_branch(_cross(C - A, B - A))
+        d = Cw - Aw
+        D = np.hypot(d[:, 0], d[:, 1])
+        with np.errstate(invalid="ignore", divide="ignore"):
+            a = (L1 * L1 - L2 * L2 + D * D) / (2 * D)
+            h2 = L1 * L1 - a * a
+            h2 = np.where((h2 < 0) & (h2 > -1e-12 * L1 * L1), 0.0, h2)
+            ex = d / D[:, None]
+            Bw = Aw + a[:, None] * ex + (branch * np.sqrt(h2))[:, None] * _perp(ex)
+        th1 = _angle(Bw - Aw) - _angle(B - A)
+        th2 = _angle(Bw - Cw) - _angle(B - C)
+        state.set_pose(p["l1"], Aw, A, th1)
+        state.set_pose(p["l2"], Cw, C, th2)
+        return np.isfinite(Bw).all(axis=1)
+
+    def _pos_rod_in_slot(self, state: State) -> np.ndarray:
+        p = self.parts
+        P = self.mech.points
+        pivot, line, rod = p["pivot"], p["line"], p["rod"]
+        A, Cd = P[pivot.point], P[line.point]
+        Aw = state.world(_other(pivot, rod), A)
+        guide = line.links[0]
+        q = state.world(guide, Cd)
+        e = _rot(state.Q[0, :, state.li(guide), 2], line.axis)
+        Cw = _circle_line(state, Aw, np.hypot(*(Cd - A)), q, e,
+                          _design_branch(np.dot(line.axis, Cd - A)))
+        state.set_pose(rod, Aw, A, _angle(Cw - Aw) - _angle(Cd - A))
+        return np.isfinite(Cw).all(axis=1)
+
+    def _pos_RRP(self, state: State) -> np.ndarray:
+        p = self.parts
+        P = self.mech.points
+        A, B = P[p["pivot"].point], P[p["hinge"].point]
+        rod, block, guide = p["rod"], p["block"], p["guide"]
+        Aw = state.world(_other(p["pivot"], rod), A)
+        gl = guide.links[0]
+        q = state.world(gl, B)  # B's track: the line through B's design place, fixed in the guide
+        th_g = state.Q[0, :, state.li(gl), 2]
+        e = _rot(th_g, guide.axis)
+        Bw = _circle_line(state, Aw, np.hypot(*(B - A)), q, e,
+                          _design_branch(np.dot(guide.axis, B - A)))
+        state.set_pose(rod, Aw, A, _angle(Bw - Aw) - _angle(B - A))
+        state.set_pose(block, Bw, B, th_g)
+        return np.isfinite(Bw).all(axis=1)
+
+    def _lever_angle(self, state: State, pivot, lever: str, pin_w: np.ndarray, pin_d: np.ndarray,
+                     axis: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Angle of a lever pivoted at `pivot` whose line (axis through pin_d) passes the pin."""
+        O = self.mech.points[pivot.point]
+        Ow = state.world(_other(pivot, lever), O)
+        e = _cross(axis, pin_d - O)  # signed distance of the slot line from the pivot
+        d = pin_w - Ow
+        rho = np.hypot(d[:, 0], d[:, 1])
+        with np.errstate(invalid="ignore", divide="ignore"):
+            s = e / rho
+            s = np.where((np.abs(s) > 1) & (np.abs(s) < 1 + 1e-12), np.sign(s), s)
+            if np.dot(axis, pin_d - O) >= 0:
+                phi = _angle(d) - np.arcsin(s)
+            else:
+                phi = _angle(d) - np.pi + np.arcsin(s)
+        return Ow, phi - _angle(axis)
+
+    def _pos_slotted_lever(self, state: State) -> np.ndarray:
+        p = self.parts
+        line, lever = p["line"], p["lever"]
+        pin_d = self.mech.points[line.point]
+        pin_w = state.world(line.links[1], pin_d)
+        Ow, th = self._lever_angle(state, p["pivot"], lever, pin_w, pin_d, line.axis)
+        state.set_pose(lever, Ow, self.mech.points[p["pivot"].point], th)
+        return np.isfinite(th)
+
+    def _pos_RPR(self, state: State) -> np.ndarray:
+        p = self.parts
+        P = self.mech.points
+        pin, lever, block = p["pin"], p["lever"], p["block"]
+        pin_d = P[pin.point]
+        pin_w = state.world(_other(pin, block), pin_d)
+        Ow, th = self._lever_angle(state, p["pivot"], lever, pin_w, pin_d, p["guide"].axis)
+        state.set_pose(lever, Ow, P[p["pivot"].point], th)
+        state.set_pose(block, pin_w, pin_d, th)
+        return np.isfinite(th)
+
+    def _pos_generic(self, state: State, guess: np.ndarray | None) -> np.ndarray:
+        """Newton's method on the group alone, from `guess` (N, k, 3) poses."""
+        idx = [state.li(ln) for ln in self.group.links]
+        N = state.Q.shape[1]
+        q = np.zeros((N, self.group.size, 3)) if guess is None else guess.copy()
+        scale = self.mech.length_scale
+        active = np.isfinite(q).all(axis=(1, 2)) & np.isfinite(state.Q[0]).all(axis=(1, 2))
+        converged = np.zeros(N, dtype=bool)
+        q[~active] = 0.0
+        for _ in range(50):
+            state.Q[0][:, idx, :] = q
+            U = q[None, :, None]
+            res = _residuals(state, self.group, U, 0)
+            r = np.stack([x.c[0][:, 0] for x in res], axis=1)
+            err = np.abs(r).max(axis=1)
+            converged = active & (err <= NEWTON_TOL * scale)
+            todo = active & ~converged
+            if not todo.any():
+                break
+            J = group_jacobian(state, self.group)
+            try:
+                step = np.linalg.solve(J[todo], -r[todo][..., None])[..., 0]
+            except np.linalg.LinAlgError:
+                step = np.linalg.lstsq(J[todo][0], -r[todo][0], rcond=None)[0][None]
+            # damp steps that would turn a link by more than a radian: keeps the branch
+            big = np.abs(step[:, 2::3]).max(axis=1, initial=0.0)
+            step *= np.minimum(1.0, 1.0 / np.maximum(big, 1e-300))[:, None]
+            q[todo] += step.reshape(-1, self.group.size, 3)
+        q[~converged] = np.nan
+        state.Q[0][:, idx, :] = q
+        return converged
+
+    # ------------------------------------------------------------------ derivatives
+    def derivatives(self, state: State, ok: np.ndarray) -> np.ndarray:
+        """Fill velocity and acceleration (and jerk) coefficients; return condition numbers."""
+        if self.kind == "RRR" and state.order == 2:
+            return self._der_RRR(state)
+        return derivatives_generic(state, self.group, ok)
+
+    def _der_RRR(self, state: State) -> np.ndarray:
+        p = self.parts
+        P = self.mech.points
+        A, B, C = P[p["a"].point], P[p["b"].point], P[p["c"].point]
+        pA, vA, aA = state.point_derivatives(_other(p["a"], p["l1"]), A)
+        pC, vC, aC = state.point_derivatives(_other(p["c"], p["l2"]), C)
+        i1, i2 = state.li(p["l1"]), state.li(p["l2"])
+        q1, q2 = state.Q[0, :, i1], state.Q[0, :, i2]
+        rA = _rot(q1[:, 2], A)  # A relative to link 1's origin, in world directions
+        rC = _rot(q2[:, 2], C)
+        r1 = _rot(q1[:, 2], B - A)
+        r2 = _rot(q2[:, 2], B - C)
+        c1, c2 = _perp(r1), -_perp(r2)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            det = _cross(c1, c2)
+            # ω1 ⊥r1 − ω2 ⊥r2 = vC − vA  (closure of the hinge B), Cramer's rule
+            w = vC - vA
+            om1, om2 = _cross(w, c2) / det, _cross(c1, w) / det
+            w2 = aC - aA + (om1 * om1)[:, None] * r1 - (om2 * om2)[:, None] * r2
+            al1, al2 = _cross(w2, c2) / det, _cross(c1, w2) / det
+            a_, b_, cc = (c1 * c1).sum(1), (c1 * c2).sum(1), (c2 * c2).sum(1)
+            mid, rad = 0.5 * (a_ + cc), np.sqrt((0.5 * (a_ - cc)) ** 2 + b_ * b_)
+            cond = np.sqrt((mid + rad) / (mid - rad))
+        for i, rs, v, a, om, al in ((i1, rA, vA, aA, om1, al1), (i2, rC, vC, aC, om2, al2)):
+            Q1, Q2 = state.Q[1, :, i], state.Q[2, :, i]
+            Q1[:, :2] = v - om[:, None] * _perp(rs)
+            Q1[:, 2] = om
+            Q2[:, :2] = 0.5 * (a - al[:, None] * _perp(rs) + (om * om)[:, None] * rs)
+            Q2[:, 2] = 0.5 * al
+        return np.where(np.isfinite(cond), cond, np.inf)

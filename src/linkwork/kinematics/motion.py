@@ -1,0 +1,88 @@
+"""The whole motion of a one-input mechanism, as the real mechanism runs through it.
+
+An input that can turn fully is sampled over one turn. An input that cannot (a rocker, a slider)
+is driven from the design position to its limit position, back to the other limit and forward
+to the design position again, on the assembly branch of the design, with the input speed
+reversed on the way back (as in the Stephenson III reference sweeps). Limit positions are found
+by bisection to machine precision and included as samples.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..errors import InputError
+from ..model import ConstantSpeed, Mechanism
+from .solution import Solution, Status
+from .solver import solve
+
+BISECTIONS = 60
+
+
+def _assembles(mech: Mechanism, u: np.ndarray) -> np.ndarray:
+    return solve(mech, u, order=1).status != Status.UNREACHABLE
+
+
+def input_limits(mech: Mechanism, *, resolution: float | None = None) -> tuple[float, float] | None:
+    """(lower, upper) limits of the single input around the design value, or None when a
+    revolute input can turn fully."""
+    d = mech.drivers[0]
+    prismatic = mech.joint(d.joint).kind == "prismatic"
+    u0 = mech.driver_input_at_design(d)
+    span = 4 * mech.length_scale if prismatic else 2 * np.pi
+    n = 1441
+    res = resolution or span / (n - 1)
+    grid = np.linspace(0.0, span, max(n, int(span / res) + 1))
+    up = _assembles(mech, u0 + grid)
+    down = _assembles(mech, u0 - grid)
+    if not prismatic and up.all():
+        return None
+    limits = []
+    for sign, ok in ((-1.0, down), (1.0, up)):
+        if ok.all():
+            raise InputError(f"driver '{d.joint}': no limit position within ±{span:g} of the design "
+                             "position; give --sweep explicitly")
+        k = int(np.argmin(ok))  # first sample that does not assemble
+        lo, hi = grid[k - 1], grid[k]
+        for _ in range(BISECTIONS):
+            mid = 0.5 * (lo + hi)
+            if _assembles(mech, np.array([u0 + sign * mid]))[0]:
+                lo = mid
+            else:
+                hi = mid
+        limits.append(u0 + sign * lo)
+    return limits[0], limits[1]
+
+
+def whole_motion(mech: Mechanism, *, step: float | None = None, order: int = 2) -> Solution:
+    """Solve the whole motion. `step` is the input increment (radians or length unit; default
+    1° or 1/200 of the stroke)."""
+    if len(mech.drivers) != 1:
+        laws = [d.law for d in mech.drivers]
+        if all(law.duration for law in laws):
+            t = np.linspace(0.0, min(law.duration for law in laws), 361)
+            return solve(mech, times=t, order=order)
+        raise InputError("the whole motion of a mechanism with several drivers needs a time law "
+                         "with a duration for every driver; give inputs explicitly")
+    d = mech.drivers[0]
+    if not isinstance(d.law, ConstantSpeed):
+        return solve(mech, times=np.linspace(0.0, d.law.duration, 361), order=order)
+    u0 = mech.driver_input_at_design(d)
+    speed = d.law.speed
+    limits = input_limits(mech)
+    if limits is None:
+        h = step or np.radians(1.0)
+        n = int(round(2 * np.pi / h))
+        u = u0 + np.sign(speed or 1.0) * np.linspace(0.0, 2 * np.pi, n + 1)
+        return solve(mech, u, velocities=np.full(u.shape, speed), order=order)
+    lo, hi = limits
+    h = step or (np.radians(1.0) if mech.joint(d.joint).kind == "revolute" else (hi - lo) / 200)
+
+    def leg(a: float, b: float) -> np.ndarray:
+        n = max(1, int(np.ceil(abs(b - a) / h - 1e-9)))
+        return a + np.sign(b - a) * np.minimum(np.arange(n + 1) * h, abs(b - a))
+
+    first, back, last = leg(u0, hi), leg(hi, lo), leg(lo, u0)
+    u = np.concatenate([first, back[1:], last[1:]])
+    sign = np.concatenate([np.ones(first.size), -np.ones(back.size - 1), np.ones(last.size - 1)])
+    return solve(mech, u, velocities=abs(speed) * sign, order=order)

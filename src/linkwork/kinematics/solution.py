@@ -1,0 +1,213 @@
+"""`Solution`: the motion of a mechanism at N samples, computed by `solve` (model/data split:
+the `Mechanism` never changes, a `Solution` is arrays over it).
+
+Stored are the link poses and their derivatives; points, links and pairs are read from them on
+demand by name. All arrays have the sample axis first. Lengths are in the mechanism's unit,
+angles in radians, time in seconds.
+"""
+
+from __future__ import annotations
+
+import enum
+from dataclasses import dataclass
+from math import factorial
+
+import numpy as np
+
+from ..errors import ModelError
+from ..model import CircularSlot, Gear, Mechanism, Prismatic, Slot
+
+
+class Status(enum.IntEnum):
+    OK = 0
+    SINGULAR = 1  # dead centre / change point: the group Jacobian is (nearly) singular
+    UNREACHABLE = 2  # the chain cannot be assembled at this input
+
+    def __str__(self) -> str:
+        return self.name.lower()
+
+
+def _perp(v: np.ndarray) -> np.ndarray:
+    return np.stack([-v[..., 1], v[..., 0]], axis=-1)
+
+
+def _rot(theta: np.ndarray, s: np.ndarray) -> np.ndarray:
+    c, sn = np.cos(theta), np.sin(theta)
+    return np.stack([c * s[..., 0] - sn * s[..., 1], sn * s[..., 0] + c * s[..., 1]], axis=-1)
+
+
+@dataclass(frozen=True)
+class PointMotion:
+    """Position, velocity, acceleration (and jerk when solved to third order), each (N, 2)."""
+
+    position: np.ndarray
+    velocity: np.ndarray
+    acceleration: np.ndarray | None
+    jerk: np.ndarray | None = None
+
+
+@dataclass(frozen=True)
+class LinkMotion:
+    """Angle of the link's reference line, angular velocity ω and acceleration α, each (N,)."""
+
+    angle: np.ndarray
+    omega: np.ndarray
+    alpha: np.ndarray | None
+    jerk: np.ndarray | None = None
+
+
+class Solution:
+    """Kinematics of `mechanism` at N samples. Index a point, link or pair by name."""
+
+    def __init__(self, mechanism: Mechanism, inputs: np.ndarray, time: np.ndarray | None,
+                 coefficients: np.ndarray, status: np.ndarray, condition: np.ndarray) -> None:
+        self.mechanism = mechanism
+        self.inputs = inputs  # (N, drivers)
+        self.time = time
+        order = coefficients.shape[0] - 1
+        # derivatives of link poses: D[k, n, link, (x, y, θ)]
+        self._D = coefficients * np.array([factorial(k) for k in range(order + 1)])[:, None, None, None]
+        self._D.setflags(write=False)
+        self.status = status
+        self.condition = condition
+
+    # ------------------------------------------------------------------ basics
+    def __len__(self) -> int:
+        return self._D.shape[1]
+
+    def __repr__(self) -> str:
+        n_ok = int((self.status == Status.OK).sum())
+        return (f"<Solution of '{self.mechanism.name}': {len(self)} samples, {n_ok} ok, "
+                f"{int((self.status == Status.SINGULAR).sum())} singular, "
+                f"{int((self.status == Status.UNREACHABLE).sum())} unreachable>")
+
+    @property
+    def order(self) -> int:
+        return self._D.shape[0] - 1
+
+    @property
+    def input(self) -> np.ndarray:
+        """The input values (N,) of a one-driver mechanism; (N, drivers) otherwise."""
+        return self.inputs[:, 0] if self.inputs.shape[1] == 1 else self.inputs
+
+    def pose_derivatives(self, link: str) -> np.ndarray:
+        """(order+1, N, 3): derivatives of (x, y, θ) of `link`'s pose."""
+        return self._D[:, :, self._li(link)]
+
+    def _li(self, link: str) -> int:
+        try:
+            return self.mechanism.link_index[link]
+        except KeyError:
+            raise ModelError(f"mechanism '{self.mechanism.name}' has no link '{link}'") from None
+
+    # ------------------------------------------------------------------ points
+    def point_on(self, link: str, s) -> PointMotion:
+        """Motion of the point with design coordinates `s` carried by `link` (s may be (2,) or
+        (N, 2) to follow a moving material point of the link, e.g. a coincident point)."""
+        s = np.asarray(s, dtype=float)
+        D = self.pose_derivatives(link)
+        th, w = D[0, :, 2], D[1, :, 2]
+        r = _rot(th, s)
+        pos = D[0, :, :2] + r
+        vel = D[1, :, :2] + w[:, None] * _perp(r)
+        acc = jerk = None
+        if self.order >= 2:
+            a = D[2, :, 2]
+            acc = D[2, :, :2] + a[:, None] * _perp(r) - (w * w)[:, None] * r
+            if self.order >= 3:
+                j = D[3, :, 2]
+                # d/dt of a: ẗ' + j ⊥r + α ⊥(ω ⊥r) − 2ωα r − ω² ω ⊥r
+                jerk = (D[3, :, :2] + j[:, None] * _perp(r) - (3 * w * a)[:, None] * r
+                        - (w ** 3)[:, None] * _perp(r))
+        return PointMotion(pos, vel, acc, jerk)
+
+    def point(self, name: str) -> PointMotion:
+        mech = self.mechanism
+        if name not in mech.points:
+            raise ModelError(f"mechanism '{mech.name}' has no point '{name}'")
+        return self.point_on(mech.point_owner[name], mech.points[name])
+
+    def local(self, link: str, xy: np.ndarray) -> np.ndarray:
+        """Design (link) coordinates of world points xy (N, 2) in `link` at each sample."""
+        D = self.pose_derivatives(link)
+        return _rot(-D[0, :, 2], xy - D[0, :, :2])
+
+    # ------------------------------------------------------------------ links
+    def reference_angle(self, link: str) -> float:
+        """Design angle of the link's reference line (first point to the next distinct one)."""
+        pts = [self.mechanism.points[p] for p in self.mechanism.link(link).points]
+        for q in pts[1:]:
+            d = q - pts[0]
+            if np.hypot(*d) > 0:
+                return float(np.arctan2(d[1], d[0]))
+        return 0.0
+
+    def link(self, name: str) -> LinkMotion:
+        D = self.pose_derivatives(name)
+        return LinkMotion(D[0, :, 2] + self.reference_angle(name), D[1, :, 2],
+                          D[2, :, 2] if self.order >= 2 else None,
+                          D[3, :, 2] if self.order >= 3 else None)
+
+    # ------------------------------------------------------------------ pairs
+    def joint(self, name: str) -> dict[str, np.ndarray]:
+        """Relative motion in pair `name`: relative angle, ω and α of links[1] to links[0]; for
+        sliding pairs the slide, sliding velocity and acceleration along the guide (scalar and
+        vector) and the Coriolis acceleration 2ω×v_rel of the guiding link."""
+        mech = self.mechanism
+        j = mech.joint(name)
+        if isinstance(j, Gear):
+            c = self.link(j.carrier)
+            w1, w2 = self.link(j.links[0]), self.link(j.links[1])
+            return {"angle_1": w1.angle - c.angle, "angle_2": w2.angle - c.angle,
+                    "omega_1": w1.omega - c.omega, "omega_2": w2.omega - c.omega}
+        a, b = j.links
+        la, lb = self.link(a), self.link(b)
+        out = {"angle": lb.angle - la.angle - (self.reference_angle(b) - self.reference_angle(a)),
+               "omega": lb.omega - la.omega}
+        if self.order >= 2:
+            out["alpha"] = lb.alpha - la.alpha
+        if not isinstance(j, (Prismatic, Slot, CircularSlot)):
+            return out
+        pin = self.point_on(b, mech.points[j.point])
+        # the point of the guiding link that coincides with the pin at each sample
+        coinc = self.point_on(a, self.local(a, pin.position))
+        v_rel = pin.velocity - coinc.velocity
+        Da = self.pose_derivatives(a)
+        w_a = Da[1, :, 2]
+        out["velocity"] = v_rel
+        if isinstance(j, CircularSlot):
+            centre = self.point_on(a, mech.points[j.center]).position
+            r = pin.position - centre
+            r0 = mech.points[j.point] - mech.points[j.center]
+            loc = self.local(a, pin.position) - mech.points[j.center]
+            out["arc_angle"] = np.arctan2(loc[:, 1], loc[:, 0]) - np.arctan2(r0[1], r0[0])
+            out["arc_rate"] = (r[:, 0] * v_rel[:, 1] - r[:, 1] * v_rel[:, 0]) / (r * r).sum(1)
+        else:
+            u = _rot(Da[0, :, 2], j.axis)
+            out["slide"] = (self.local(a, pin.position) - mech.points[j.point]) @ j.axis
+            out["sliding_velocity"] = (v_rel * u).sum(1)
+        if self.order >= 2:
+            cor = 2 * w_a[:, None] * _perp(v_rel)
+            a_rel = pin.acceleration - coinc.acceleration - cor
+            out["acceleration"] = a_rel
+            out["coriolis"] = cor
+            if not isinstance(j, CircularSlot):
+                out["sliding_acceleration"] = (a_rel * u).sum(1)
+        return out
+
+    # ------------------------------------------------------------------ exports
+    def to_pandas(self):
+        """A wide DataFrame: one row per sample, columns like 'B.vx', 'coupler.omega'."""
+        from ..io.export import to_dataframe
+        return to_dataframe(self)
+
+    def to_csv(self, path) -> None:
+        self.to_pandas().to_csv(path, index=False)
+
+    def to_parquet(self, path) -> None:
+        self.to_pandas().to_parquet(path, index=False)
+
+    def to_document(self) -> dict:
+        """The JSON document of `linkwork analyze --format json`."""
+        from ..io.export import to_document
+        return to_document(self)

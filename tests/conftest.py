@@ -1,0 +1,15 @@
+"""Shared test fixtures: where the project's shared reference material lives."""
+
+from pathlib import Path
+
+import pytest
+
+SHARED = Path(__file__).resolve().parents[1].parent / "shared"
+REFERENCE = SHARED / "reference" / "pmks-verification-v1" / "cases"
+
+
+@pytest.fixture(scope="session")
+def reference_root() -> Path:
+    if not REFERENCE.is_dir():
+        pytest.fail(f"the reference suite is missing: {REFERENCE}")
+    return REFERENCE
