@@ -54,6 +54,7 @@ class Circle(Batch):
     def at(cls, centre: Point, radius: Any) -> Circle:
         """Proper circle(s) with finite ``centre`` and finite ``radius >= 0``."""
         r = np.asarray(radius, float)
+        batch_shape(centre.shape, r.shape, what="Circle.at")
         if np.isinf(r).any():
             raise GeometryError("Circle.at needs a finite radius; use Circle.from_line for a straight line")
         c = finite_xy(centre, "Circle.at")

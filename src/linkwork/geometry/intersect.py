@@ -82,7 +82,7 @@ def _circle_line(circle: Circle, line: Line, tol: float) -> IntersectionPair:
     s = line.signed_distance(C)
     F = C.xy - s[..., None] * line.normal.xy
     h2 = (r - abs(s)) * (r + abs(s))
-    touch = (h2 < 0) & (abs(s) - r <= tol * np.maximum(r, abs(s)))
+    touch = (h2 < 0) & np.isfinite(s) & (abs(s) - r <= tol * np.maximum(r, abs(s)))
     h = np.sqrt(np.where(touch, 0.0, np.maximum(h2, 0.0)))[..., None] * line.direction.xy
     one = np.ones(shape + (1,))
     plus, minus = np.concatenate([F + h, one], -1), np.concatenate([F - h, one], -1)
@@ -108,7 +108,7 @@ def _circles(c1: Circle, c2: Circle, tol: float) -> IntersectionPair:
     with np.errstate(divide="ignore", invalid="ignore"):
         a = (d + (r1 - r2) * (r1 + r2) / d) / 2
         h = np.sqrt(np.maximum(big * apart * nested * (d + abs(r1 - r2)), 0.0)) / (2 * d)
-    M = c1.centre.coords[..., :2] + a[..., None] * u
+        M = c1.centre.coords[..., :2] + a[..., None] * u
     one = np.ones(shape + (1,))
     plus = np.concatenate([M + h[..., None] * rot90(u), one], -1)
     minus = np.concatenate([M - h[..., None] * rot90(u), one], -1)
