@@ -6,6 +6,7 @@
 
 from __future__ import annotations
 
+import difflib
 import json
 import re
 import tomllib
@@ -81,25 +82,39 @@ def load_text(text: str, *, source: str = "<text>") -> Mechanism:
     try:
         spec = schema.MechanismFile.model_validate(raw)
     except ValidationError as exc:
-        err = exc.errors()[0]
-        loc = tuple(err["loc"])
-        # drop the discriminator tag pydantic inserts into union locations
-        clean = tuple(k for k in loc if k not in {"revolute", "prismatic", "slot", "circular-slot",
-                                                  "gear", "polynomial", "table", "float", "int",
-                                                  "str", "list[union[float,int]]",
-                                                  "list[float]", "list[int]"}
-                      and not str(k).startswith(("function-", "union[", "list[")))
-        key = ".".join(str(k) for k in clean)
-        msg = err["msg"]
-        if err["type"] == "extra_forbidden":
-            msg = "unknown key (check its spelling)"
-        elif err["type"] == "missing":
-            msg = "required key is missing"
-        raise MechanismFileError(msg, source=source, key=key, line=_line_of(text, clean)) from None
+        raise _file_error(exc, text, source) from None
     try:
         return _build(spec, text, source)
     except (ModelError, InputError) as exc:
         raise MechanismFileError(str(exc), source=source) from None
+
+
+_TAGS = {"revolute", "prismatic", "slot", "circular-slot", "gear", "polynomial", "table", "float",
+         "int", "str"}
+
+
+def _clean(loc: tuple) -> tuple:
+    """A pydantic error location without the union/discriminator tags it inserts."""
+    return tuple(k for k in loc if k not in _TAGS
+                 and not str(k).startswith(("function-", "union[", "list[")))
+
+
+def _file_error(exc: ValidationError, text: str, source: str) -> MechanismFileError:
+    """One message for the most telling error: a misspelt key before the key it misses."""
+    errors = exc.errors()
+    extra = [e for e in errors if e["type"] == "extra_forbidden"]
+    err = extra[0] if extra else errors[0]
+    clean = _clean(tuple(err["loc"]))
+    key = ".".join(str(k) for k in clean)
+    msg = err["msg"]
+    if err["type"] == "extra_forbidden":
+        missing = [str(_clean(tuple(e["loc"]))[-1]) for e in errors
+                   if e["type"] == "missing" and _clean(tuple(e["loc"]))[:-1] == clean[:-1]]
+        close = difflib.get_close_matches(str(clean[-1]), missing, n=1)
+        msg = "unknown key" + (f" (did you mean '{close[0]}'?)" if close else " (check its spelling)")
+    elif err["type"] == "missing":
+        msg = "required key is missing"
+    return MechanismFileError(msg, source=source, key=key, line=_line_of(text, clean))
 
 
 def _axis(value, angle_unit: str, where: str) -> np.ndarray:

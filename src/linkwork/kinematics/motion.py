@@ -54,9 +54,10 @@ def input_limits(mech: Mechanism, *, resolution: float | None = None) -> tuple[f
     return limits[0], limits[1]
 
 
-def whole_motion(mech: Mechanism, *, step: float | None = None, order: int = 2) -> Solution:
+def whole_motion(mech: Mechanism, *, step: float | None = None, speed: float | None = None,
+                 order: int = 2) -> Solution:
     """Solve the whole motion. `step` is the input increment (radians or length unit; default
-    1° or 1/200 of the stroke)."""
+    1° or 1/200 of the stroke); `speed` overrides the driver's constant speed."""
     if len(mech.drivers) != 1:
         laws = [d.law for d in mech.drivers]
         if all(law.duration for law in laws):
@@ -65,10 +66,10 @@ def whole_motion(mech: Mechanism, *, step: float | None = None, order: int = 2) 
         raise InputError("the whole motion of a mechanism with several drivers needs a time law "
                          "with a duration for every driver; give inputs explicitly")
     d = mech.drivers[0]
-    if not isinstance(d.law, ConstantSpeed):
+    if not isinstance(d.law, ConstantSpeed) and speed is None:
         return solve(mech, times=np.linspace(0.0, d.law.duration, 361), order=order)
     u0 = mech.driver_input_at_design(d)
-    speed = d.law.speed
+    speed = d.law.speed if speed is None else speed
     limits = input_limits(mech)
     if limits is None:
         h = step or np.radians(1.0)
