@@ -91,3 +91,16 @@ def test_change_point_is_flagged_singular():
 def test_condition_is_given_for_every_assembled_sample():
     sol = linkwork.whole_motion(linkwork.load("library:crank-rocker"))
     assert np.isfinite(sol.condition).all() and (sol.condition >= 1).all()
+
+
+def test_exports_pandas_csv_parquet_agree(tmp_path):
+    import pandas as pd
+    sol = linkwork.solve(linkwork.load("library:crank-rocker"), np.radians([0.0, 90.0]))
+    df = sol.to_pandas()
+    np.testing.assert_array_equal(df["C.x"], sol.point("C").position[:, 0])
+    np.testing.assert_array_equal(df["coupler.alpha"], sol.link("coupler").alpha)
+    sol.to_parquet(tmp_path / "s.parquet")
+    sol.to_csv(tmp_path / "s.csv")
+    pd.testing.assert_frame_equal(pd.read_parquet(tmp_path / "s.parquet"), df)
+    back = pd.read_csv(tmp_path / "s.csv")
+    np.testing.assert_allclose(back["B.ay"], df["B.ay"], rtol=1e-15)
