@@ -1,0 +1,459 @@
+"""Poles (instantaneous centres, *Momentanpole*, *momentānie poli*) of every pair of links.
+
+Owns two independent ways to the n(n−1)/2 relative poles P_ij of an n-link mechanism:
+
+* `poles(solution)`: from the velocity solution. P_ij is the point where the velocity fields
+  of links i and j agree (Rosenauer §62, eq. 33: V¹³₁₂ = V²³₁₂).
+* `pole_schedule(mechanism)` and `kennedy_poles(solution)`: the classical way. Start from the
+  primary poles (hinges; sliders at infinity normal to the guide; gear pitch points; the
+  contact normal of a pin in a slot as a line through its pole) and apply the Aronhold–Kennedy
+  three-pole theorem (Rosenauer §62, §75, §91–92; Pöschl §51): P_ij lies on the line of P_ik and
+  P_jk for every third link k. The schedule prints like a textbook ("P13 = P12P23 ∩ P14P34")
+  and names the poles the theorem alone cannot reach (chains without four-bar loops,
+  Rosenauer 1937, "Koppeltriebe ohne Gelenkvierecke").
+
+Also `pole_lines` (the n(n−1)(n−2)/6 lines holding three poles each, Rosenauer §85) and
+`pole_discrepancy` to compare two pole sets. Poles at infinity (translations, sliders) are
+homogeneous `geometry.Point`s with w = 0 and their direction, never large numbers.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from itertools import combinations
+from math import comb
+from typing import Iterator
+
+import numpy as np
+
+from ..errors import ModelError
+from ..geometry import Line, Point
+from ..kinematics import Solution
+from ..model import CircularSlot, Gear, Mechanism, Prismatic, Revolute, Slot
+from .motion import TOL, make_point, perp
+
+Pair = tuple[str, str]
+
+
+def pole_count(n: int) -> int:
+    """Number of relative poles of n links: n(n−1)/2 (Rosenauer §84, eq. 42)."""
+    return comb(n, 2)
+
+
+def pole_line_count(n: int) -> int:
+    """Number of pole lines of n links: n(n−1)(n−2)/6 (Rosenauer §85, eq. 43)."""
+    return comb(n, 3)
+
+
+# ---------------------------------------------------------------------------- the pole set
+@dataclass(frozen=True)
+class Poles:
+    """The relative poles of every pair of links, each a `Point` of shape (N,) in the frame.
+
+    Index by a pair of link names in either order: ``poles["crank", "coupler"]``. Links are
+    numbered 1..n in the mechanism's order for the textbook labels (``label(a, b) == "P12"``).
+    A pole the method could not determine is all-NaN.
+    """
+
+    links: tuple[str, ...]
+    points: dict[Pair, Point] = field(repr=False)
+    method: str = "velocities"
+
+    def key(self, a: str, b: str) -> Pair:
+        if a == b:
+            raise ModelError(f"a link has no pole relative to itself ('{a}')")
+        for ln in (a, b):
+            if ln not in self.links:
+                raise ModelError(f"no link '{ln}' (links: {', '.join(self.links)})")
+        ia, ib = self.links.index(a), self.links.index(b)
+        return (a, b) if ia < ib else (b, a)
+
+    def __getitem__(self, pair: Pair) -> Point:
+        return self.points[self.key(*pair)]
+
+    def __iter__(self) -> Iterator[Pair]:
+        return iter(self.points)
+
+    def __len__(self) -> int:
+        return len(self.points)
+
+    def number(self, link: str) -> int:
+        return self.links.index(link) + 1
+
+    def label(self, a: str, b: str) -> str:
+        return pole_label(self.links, self.key(a, b))
+
+    def legend(self) -> str:
+        return ", ".join(f"{i + 1} = {ln}" for i, ln in enumerate(self.links))
+
+
+def pole_label(links: tuple[str, ...], pair: Pair) -> str:
+    i, j = sorted(links.index(ln) + 1 for ln in pair)
+    return f"P{i}{j}" if len(links) <= 9 else f"P{i},{j}"
+
+
+def _all_pairs(links: tuple[str, ...]) -> list[Pair]:
+    return list(combinations(links, 2))
+
+
+# ---------------------------------------------------------------------------- from velocities
+def poles(solution: Solution, *, tol: float = TOL) -> Poles:
+    """All n(n−1)/2 relative poles at every sample, from the velocity solution.
+
+    The velocity of the point X of link k is V_k(X) = c_k + ω_k J(X − M) with M a fixed point
+    near the mechanism, so V_i(X) = V_j(X) at X = M + J(c_i − c_j)/(ω_i − ω_j), carried in
+    homogeneous form (Δω·M + J Δc, Δω). A pole farther than length_scale/tol is a translation
+    pole, exactly at infinity in the direction J Δc (normal to the common velocity). A pair at
+    relative rest at a sample has an undefined (NaN) pole there.
+    """
+    mech = solution.mechanism
+    links = mech.link_names
+    L = mech.length_scale
+    M = np.mean(np.array(list(mech.points.values())), axis=0)
+    D = np.stack([solution.pose_derivatives(ln) for ln in links], axis=2)  # (K+1, N, n, 3)
+    o, v, w = D[0, ..., :2], D[1, ..., :2], D[1, ..., 2]
+    c = v + w[..., None] * perp(M - o)  # velocity of the point of each link at M
+    vscale = (np.sqrt((c * c).sum(-1)) + np.abs(w) * L).max(axis=1)  # (N,)
+    out: dict[Pair, Point] = {}
+    for a, b in _all_pairs(links):
+        ia, ib = mech.link_index[a], mech.link_index[b]
+        dc, dw = c[:, ia] - c[:, ib], w[:, ia] - w[:, ib]
+        out[(a, b)] = _pole_from_velocity_difference(M, dc, dw, L, vscale, tol)
+    return Poles(links, out, "velocities")
+
+
+def _pole_from_velocity_difference(M, dc, dw, L, vscale, tol) -> Point:
+    ndc = np.sqrt((dc * dc).sum(-1))
+    translating = np.abs(dw) * L <= tol * ndc
+    rest = ndc + np.abs(dw) * L <= tol * vscale
+    w_ = np.where(translating, 0.0, dw)
+    h = np.concatenate([w_[:, None] * M + perp(dc), w_[:, None]], axis=1)
+    h[rest] = np.nan
+    return make_point(h)
+
+
+# ---------------------------------------------------------------------------- Kennedy
+@dataclass(frozen=True)
+class PoleLineSource:
+    """One line known to pass through a pole: the line of two known poles, or the contact
+    normal of a pin in a slot (straight: normal to the slot; curved: through the slot centre)."""
+
+    poles: tuple[Pair, Pair] | None = None
+    joint: str | None = None
+
+    def text(self, links: tuple[str, ...]) -> str:
+        if self.poles is not None:
+            return "".join(pole_label(links, p) for p in self.poles)
+        return f"n({self.joint})"
+
+
+@dataclass(frozen=True)
+class PoleStep:
+    """How one pole is found. `rule` is 'hinge' (the hinge point), 'slider' (at infinity
+    normal to the guide), 'gear' (pitch point), 'common hinge' (three links on one hinge
+    point), 'normals' (two contact normals) or 'three-pole' (Aronhold–Kennedy)."""
+
+    pair: Pair
+    rule: str
+    joint: str | None = None
+    lines: tuple[PoleLineSource, ...] = ()
+
+    def text(self, links: tuple[str, ...]) -> str:
+        lab = pole_label(links, self.pair)
+        if self.rule == "hinge":
+            return f"{lab} = hinge {self.joint}"
+        if self.rule == "slider":
+            return f"{lab} = ∞ normal to the guide of {self.joint}"
+        if self.rule == "gear":
+            return f"{lab} = pitch point of gear {self.joint}"
+        if self.rule == "common hinge":
+            return f"{lab} = hinge {self.joint} (common to three links)"
+        a, b = self.lines[:2]
+        return f"{lab} = {a.text(links)} ∩ {b.text(links)}"
+
+
+@dataclass(frozen=True)
+class PoleSchedule:
+    """The order in which a textbook finds the poles: primary poles first, then each derived
+    pole from two lines through already known poles. `unreachable` are the poles the
+    three-pole theorem cannot reach from the primary poles (they need velocities, or
+    Rosenauer's auxiliary points of 1937)."""
+
+    links: tuple[str, ...]
+    steps: tuple[PoleStep, ...]
+    unreachable: tuple[Pair, ...]
+
+    @property
+    def primary(self) -> tuple[PoleStep, ...]:
+        return tuple(s for s in self.steps if s.rule in ("hinge", "slider", "gear", "common hinge"))
+
+    @property
+    def derived(self) -> tuple[PoleStep, ...]:
+        return tuple(s for s in self.steps if s.rule in ("three-pole", "normals"))
+
+    def lines(self) -> list[str]:
+        out = [s.text(self.links) for s in self.steps]
+        if self.unreachable:
+            labs = ", ".join(pole_label(self.links, p) for p in self.unreachable)
+            out.append(f"not reachable by the three-pole theorem: {labs}")
+        return out
+
+    def text(self) -> str:
+        legend = ", ".join(f"{i + 1} = {ln}" for i, ln in enumerate(self.links))
+        return "\n".join([legend] + self.lines())
+
+
+def _pair(links: tuple[str, ...], a: str, b: str) -> Pair:
+    return (a, b) if links.index(a) < links.index(b) else (b, a)
+
+
+def pole_schedule(mechanism: Mechanism) -> PoleSchedule:
+    """The Aronhold–Kennedy schedule of `mechanism`'s poles (topology only, no numbers).
+
+    Primary poles come from the pairs: a revolute is the pole of its two links, a prismatic
+    pair's pole is at infinity normal to the guide, a gear pair's is its pitch point; a pin in
+    a straight or circular slot gives one line through the pole (its contact normal,
+    Rosenauer §65). Then, repeatedly, the first unknown pole with two known lines through it
+    is found as their intersection; each derived step keeps every line known at that moment,
+    so that `kennedy_poles` can use the best-conditioned pair at each sample.
+    """
+    links = mechanism.link_names
+    known: dict[Pair, PoleStep] = {}
+    hinge_point: dict[Pair, str] = {}
+    normals: dict[Pair, list[PoleLineSource]] = {}
+    steps: list[PoleStep] = []
+
+    def add(step: PoleStep) -> None:
+        known[step.pair] = step
+        steps.append(step)
+
+    for j in mechanism.joints:
+        a, b = j.links
+        p = _pair(links, a, b)
+        if isinstance(j, Revolute):
+            if p not in known:
+                add(PoleStep(p, "hinge", j.name))
+                hinge_point[p] = j.point
+        elif isinstance(j, Prismatic):
+            if p not in known:
+                add(PoleStep(p, "slider", j.name))
+        elif isinstance(j, Gear):
+            if p not in known:
+                add(PoleStep(p, "gear", j.name))
+        elif isinstance(j, (Slot, CircularSlot)):
+            normals.setdefault(p, []).append(PoleLineSource(joint=j.name))
+    # links sharing one hinge point (a multiple joint drawn as several revolutes)
+    changed = True
+    while changed:
+        changed = False
+        for i, k in combinations(links, 2):
+            p = _pair(links, i, k)
+            if p in known:
+                continue
+            for m in links:
+                if m in (i, k):
+                    continue
+                pa, pb = _pair(links, i, m), _pair(links, k, m)
+                if pa in hinge_point and pb in hinge_point and hinge_point[pa] == hinge_point[pb]:
+                    add(PoleStep(p, "common hinge", known[pa].joint))
+                    hinge_point[p] = hinge_point[pa]
+                    changed = True
+                    break
+    # pairs joined by two slots: the two contact normals
+    for p, srcs in normals.items():
+        if p not in known and len(srcs) >= 2:
+            add(PoleStep(p, "normals", lines=tuple(srcs)))
+    # the three-pole theorem, one pole at a time
+    while True:
+        found = None
+        for i, k in combinations(links, 2):
+            p = (i, k)
+            if p in known:
+                continue
+            srcs = list(normals.get(p, []))
+            for m in links:
+                if m in (i, k):
+                    continue
+                pa, pb = _pair(links, i, m), _pair(links, k, m)
+                if pa in known and pb in known:
+                    if pa in hinge_point and pb in hinge_point and hinge_point[pa] == hinge_point[pb]:
+                        continue  # both poles are one point: no line
+                    srcs.append(PoleLineSource(poles=(pa, pb)))
+            if len(srcs) >= 2:
+                found = PoleStep(p, "three-pole", lines=tuple(srcs))
+                break
+        if found is None:
+            break
+        add(found)
+    unreachable = tuple(p for p in _all_pairs(links) if p not in known)
+    return PoleSchedule(links, tuple(steps), unreachable)
+
+
+def _scaled(h: np.ndarray, L: float) -> np.ndarray:
+    """Homogeneous rows with x, y in units of L, normalised to unit length (NaN stays NaN)."""
+    s = np.concatenate([h[:, :2] / L, h[:, 2:]], axis=1)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        return s / np.linalg.norm(s, axis=1, keepdims=True)
+
+
+def _unscaled(s: np.ndarray, L: float) -> np.ndarray:
+    return np.concatenate([s[:, :2] * L, s[:, 2:]], axis=1)
+
+
+def _primary_pole(solution: Solution, step: PoleStep) -> np.ndarray:
+    """Homogeneous (N, 3) coordinates of a primary pole."""
+    mech = solution.mechanism
+    j = mech.joint(step.joint)
+    N = len(solution)
+    if isinstance(j, (Revolute,)) or step.rule == "common hinge":
+        xy = solution.point_on(j.links[0], mech.points[j.point]).position
+        return np.concatenate([xy, np.ones((N, 1))], axis=1)
+    if isinstance(j, Prismatic):
+        th = solution.pose_derivatives(j.links[0])[0, :, 2]
+        g = np.stack([np.cos(th) * j.axis[0] - np.sin(th) * j.axis[1],
+                      np.sin(th) * j.axis[0] + np.cos(th) * j.axis[1]], axis=1)
+        return np.concatenate([perp(g), np.zeros((N, 1))], axis=1)
+    if isinstance(j, Gear):
+        return np.concatenate([gear_pitch_point(solution, j), np.ones((N, 1))], axis=1)
+    raise TypeError(j)  # pragma: no cover
+
+
+def gear_pitch_point(solution: Solution, g: Gear) -> np.ndarray:
+    """(N, 2) pitch point of a gear pair: the relative pole of its two wheels (the point where
+    the pitch circles touch and roll)."""
+    mech = solution.mechanism
+    c1 = solution.point_on(g.carrier, mech.points[mech.wheel_centre(g, g.links[0])]).position
+    r1, r2 = g.radii
+    if g.gear_kind == "rack":
+        guide = mech.rack_guide(g)
+        centre = mech.points[mech.wheel_centre(g, g.links[0])]
+        n = np.array([-guide.axis[1], guide.axis[0]])
+        probe = mech.points[g.point] if g.point else mech.points[guide.point]
+        m = n if np.dot(probe - centre, n) >= 0 else -n
+        th = solution.pose_derivatives(g.carrier)[0, :, 2]
+        mw = np.stack([np.cos(th) * m[0] - np.sin(th) * m[1], np.sin(th) * m[0] + np.cos(th) * m[1]], axis=1)
+        return c1 + r1 * mw
+    c2 = solution.point_on(g.carrier, mech.points[mech.wheel_centre(g, g.links[1])]).position
+    if g.gear_kind == "external":
+        return (r2 * c1 + r1 * c2) / (r1 + r2)
+    return (r2 * c1 - r1 * c2) / (r2 - r1)
+
+
+def _normal_line(solution: Solution, joint: str, L: float) -> np.ndarray:
+    """Scaled homogeneous line (N, 3): the contact normal of a pin in a slot."""
+    mech = solution.mechanism
+    j = mech.joint(joint)
+    a, b = j.links
+    X = solution.point_on(b, mech.points[j.point]).position
+    N = len(solution)
+    if isinstance(j, Slot):
+        th = solution.pose_derivatives(a)[0, :, 2]
+        g = np.stack([np.cos(th) * j.axis[0] - np.sin(th) * j.axis[1],
+                      np.sin(th) * j.axis[0] + np.cos(th) * j.axis[1]], axis=1)
+        line = np.concatenate([g, -(g * X).sum(1, keepdims=True) / L], axis=1)
+    else:
+        K = solution.point_on(a, mech.points[j.center]).position
+        p = _scaled(np.concatenate([X, np.ones((N, 1))], axis=1), L)
+        q = _scaled(np.concatenate([K, np.ones((N, 1))], axis=1), L)
+        line = np.cross(p, q)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        return line / np.linalg.norm(line, axis=1, keepdims=True)
+
+
+def kennedy_poles(solution: Solution, schedule: PoleSchedule | None = None) -> Poles:
+    """All poles the three-pole theorem reaches, evaluated at every sample by `schedule`
+    (default: `pole_schedule` of the solution's mechanism). Each derived pole is the
+    intersection of the best-conditioned pair among the lines known at its step; the poles
+    in `schedule.unreachable` are all-NaN."""
+    mech = solution.mechanism
+    schedule = schedule or pole_schedule(mech)
+    L = mech.length_scale
+    N = len(solution)
+    scaled: dict[Pair, np.ndarray] = {}
+    for step in schedule.steps:
+        if step.rule in ("hinge", "slider", "gear", "common hinge"):
+            scaled[step.pair] = _scaled(_primary_pole(solution, step), L)
+            continue
+        lines = []
+        for src in step.lines:
+            if src.poles is not None:
+                p, q = (scaled[x] for x in src.poles)
+                ln = np.cross(p, q)
+                with np.errstate(invalid="ignore", divide="ignore"):
+                    nrm = np.linalg.norm(ln, axis=1, keepdims=True)
+                    ln = np.where(nrm > 1e-12, ln / nrm, np.nan)
+            else:
+                ln = _normal_line(solution, src.joint, L)
+            lines.append(ln)
+        best = np.full((N, 3), np.nan)
+        quality = np.full(N, -1.0)
+        for l1, l2 in combinations(lines, 2):
+            x = np.cross(l1, l2)
+            qn = np.linalg.norm(x, axis=1)
+            better = np.isfinite(qn) & (qn > quality) & (qn > 1e-14)
+            with np.errstate(invalid="ignore", divide="ignore"):
+                best[better] = (x / qn[:, None])[better]
+            quality = np.where(better, qn, quality)
+        scaled[step.pair] = best
+    out: dict[Pair, Point] = {}
+    for p in _all_pairs(schedule.links):
+        h = _unscaled(scaled[p], L) if p in scaled else np.full((N, 3), np.nan)
+        out[p] = make_point(_snap_infinite(h, L))
+    return Poles(schedule.links, out, "three-pole theorem")
+
+
+def _snap_infinite(h: np.ndarray, L: float, tol: float = TOL) -> np.ndarray:
+    """Points farther than L/tol (|w|·L ≤ tol·|xy|) are put exactly at infinity."""
+    h = h.copy()
+    far = np.abs(h[:, 2]) * L <= tol * np.linalg.norm(h[:, :2], axis=1)
+    h[far, 2] = 0.0
+    return h
+
+
+# ---------------------------------------------------------------------------- comparisons
+def pole_discrepancy(p: Point, q: Point, scale: float) -> np.ndarray:
+    """(N,) projective distance of two batches of poles: the sine of the angle between their
+    homogeneous coordinates with lengths in units of `scale`. About |p − q|/scale for nearby
+    finite poles, small for distant poles in nearly the same direction, and the sine of the
+    angle between the directions of two poles at infinity. NaN where either is undefined."""
+    a, b = _scaled(np.asarray(p.coords), scale), _scaled(np.asarray(q.coords), scale)
+    return np.linalg.norm(np.cross(a, b), axis=1)
+
+
+def agreement(first: Poles, second: Poles, scale: float) -> dict[Pair, np.ndarray]:
+    """Per pole, `pole_discrepancy` between two pole sets of one mechanism (NaN where either
+    set lacks the pole)."""
+    if tuple(first.links) != tuple(second.links):
+        raise ModelError("the two pole sets belong to different mechanisms")
+    return {p: pole_discrepancy(first.points[p], second.points[p], scale) for p in first}
+
+
+# ---------------------------------------------------------------------------- pole lines
+@dataclass(frozen=True)
+class PoleLine:
+    """The line of the three poles P_ij, P_jk, P_ik of links (i, j, k) (the 'polu taisne',
+    Rosenauer §62). `residual` (N,) is the collinearity defect of the three poles (0 for
+    exactly collinear, dimensionless); `line` is through the best-separated two of them."""
+
+    links: tuple[str, str, str]
+    pairs: tuple[Pair, Pair, Pair]
+    line: Line
+    residual: np.ndarray
+
+
+def pole_lines(poles_: Poles, scale: float) -> list[PoleLine]:
+    """All n(n−1)(n−2)/6 pole lines of a pole set (Rosenauer §85)."""
+    out = []
+    for i, j, k in combinations(poles_.links, 3):
+        prs = ((i, j), (j, k), (i, k))
+        S = [_scaled(np.asarray(poles_.points[p].coords), scale) for p in prs]
+        residual = np.abs(np.linalg.det(np.stack(S, axis=1)))
+        cands = [np.cross(S[0], S[1]), np.cross(S[1], S[2]), np.cross(S[0], S[2])]
+        nr = np.stack([np.linalg.norm(c, axis=1) for c in cands], axis=1)
+        pick = np.argmax(np.where(np.isfinite(nr), nr, -1.0), axis=1)
+        ln = np.take_along_axis(np.stack(cands, axis=1), pick[:, None, None], axis=1)[:, 0]
+        ln = np.concatenate([ln[:, :2], ln[:, 2:] * scale], axis=1)
+        bad = ~np.isfinite(ln).all(axis=1) | (np.abs(ln) < 1e-300).all(axis=1)
+        ln[bad] = np.nan
+        out.append(PoleLine((i, j, k), prs, Line(ln), residual))
+    return out
