@@ -1,0 +1,129 @@
+"""The constraint Jacobian of a whole mechanism at its design position.
+
+Every pair's residuals (`constraints.joint_residuals`), optionally with the drivers', are
+differentiated with respect to the poses (x, y, θ) of all moving links at once, by the same jets
+with direction seeds that `groups.group_jacobian` uses for one group. At the design position
+every link pose is (0, 0, 0), since each link's own coordinates coincide with the frame's there.
+
+Its rank gives the real (instantaneous) mobility of the mechanism, whatever the counting rules
+say; its row space tells which pair equations are redundant (over-closed chains, German
+*übergeschlossen*, Latvian *pārāk slēgtas ķēdes*). `linkwork.structure.mobility` reads it.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..model import Joint, Mechanism
+from ..structure import Group
+from .constraints import joint_residuals
+from .groups import State, _pose_fn, group_jacobian
+
+#: names of the residual equations of each pair kind, in the order `joint_residuals` returns them
+EQUATIONS = {
+    "revolute": ("x", "y"),
+    "prismatic": ("normal", "angle"),
+    "slot": ("normal",),
+    "circular-slot": ("radius",),
+    "gear": ("rolling",),
+}
+
+#: relative singular-value threshold below which a direction counts as free
+RANK_TOL = 1e-9
+
+
+@dataclass(frozen=True)
+class DesignJacobian:
+    """∂(constraint residuals)/∂(link poses) at the design position.
+
+    `matrix` has one row per equation (`rows`: (joint, equation) pairs, drivers as
+    (joint, "driver")) and one column per coordinate of a moving link (`columns`: (link, "x" |
+    "y" | "θ")). `scaled` divides the angle columns by the mechanism's length scale, so that
+    every entry is dimensionless and a rank decision with one relative tolerance is meaningful.
+    """
+
+    matrix: np.ndarray
+    scaled: np.ndarray
+    rows: tuple[tuple[str, str], ...]
+    columns: tuple[tuple[str, str], ...]
+
+    def rank(self, rows: np.ndarray | list[int] | None = None, tol: float = RANK_TOL) -> int:
+        """Numerical rank of the (selected rows of the) scaled Jacobian."""
+        m = self.scaled if rows is None else self.scaled[list(rows)]
+        return numerical_rank(m, tol, reference=self.scaled)
+
+
+def numerical_rank(m: np.ndarray, tol: float = RANK_TOL, *, reference: np.ndarray | None = None) -> int:
+    """Rank of `m`: singular values above `tol` times the largest singular value of `reference`
+    (default `m` itself), so that sub-matrices are judged by the same yardstick."""
+    if m.size == 0:
+        return 0
+    ref = m if reference is None else reference
+    top = np.linalg.norm(ref, 2) if ref.size else 0.0
+    if top == 0.0:
+        return 0
+    s = np.linalg.svd(m, compute_uv=False)
+    return int((s > tol * top).sum())
+
+
+def equation_names(j: Joint) -> tuple[str, ...]:
+    return EQUATIONS[j.kind]
+
+
+def constraint_jacobian(mech: Mechanism, poses: np.ndarray | None = None, *, drivers: bool = False,
+                        joints: tuple[str, ...] | None = None) -> DesignJacobian:
+    """The Jacobian of all pair constraints (and, with `drivers`, the driver constraints) with
+    respect to the poses of all moving links, at `poses` ((moving links, 3) array of x, y, θ in
+    the order of `mech.moving_links`; default: the design position, all zero).
+
+    `joints` selects and orders the pairs (default: all, in file order).
+    """
+    moving = mech.moving_links
+    names = tuple(j.name for j in mech.joints) if joints is None else tuple(joints)
+    drv = tuple(d.joint for d in mech.drivers) if drivers else ()
+    group = Group(links=moving, joints=names, drivers=drv)
+    state = _state(mech, poses)
+    rows: list[tuple[str, str]] = []
+    for jn in names:
+        rows.extend((jn, eq) for eq in equation_names(mech.joint(jn)))
+    rows.extend((d, "driver") for d in drv)
+    cols = tuple((ln, c) for ln in moving for c in ("x", "y", "θ"))
+    if not moving or not rows:
+        J = np.zeros((len(rows), len(cols)))
+    else:
+        J = group_jacobian(state, group)[0]
+    J = np.asarray(J, dtype=float).reshape(len(rows), len(cols))
+    Js = J.copy()
+    Js[:, 2::3] /= mech.length_scale
+    return DesignJacobian(J, Js, tuple(rows), cols)
+
+
+def design_jacobian(mech: Mechanism, *, drivers: bool = False,
+                    joints: tuple[str, ...] | None = None) -> DesignJacobian:
+    """`constraint_jacobian` at the design position."""
+    return constraint_jacobian(mech, None, drivers=drivers, joints=joints)
+
+
+def pair_residuals(mech: Mechanism, poses: np.ndarray) -> np.ndarray:
+    """All pair residuals (length units, rows as in `constraint_jacobian`) at `poses`."""
+    state = _state(mech, poses)
+    pose = _pose_fn(state, (), None, 0)
+    out: list[float] = []
+    for j in mech.joints:
+        out.extend(float(np.ravel(r.c[0])[0]) for r in joint_residuals(mech, j, pose))
+    return np.array(out)
+
+
+def _state(mech: Mechanism, poses: np.ndarray | None) -> State:
+    Q = np.zeros((2, 1, len(mech.links), 3))
+    if poses is not None:
+        for ln, q in zip(mech.moving_links, np.asarray(poses, dtype=float).reshape(-1, 3)):
+            Q[0, 0, mech.link_index[ln]] = q
+    inputs = {d.joint: np.array([[mech.driver_input_at_design(d)], [0.0]]) for d in mech.drivers}
+    return State(mech, Q, inputs)
+
+
+__all__ = ["DesignJacobian", "EQUATIONS", "RANK_TOL", "constraint_jacobian", "design_jacobian",
+           "equation_names", "numerical_rank", "pair_residuals"]

@@ -1,0 +1,484 @@
+"""Mobility (*Laufgrad*, *kustības brīvība*): the counts of the seeds and the real mobility.
+
+Two answers, reported side by side:
+
+* **The count.** Grübler's criterion as Pöschl writes it for hinge chains, 3n − 2g = 4 for
+  constrained motion (*Zwanglauf*, *piespiesta kustība*; Pöschl eq. 97), and Rosenauer's general
+  form h + 2z − 3n + 4 = 0 (his eq. 53), with
+
+  - n the links, frame included (*Glieder*, *locekļi*);
+  - g = g₁ + 2g₂ + 3g₃ + … the hinges, a hinge joining k links counting k − 1 times (eq. 50:
+    simple, double, triple joints, *vienkāršs / dubult- / trīskārtīgs šarnīrs*);
+  - s the sliding pairs (*Schubpaare*, *slīdpāri*), z = g + s the lower pairs;
+  - h = h_n + 2h_p the higher pairs, a self-closed one (*paarschlüssig*, *patstāvīgi slēgts*)
+    counting twice (eq. 52);
+  - γ the closed slider groups (Rosenauer's wedge exception, *ķīļsavienojums*: a loop of
+    sliding pairs only moves although 2z − 3n + 4 = γ ≠ 0).
+
+  The count's mobility is F = 3(n − 1) − 2z − h + γ (Kutzbach's count, which is 1 exactly when
+  Rosenauer's criterion holds). Hinge chains with more hinges than 3n/2 − 2 are over-closed
+  (*übergeschlossen*, *pārāk slēgtas ķēdes*, eq. 55); the free term of g − 3n/2 tells how many
+  redundant links they carry (eqs. 55a, 55b).
+
+* **The real mobility**: 3k − rank J, J the Jacobian of all pair constraints with respect to the
+  poses of the k moving links at the design position (`linkwork.kinematics.jacobian`). Chains
+  that move only thanks to special dimensions (parallel cranks, Roberval's balance, a pantograph
+  with both braces) have fewer independent constraints than pairs: the redundant equations are
+  listed. With the drivers' equations added, the rank says how many inputs the mechanism still
+  needs, or which drivers are too many.
+
+A mechanism counts its folded pairs as the seeds draw them: a pin in a slot (`slot`,
+`circular-slot`) is the die block (*Stein*, *kulises akmens*) with a hinge and a sliding pair,
+so it adds one link, one hinge and one slider; a gear pair is a non-self-closed higher pair.
+"""
+
+from __future__ import annotations
+
+from collections import defaultdict
+from dataclasses import dataclass, field
+from fractions import Fraction
+
+import numpy as np
+
+from ..errors import InputError
+from ..model import Mechanism
+
+# ---------------------------------------------------------------------------- the counts
+
+
+@dataclass(frozen=True)
+class PairCounts:
+    """The numbers a seed writes down for a chain.
+
+    `hinges[k - 1]` is g_k, the number of hinges joining k + 1 links (g₁ simple, g₂ double, …).
+    """
+
+    n: int
+    hinges: tuple[int, ...] = ()
+    s: int = 0
+    h_n: int = 0
+    h_p: int = 0
+    gamma: int = 0
+
+    def __post_init__(self) -> None:
+        if self.n < 1 or any(v < 0 for v in (*self.hinges, self.s, self.h_n, self.h_p, self.gamma)):
+            raise InputError("counts must be non-negative and a chain has at least one link")
+
+    # ---------------------------------------------------------------- derived numbers
+    @property
+    def g1(self) -> int:
+        return self.hinges[0] if len(self.hinges) > 0 else 0
+
+    @property
+    def g2(self) -> int:
+        return self.hinges[1] if len(self.hinges) > 1 else 0
+
+    @property
+    def g3(self) -> int:
+        return self.hinges[2] if len(self.hinges) > 2 else 0
+
+    @property
+    def g(self) -> int:
+        """g = g₁ + 2g₂ + 3g₃ + … (Rosenauer eq. 50)."""
+        return sum((k + 1) * gk for k, gk in enumerate(self.hinges))
+
+    @property
+    def z(self) -> int:
+        """Lower pairs, z = g + s."""
+        return self.g + self.s
+
+    @property
+    def h(self) -> int:
+        """Higher pairs, self-closed ones counted twice: h = h_n + 2h_p (eq. 52)."""
+        return self.h_n + 2 * self.h_p
+
+    @property
+    def hinge_chain(self) -> bool:
+        """Only hinges (*Gelenkkette*): Grübler's and Rosenauer's hinge formulas apply."""
+        return self.s == 0 and self.h == 0
+
+    @property
+    def grubler(self) -> int:
+        """3n − 2g, which Pöschl's Grübler condition (97) wants equal to 4. Counts sliding
+        pairs like hinges (both remove two freedoms) and ignores higher pairs."""
+        return 3 * self.n - 2 * self.z
+
+    @property
+    def criterion(self) -> int:
+        """h + 2z − 3n + 4 − γ: zero for constrained motion (Rosenauer eqs. 45, 53 and the
+        slider-group form 2z − 3n + 4 = γ); positive for over-closed or rigid chains, negative
+        for chains that need more inputs."""
+        return self.h + 2 * self.z - 3 * self.n + 4 - self.gamma
+
+    @property
+    def mobility(self) -> int:
+        """The count's mobility F = 3(n − 1) − 2z − h + γ = 1 − criterion."""
+        return 1 - self.criterion
+
+    @property
+    def constrained(self) -> bool:
+        """The count says *zwangläufig*: one input moves every link."""
+        return self.criterion == 0
+
+    @property
+    def free_term(self) -> Fraction:
+        """x = g − 3n/2 for hinge chains: −2 constrained (eq. 44), −3/2 with one redundant link
+        (55a), −1 with two (55b)."""
+        return Fraction(self.z) - Fraction(3 * self.n, 2)
+
+    @property
+    def redundant_links(self) -> int:
+        """Redundant links of an over-closed chain by the free term, 2(x + 2) (§101); 0 unless
+        the count is over-closed."""
+        return max(0, self.criterion)
+
+    def verdict(self) -> str:
+        c = self.criterion
+        if c == 0:
+            return "constrained motion (zwangläufig)"
+        if c > 0:
+            return (f"over-closed or rigid by the count (übergeschlossen): {c} constraint"
+                    f"{'s' if c > 1 else ''} more than constrained motion allows")
+        return f"not constrained by the count: {-c} more input{'s' if c < -1 else ''} needed"
+
+    def as_dict(self) -> dict:
+        return {
+            "n": self.n, "g": self.g, "g1": self.g1, "g2": self.g2, "g3": self.g3,
+            "hinges": list(self.hinges), "s": self.s, "z": self.z, "h": self.h,
+            "h_n": self.h_n, "h_p": self.h_p, "gamma": self.gamma,
+            "grubler_3n_minus_2g": self.grubler if self.h == 0 else None,
+            "criterion": self.criterion, "mobility": self.mobility,
+            "free_term": str(self.free_term) if self.hinge_chain else None,
+            "verdict": self.verdict(),
+        }
+
+
+def chain_counts(n: int, g: int = 0, *, g1: int = 0, g2: int = 0, g3: int = 0, s: int = 0,
+                 h_n: int = 0, h_p: int = 0, gamma: int = 0) -> PairCounts:
+    """Counts as a seed gives them: `g` simple hinges (or `g1`, `g2`, `g3` simple, double and
+    triple hinges), `s` sliders, `h_n` non-self-closed and `h_p` self-closed higher pairs,
+    `gamma` closed slider groups."""
+    hinges = (g + g1, g2, g3)
+    while len(hinges) > 1 and hinges[-1] == 0:
+        hinges = hinges[:-1]
+    return PairCounts(n=n, hinges=hinges, s=s, h_n=h_n, h_p=h_p, gamma=gamma)
+
+
+def grubler_constrained(n: int, g: int) -> bool:
+    """Pöschl's form of Grübler's condition (97): a hinge chain of n links and g hinges (a
+    hinge of k links counted k − 1 times) is constrained when 3n − 2g = 4."""
+    return 3 * n - 2 * g == 4
+
+
+def kutzbach(n: int, lower: int = 0, higher: int = 0) -> int:
+    """Kutzbach's count for plane chains: F = 3(n − 1) − 2·lower − higher."""
+    return 3 * (n - 1) - 2 * lower - higher
+
+
+# ---------------------------------------------------------------------------- a mechanism's counts
+
+
+def hinge_groups(mech: Mechanism) -> list[tuple[str, tuple[str, ...], tuple[str, ...]]]:
+    """The hinges of `mech` as the seeds count them: revolute pairs at one point form one hinge
+    joining all their links. Returns (point, links, revolute joints) per hinge."""
+    by_point: dict[str, list] = defaultdict(list)
+    for j in mech.joints:
+        if j.kind == "revolute":
+            by_point[j.point].append(j)
+    out = []
+    for p, js in by_point.items():
+        links: list[str] = []
+        for j in js:
+            for ln in j.links:
+                if ln not in links:
+                    links.append(ln)
+        out.append((p, tuple(links), tuple(j.name for j in js)))
+    return out
+
+
+def slider_groups(mech: Mechanism) -> int:
+    """γ: independent closed loops made of straight sliding pairs only (Rosenauer §95: the
+    3-link slider chain, the wedge, moves although the count says it should not)."""
+    edges = [tuple(j.links) for j in mech.joints if j.kind == "prismatic"]
+    nodes = {ln for e in edges for ln in e}
+    parent = {v: v for v in nodes}
+
+    def find(v):
+        while parent[v] != v:
+            parent[v] = parent[parent[v]]
+            v = parent[v]
+        return v
+
+    cycles = 0
+    for a, b in edges:
+        ra, rb = find(a), find(b)
+        if ra == rb:
+            cycles += 1
+        else:
+            parent[ra] = rb
+    return cycles
+
+
+def counts(mech: Mechanism) -> PairCounts:
+    """The seed-style counts of `mech`: die blocks of slots unfolded, hinges at one point merged
+    into multiple hinges, gears as non-self-closed higher pairs."""
+    folded = [j for j in mech.joints if j.kind in ("slot", "circular-slot")]
+    hinges: dict[int, int] = defaultdict(int)
+    for _, links, joints in hinge_groups(mech):
+        k = len(links) - 1
+        hinges[k] += 1
+        extra = len(joints) - k  # revolutes beyond a spanning tree of the hinge's links
+        if extra > 0:
+            hinges[1] += extra
+    hinges[1] += len(folded)  # each die block's pin
+    top = max(hinges) if hinges else 1
+    ht = tuple(hinges.get(k, 0) for k in range(1, top + 1))
+    s = sum(1 for j in mech.joints if j.kind == "prismatic") + len(folded)
+    h_n = sum(1 for j in mech.joints if j.kind == "gear")
+    return PairCounts(n=len(mech.links) + len(folded), hinges=ht, s=s, h_n=h_n,
+                      gamma=slider_groups(mech))
+
+
+def link_degrees(mech: Mechanism) -> dict[str, int]:
+    """Elements per link (binary 2, ternary 3, …; Rosenauer §87) of the unfolded chain: the
+    pairs each link takes part in, a slot adding one to its pin link and to its slotted link."""
+    deg: dict[str, int] = {ln: 0 for ln in mech.link_names}
+    for j in mech.joints:
+        for ln in j.links:
+            deg[ln] += 1
+        if j.kind in ("slot", "circular-slot"):
+            deg[f"{j.name}:block"] = 2
+    return deg
+
+
+def link_types(mech: Mechanism) -> dict[int, int]:
+    """n_i: how many links carry i elements (n₂ binary, n₃ ternary, …)."""
+    out: dict[int, int] = defaultdict(int)
+    for d in link_degrees(mech).values():
+        out[d] += 1
+    return dict(sorted(out.items()))
+
+
+# ---------------------------------------------------------------------------- real mobility
+
+
+@dataclass(frozen=True)
+class Redundant:
+    """One constraint equation that repeats what the others already impose."""
+
+    joint: str
+    equation: str
+    wedge: bool = False  # the rotation equation of a closed slider group (not an over-closure)
+
+    def __str__(self) -> str:
+        note = " (closed slider group, Rosenauer's wedge exception)" if self.wedge else ""
+        return f"{self.joint}.{self.equation}{note}"
+
+
+@dataclass(frozen=True)
+class Mobility:
+    """The count and the real mobility of a mechanism, side by side."""
+
+    mechanism: str
+    counts: PairCounts
+    moving_links: int
+    equations: int
+    rank: int
+    real_mobility: int
+    redundant: tuple[Redundant, ...]
+    dependent_pairs: tuple[str, ...]
+    drivers: tuple[str, ...]
+    surplus_drivers: tuple[str, ...]
+    inputs_needed: int
+    finite_motion: bool | None = None
+    off_design_mobility: int | None = None
+    notes: tuple[str, ...] = field(default=())
+
+    @property
+    def count_mobility(self) -> int:
+        return self.counts.mobility
+
+    @property
+    def overclosure(self) -> int:
+        """Redundant constraints beyond the closed slider groups' (0 unless over-closed)."""
+        return sum(1 for r in self.redundant if not r.wedge)
+
+    @property
+    def overclosed(self) -> bool:
+        return self.overclosure > 0
+
+    @property
+    def constrained(self) -> bool:
+        """*Zwangläufig* with its drivers: every link follows them, and none is too many."""
+        return self.inputs_needed == 0 and not self.surplus_drivers
+
+    def verdict(self) -> str:
+        parts = []
+        if self.real_mobility == 0:
+            parts.append("rigid: no link can move (starr, negrozāma sistēma)")
+        if self.overclosed:
+            names = ", ".join(str(r) for r in self.redundant if not r.wedge)
+            parts.append(f"over-closed (übergeschlossen): moves only by its special dimensions; "
+                         f"{self.overclosure} redundant constraint"
+                         f"{'s' if self.overclosure > 1 else ''} ({names})")
+        if self.inputs_needed > 0:
+            parts.append(f"under-constrained: needs {self.inputs_needed} more input"
+                         f"{'s' if self.inputs_needed > 1 else ''}")
+        if self.surplus_drivers:
+            parts.append("too many drivers: " + ", ".join(self.surplus_drivers)
+                         + " cannot move independently")
+        if self.constrained and self.real_mobility > 0:
+            parts.insert(0, "constrained motion (zwangläufig)")
+        if self.finite_motion is False:
+            parts.append("the design position is singular: the free motion found there does not "
+                         "continue (only infinitesimal mobility)")
+        elif self.off_design_mobility is not None and self.off_design_mobility != self.real_mobility:
+            parts.append(f"the design position is singular (dead or change position): next to it "
+                         f"the mobility is {self.off_design_mobility}")
+        return "; ".join(parts)
+
+    def as_dict(self) -> dict:
+        return {
+            "counts": self.counts.as_dict(),
+            "count_mobility": self.count_mobility,
+            "real_mobility": self.real_mobility,
+            "jacobian": {"equations": self.equations, "unknowns": 3 * self.moving_links,
+                         "rank": self.rank},
+            "redundant_constraints": [
+                {"joint": r.joint, "equation": r.equation, "wedge": r.wedge} for r in self.redundant],
+            "overclosed": self.overclosed,
+            "dependent_pairs": list(self.dependent_pairs),
+            "drivers": list(self.drivers),
+            "surplus_drivers": list(self.surplus_drivers),
+            "inputs_needed": self.inputs_needed,
+            "finite_motion": self.finite_motion,
+            "off_design_mobility": self.off_design_mobility,
+            "constrained": self.constrained,
+            "verdict": self.verdict(),
+        }
+
+
+def _on_slider_loop(mech: Mechanism) -> set[str]:
+    """Prismatic joints lying on a loop of prismatic joints only."""
+    pris = [j for j in mech.joints if j.kind == "prismatic"]
+    out = set()
+    for j in pris:
+        others = [o for o in pris if o is not j]
+        # is there a path between j's links through the other prismatic pairs?
+        adj: dict[str, set[str]] = defaultdict(set)
+        for o in others:
+            a, b = o.links
+            adj[a].add(b)
+            adj[b].add(a)
+        start, goal = j.links
+        seen, todo = {start}, [start]
+        while todo:
+            v = todo.pop()
+            for w in adj[v]:
+                if w not in seen:
+                    seen.add(w)
+                    todo.append(w)
+        if goal in seen:
+            out.add(j.name)
+    return out
+
+
+def _greedy_dependent(M: np.ndarray, ref: np.ndarray, order: list[int], tol: float) -> list[int]:
+    """Rows of M (in `order`) that do not raise the rank of the rows taken before them."""
+    from ..kinematics.jacobian import numerical_rank
+
+    taken: list[int] = []
+    dependent: list[int] = []
+    rank = 0
+    for i in order:
+        r = numerical_rank(M[taken + [i]], tol, reference=ref)
+        if r > rank:
+            taken.append(i)
+            rank = r
+        else:
+            dependent.append(i)
+    return dependent
+
+
+def mobility(mech: Mechanism, *, check_finite: bool = True) -> Mobility:
+    """The count and the real mobility of `mech` at its design position."""
+    from ..kinematics.jacobian import RANK_TOL, design_jacobian, numerical_rank
+
+    c = counts(mech)
+    J = design_jacobian(mech, drivers=True)
+    n_pair_rows = len(J.rows) - len(mech.drivers)
+    P = J.scaled[:n_pair_rows]
+    k = len(mech.moving_links)
+    rank = numerical_rank(P, RANK_TOL, reference=J.scaled)
+    real = 3 * k - rank
+    dep = _greedy_dependent(P, J.scaled, list(range(n_pair_rows)), RANK_TOL)
+    loops = _on_slider_loop(mech)
+    redundant = tuple(Redundant(J.rows[i][0], J.rows[i][1],
+                                wedge=(J.rows[i][1] == "angle" and J.rows[i][0] in loops))
+                      for i in dep)
+    dependent_pairs: tuple[str, ...] = ()
+    if dep:
+        # rows taking part in some dependency: the support of the left null space
+        U, sv, _ = np.linalg.svd(P, full_matrices=True)
+        null = U[:, rank:]
+        support = np.abs(null).max(axis=1) > 1e-8
+        dependent_pairs = tuple(dict.fromkeys(J.rows[i][0] for i in np.flatnonzero(support)))
+    # drivers: rows after the pairs
+    all_rank = numerical_rank(J.scaled, RANK_TOL)
+    surplus_rows = _greedy_dependent(J.scaled, J.scaled, list(range(len(J.rows))), RANK_TOL)
+    surplus = tuple(J.rows[i][0] for i in surplus_rows if i >= n_pair_rows)
+    needed = 3 * k - all_rank
+    finite, off = (None, None)
+    if check_finite and real > 0 and (dep or real > len(mech.drivers)):
+        finite, off = _finite_step(mech, real)
+    return Mobility(mechanism=mech.name, counts=c, moving_links=k, equations=n_pair_rows,
+                    rank=rank, real_mobility=real, redundant=redundant,
+                    dependent_pairs=dependent_pairs, drivers=tuple(d.joint for d in mech.drivers),
+                    surplus_drivers=surplus, inputs_needed=needed, finite_motion=finite,
+                    off_design_mobility=off)
+
+
+def _finite_step(mech: Mechanism, real: int, step: float = 1e-3) -> tuple[bool, int | None]:
+    """Move a small step along a free direction of the design position and close the pairs
+    again (Gauss–Newton on all residuals, redundant ones included). Returns whether the chain
+    closes there (a true motion, not only an infinitesimal one) and its mobility there."""
+    from ..kinematics.jacobian import RANK_TOL, constraint_jacobian, numerical_rank, pair_residuals
+
+    scale = mech.length_scale
+    k = len(mech.moving_links)
+    J0 = constraint_jacobian(mech)
+    _, _, Vt = np.linalg.svd(J0.scaled)
+    free = Vt[3 * k - real:]  # right null space, scaled coordinates (angles × scale)
+    # a deterministic direction: the free vector that moves the most coordinates evenly
+    d = free.sum(axis=0) if real > 1 else free[0]
+    if np.linalg.norm(d) < 1e-12:
+        d = free[0]
+    d = d / np.linalg.norm(d)
+    unscale = np.tile([1.0, 1.0, 1.0 / scale], k)
+
+    def to_q(u):
+        return u * unscale
+
+    u0 = step * scale * d
+    u = u0.copy()
+    ok = False
+    for _ in range(60):
+        q = to_q(u)
+        r = pair_residuals(mech, q.reshape(k, 3))
+        along = float(np.dot(d, u - u0))
+        if np.abs(r).max(initial=0.0) <= 1e-11 * scale and abs(along) <= 1e-11 * scale:
+            ok = True
+            break
+        Jq = constraint_jacobian(mech, q.reshape(k, 3)).scaled
+        A = np.vstack([Jq, d[None]])
+        b = -np.concatenate([r, [along]])
+        du, *_ = np.linalg.lstsq(A, b, rcond=None)
+        u = u + du
+    if not ok:
+        return False, None
+    Jq = constraint_jacobian(mech, to_q(u).reshape(k, 3)).scaled
+    return True, 3 * k - numerical_rank(Jq, RANK_TOL)
+
+
+__all__ = ["Mobility", "PairCounts", "Redundant", "chain_counts", "counts", "grubler_constrained",
+           "hinge_groups", "kutzbach", "link_degrees", "link_types", "mobility", "slider_groups"]
