@@ -1,0 +1,633 @@
+"""The SVG renderer: one drawing model, written as SVG; PNG and PDF are converted from that SVG.
+
+Owns :class:`Figure` — primitives (paths, lines drawn just past the points they serve,
+circles, compass arcs, arrows, point marks, kinematic symbols, labels) in world coordinates of
+named *spaces* (the mechanism in its length unit, the velocity plan in velocity units, the
+acceleration plan in acceleration units), each drawn at its own :class:`~.scales.Scale` in its
+own panel — the layout of the panels on the sheet, line weights by role (given, auxiliary,
+result), arrowheads, the label placer that keeps labels off each other and off the lines, the
+legend with the scales, the step captions of step-by-step drawings (one file per step, or one
+SMIL-animated SVG), and :meth:`Figure.save` to ``.svg``, ``.png`` or ``.pdf`` (the last two with
+cairosvg from the very same SVG text, so the formats cannot diverge).
+"""
+
+from __future__ import annotations
+
+import html
+import math
+import re
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, Iterable
+
+import numpy as np
+
+from ..errors import InputError
+from . import symbols as sym
+from .scales import Scale, Scales
+
+FONT = "DejaVu Serif, 'Times New Roman', Times, serif"
+LABEL_SIZE = 3.4  # mm
+SMALL = 2.6
+MARGIN = 9.0  # mm around a panel's content
+GAP = 10.0  # mm between panels
+TITLE_H = 9.0
+
+
+@dataclass(frozen=True)
+class Style:
+    stroke: str = "#000"
+    width: float = 0.35
+    dash: str | None = None
+    fill: str = "none"
+    opacity: float = 1.0
+
+    def attrs(self) -> str:
+        a = f'stroke="{self.stroke}" stroke-width="{sym._f(self.width)}" fill="{self.fill}"'
+        if self.dash:
+            a += f' stroke-dasharray="{self.dash}"'
+        if self.opacity != 1.0:
+            a += f' opacity="{self.opacity}"'
+        return a
+
+
+#: colours by the kind of quantity, weights by role (books: given heavy, construction lines
+#: thin, the result heavy and marked)
+COLOURS = {"velocity": "#1f4e9c", "acceleration": "#1b7a3a", "coriolis": "#8a2be2",
+           "pole": "#000", "inflection": "#b3001b", "return": "#b36b00", "bresse": "#006d77",
+           "centrode": "#5a5a5a", "path": "#7a7a7a", "gamma": "#006d77", "highlight": "#e06c00"}
+WEIGHTS = {"given": 0.5, "auxiliary": 0.18, "result": 0.6}
+RESULT_COLOUR = "#b3001b"
+AUX_COLOUR = "#555"
+
+
+def style_for(role: str, kind: str = "") -> Style:
+    """The line style of an element of ``role`` (given/auxiliary/result) and ``kind``."""
+    w = WEIGHTS.get(role, 0.35)
+    colour = COLOURS.get(kind)
+    if colour is None:
+        colour = RESULT_COLOUR if role == "result" else (AUX_COLOUR if role == "auxiliary" else "#000")
+    elif role == "auxiliary":
+        w = max(w, 0.25)
+    dash = "2.2 1.2" if kind in ("return",) else None
+    return Style(stroke=colour, width=w, dash=dash)
+
+
+# ---------------------------------------------------------------------------- primitives
+@dataclass
+class Prim:
+    kind: str  # path, line, circle, arc, arrow, dot, symbol
+    space: str
+    data: dict
+    style: Style = field(default_factory=Style)
+    layer: str = "mechanism"
+    ident: str | None = None
+    cls: str = ""
+    step: int | None = None
+
+
+@dataclass
+class Label:
+    space: str
+    xy: np.ndarray
+    text: str
+    colour: str = "#000"
+    size: float = LABEL_SIZE
+    layer: str = "labels"
+    ident: str | None = None
+    prefer: np.ndarray | None = None  # preferred direction (paper, y down) to put the label
+    step: int | None = None
+    italic: bool = True
+    clear: float = 0.0  # keep this far (mm) from the anchor, e.g. the radius of a joint circle
+
+
+_TOKEN = re.compile(r"([_^])(\{[^}]*\}|[0-9A-Za-z\u0370-\u03ff]+)")
+
+
+def _esc(text: str) -> str:
+    """Escape for XML; symbols the serif face lacks (≙) are set in DejaVu Sans."""
+    t = html.escape(text)
+    return t.replace("\u2259", '<tspan font-family="DejaVu Sans, sans-serif">\u2259</tspan>')
+
+
+def label_markup(text: str, size: float = LABEL_SIZE) -> str:
+    """SVG text content for a label in the books' notation: ``W_0`` → W with subscript 0,
+    ``P_{13}`` or ``P_13`` → P with subscript 13, ``v^2`` → superscript (shifts in mm for a label
+    of ``size``)."""
+    out, pos = [], 0
+    for m in _TOKEN.finditer(text):
+        out.append(_esc(text[pos:m.start()]))
+        t = m.group(2).strip("{}")
+        dy = 0.32 * size if m.group(1) == "_" else -0.42 * size
+        out.append(f'<tspan font-size="{sym._f(0.7 * size)}" dy="{sym._f(dy)}">{html.escape(t)}</tspan>'
+                   f'<tspan dy="{sym._f(-dy)}">\u200a</tspan>')
+        pos = m.end()
+    out.append(_esc(text[pos:]))
+    return "".join(out)
+
+
+def plain(text: str) -> str:
+    """The label as plain text (for titles, XML ids and reports)."""
+    return text.replace("_", "").replace("{", "").replace("}", "")
+
+
+def text_width(text: str, size: float) -> float:
+    """Estimated width of a label (mm): subscripts are narrower."""
+    main = re.sub(r"_\{?[^}\s^]+\}?", "", text)
+    subs = len(text) - len(main)
+    return size * (0.58 * len(main) + 0.42 * max(0, subs - 1)) + 0.4
+
+
+def _ident(text: str) -> str:
+    return re.sub(r"[^A-Za-z0-9_.-]", "-", text)
+
+
+# ---------------------------------------------------------------------------- the figure
+class Figure:
+    """A drawing: primitives in world coordinates of named spaces, laid out in panels.
+
+    ``spaces`` maps a space name to its scale; the mechanism space uses the length scale, the
+    plans use the velocity/acceleration scales. Panels appear left to right in the order of
+    ``spaces``; ``titles`` gives each panel a heading (e.g. "velocity plan").
+    """
+
+    def __init__(self, scales: Scales, *, title: str = "", spaces: dict[str, Scale] | None = None,
+                 titles: dict[str, str] | None = None) -> None:
+        self.scales = scales
+        self.title = title
+        self.spaces: dict[str, Scale] = spaces or {"mechanism": scales.length}
+        self.titles = titles or {}
+        self.prims: list[Prim] = []
+        self.labels: list[Label] = []
+        self.legend: list[str] = []
+        self.captions: list[str] = []  # one per step for step drawings
+        self.current_step: int | None = None  # highlight this step (single-step drawing)
+        self._ids: set[str] = set()
+        self.used_scales: set[str] = {s.quantity for s in self.spaces.values()}
+
+    # ------------------------------------------------------------------ adding
+    def space(self, name: str, scale: Scale, title: str = "") -> None:
+        self.spaces[name] = scale
+        self.used_scales.add(scale.quantity)
+        if title:
+            self.titles[name] = title
+
+    def _id(self, ident: str | None) -> str | None:
+        if ident is None:
+            return None
+        base = _ident(ident)
+        k, out = 1, base
+        while out in self._ids:
+            k += 1
+            out = f"{base}-{k}"
+        self._ids.add(out)
+        return out
+
+    def add(self, kind: str, space: str = "mechanism", *, style: Style | None = None,
+            layer: str = "mechanism", ident: str | None = None, cls: str = "",
+            step: int | None = None, **data) -> None:
+        if space not in self.spaces:
+            raise InputError(f"the figure has no space '{space}' (it has {', '.join(self.spaces)})")
+        self.prims.append(Prim(kind, space, data, style or Style(), layer, self._id(ident), cls, step))
+
+    def path(self, xy: Any, space: str = "mechanism", closed: bool = False, **kw) -> None:
+        xy = np.asarray(xy, float)
+        self.add("path", space, xy=xy, closed=closed, **kw)
+
+    def line(self, point: Any, direction: Any, span: Iterable[Any], space: str = "mechanism", **kw) -> None:
+        """An infinite line drawn just past the points in ``span`` (world coordinates)."""
+        self.add("line", space, point=np.asarray(point, float), direction=np.asarray(direction, float),
+                 span=[np.asarray(p, float) for p in span], **kw)
+
+    def circle(self, centre: Any, radius: float, space: str = "mechanism",
+               arcs: Iterable[Any] = (), **kw) -> None:
+        self.add("circle", space, centre=np.asarray(centre, float), r=float(radius),
+                 arcs=[np.asarray(p, float) for p in arcs], **kw)
+
+    def arrow(self, tail: Any, head: Any, space: str = "mechanism", **kw) -> None:
+        self.add("arrow", space, tail=np.asarray(tail, float), head=np.asarray(head, float), **kw)
+
+    def dot(self, xy: Any, space: str = "mechanism", r: float = 0.55, filled: bool = True, **kw) -> None:
+        self.add("dot", space, xy=np.asarray(xy, float), r=r, filled=filled, **kw)
+
+    def symbol(self, name: str, space: str = "mechanism", **kw) -> None:
+        """A kinematic symbol from :mod:`.symbols`; world points are passed as ``at``, ``to``…"""
+        layer = kw.pop("layer", "mechanism")
+        ident = kw.pop("ident", None)
+        step = kw.pop("step", None)
+        self.add("symbol", space, layer=layer, ident=ident, step=step, name=name, args=kw)
+
+    def label(self, xy: Any, text: str, space: str = "mechanism", **kw) -> None:
+        xy = np.asarray(xy, float)
+        if not np.isfinite(xy).all() or not text:
+            return
+        if "ident" in kw:
+            kw["ident"] = self._id(kw["ident"])
+        self.labels.append(Label(space, xy, text, **kw))
+
+    def note(self, text: str) -> None:
+        if text not in self.legend:
+            self.legend.append(text)
+
+    # ------------------------------------------------------------------ layout
+    def _world_points(self, p: Prim) -> list[np.ndarray]:
+        d = p.data
+        if p.kind == "path":
+            return list(d["xy"])
+        if p.kind == "line":
+            return list(d["span"]) + [d["point"]]
+        if p.kind == "circle":
+            if d["arcs"]:
+                return list(d["arcs"])
+            c, r = d["centre"], d["r"]
+            return [c + r * np.array(v) for v in ((1, 0), (-1, 0), (0, 1), (0, -1))]
+        if p.kind == "arrow":
+            return [d["tail"], d["head"]]
+        if p.kind == "dot":
+            return [d["xy"]]
+        if p.kind == "symbol":
+            return [np.asarray(v, float) for k, v in d["args"].items()
+                    if k in ("at", "to", "points", "start", "end") for v in np.atleast_2d(v)]
+        return []
+
+    def _layout(self) -> tuple[dict, float, float]:
+        boxes = {}
+        for name, scale in self.spaces.items():
+            pts = [q for p in self.prims if p.space == name for q in self._world_points(p)]
+            pts += [lab.xy for lab in self.labels if lab.space == name]
+            pts = np.array([q for q in pts if np.all(np.isfinite(q))]).reshape(-1, 2)
+            if len(pts) == 0:
+                continue
+            lo, hi = pts.min(0), pts.max(0)
+            size = (hi - lo) / scale.per_mm
+            boxes[name] = (lo, hi, size, scale)
+        x = MARGIN
+        panels = {}
+        top = TITLE_H + (6.0 if any(self.titles.get(n) for n in boxes) else 0.0) + MARGIN * 0.5
+        height = 0.0
+        for name, (lo, hi, size, scale) in boxes.items():
+            w, h = max(size[0], 20.0), max(size[1], 15.0)
+            ox = x + (w - size[0]) / 2
+            oy = top + (h - size[1]) / 2
+            panels[name] = dict(lo=lo, hi=hi, scale=scale, ox=ox, oy=oy, x=x, y=top, w=w, h=h)
+            x += w + GAP + 2 * MARGIN
+            height = max(height, h)
+        width = max(x - GAP - MARGIN, 120.0)
+        return panels, width, top + height + MARGIN
+
+    @staticmethod
+    def _tf(panel: dict):
+        lo, hi, s = panel["lo"], panel["hi"], panel["scale"].per_mm
+        ox, oy = panel["ox"], panel["oy"]
+
+        def tf(p):
+            p = np.asarray(p, float)
+            return np.stack([ox + (p[..., 0] - lo[0]) / s, oy + (hi[1] - p[..., 1]) / s], axis=-1)
+        return tf
+
+    # ------------------------------------------------------------------ rendering
+    def to_svg(self, *, animate: float | None = None) -> str:
+        """The drawing as an SVG document. ``animate``: seconds per step for a SMIL animation
+        in which the construction steps appear one after another."""
+        panels, width, body_h = self._layout()
+        tfs = {n: self._tf(p) for n, p in panels.items()}
+        legend = list(self.legend)
+        caption_h = 0.0
+        captions = self.captions if animate else ([self.captions[self.current_step]]
+                                                  if self.current_step is not None and self.captions else [])
+        if captions:
+            caption_h = 5.0 + 4.4 * max(len(_wrap(c, width)) for c in captions)
+        samples: list[np.ndarray] = []
+        layers: dict[str, list[str]] = {}
+        for p in self.prims:
+            if p.space not in panels:
+                continue
+            svg, pts = self._render(p, tfs[p.space], panels[p.space])
+            if not svg:
+                continue
+            samples += pts
+            if animate and p.step is not None:
+                svg = _appear(svg, p.step, animate)
+            elif self.current_step is not None and p.step is not None and p.step > self.current_step:
+                continue
+            layers.setdefault(p.layer, []).append(svg)
+        out = []
+        if self.title:
+            out.append(f'<text x="{MARGIN}" y="{TITLE_H - 1.5}" font-size="4.2" '
+                       f'font-weight="bold">{html.escape(plain(self.title))}</text>')
+        for name, pnl in panels.items():
+            if self.titles.get(name):
+                out.append(f'<text x="{sym._f(pnl["x"])}" y="{sym._f(TITLE_H + 5)}" font-size="3.4" '
+                           f'font-style="italic" fill="#333">{html.escape(self.titles[name])}</text>')
+        for layer, parts in layers.items():
+            out.append(f'<g id="layer-{_ident(layer)}" class="layer">')
+            out += parts
+            out.append("</g>")
+        out.append('<g id="labels" class="layer">')
+        out += self._place_labels(tfs, panels, samples, animate)
+        out.append("</g>")
+        y = body_h
+        if captions:
+            out.append('<g id="captions">')
+            for k, c in enumerate(captions):
+                lines = _wrap(c, width)
+                txt = "".join(f'<tspan x="{MARGIN}" dy="{0 if i == 0 else 4.4}">{html.escape(t)}</tspan>'
+                              for i, t in enumerate(lines))
+                el = f'<text x="{MARGIN}" y="{sym._f(y + 4.5)}" font-size="3.3" fill="#222">{txt}</text>'
+                if animate:
+                    el = _appear(el, k, animate, vanish=k < len(captions) - 1)
+                out.append(el)
+            out.append("</g>")
+            y += caption_h
+        leg, y = self._legend(y, width, legend)
+        out.append(leg)
+        height = y + 3.0
+        head = [f'<?xml version="1.0" encoding="UTF-8"?>',
+                f'<svg xmlns="http://www.w3.org/2000/svg" version="1.1" width="{sym._f(width)}mm" '
+                f'height="{sym._f(height)}mm" viewBox="0 0 {sym._f(width)} {sym._f(height)}" '
+                f'font-family="{FONT}">',
+                f'<title>{html.escape(plain(self.title))}</title>',
+                f'<rect x="0" y="0" width="{sym._f(width)}" height="{sym._f(height)}" fill="#fff"/>']
+        return "\n".join(head + out + ["</svg>"]) + "\n"
+
+    def _legend(self, y: float, width: float, extra: list[str]) -> tuple[str, float]:
+        parts = [f'<g id="legend" font-size="3">',
+                 f'<line x1="{MARGIN}" y1="{sym._f(y + 1)}" x2="{sym._f(width - MARGIN)}" '
+                 f'y2="{sym._f(y + 1)}" stroke="#999" stroke-width="0.2"/>']
+        scales = [self.scales.length] + [s for s in (self.scales.velocity, self.scales.acceleration)
+                                         if s is not None and s.quantity in self.used_scales]
+        x = MARGIN
+        yy = y + 5.5
+        for s in scales:
+            w = 24.0 + text_width(s.text(), 2.8)
+            if x > MARGIN and x + w > width - MARGIN:
+                x, yy = MARGIN, yy + 7.5
+            parts.append(self._scale_bar(x, yy, s))
+            x += w + 6.0
+        yy += 5.5
+        for t in extra:
+            parts.append(f'<text x="{MARGIN}" y="{sym._f(yy)}">{label_markup(t, 3.0)}</text>')
+            yy += 4.2
+        parts.append("</g>")
+        return "".join(parts), yy
+
+    @staticmethod
+    def _scale_bar(x: float, y: float, s: Scale) -> str:
+        """A scale bar (*Maßstabsleiste*) of 20 mm with its value, and the scale in words."""
+        L = 20.0
+        v = L * s.per_mm
+        ticks = "".join(f'<line x1="{sym._f(x + t)}" y1="{sym._f(y - 1.2)}" x2="{sym._f(x + t)}" '
+                        f'y2="{sym._f(y + 0.4)}" stroke="#000" stroke-width="0.25"/>' for t in (0, 10, 20))
+        return (f'<g class="scale" id="scale-{s.quantity}">'
+                f'<line x1="{sym._f(x)}" y1="{sym._f(y)}" x2="{sym._f(x + L)}" y2="{sym._f(y)}" '
+                f'stroke="#000" stroke-width="0.5"/>{ticks}'
+                f'<text x="{sym._f(x)}" y="{sym._f(y + 3.6)}" font-size="2.5">0</text>'
+                f'<text x="{sym._f(x + L)}" y="{sym._f(y + 3.6)}" font-size="2.5" text-anchor="middle">'
+                f'{v:.4g} {html.escape(s.unit)}</text>'
+                f'<text x="{sym._f(x + L + 3)}" y="{sym._f(y + 1)}" font-size="2.8">'
+                f'{label_markup(s.text(), 2.8)}</text></g>')
+
+    def _render(self, p: Prim, tf, panel: dict) -> tuple[str, list]:
+        d, st = p.data, p.style
+        ident = f' id="{p.ident}"' if p.ident else ""
+        cls = f' class="{p.cls}"' if p.cls else ""
+        if p.kind == "path":
+            xy = tf(d["xy"])
+            ok = np.isfinite(xy).all(-1)
+            if ok.sum() < 2:
+                return "", []
+            xy = xy[ok]
+            dd = "M " + " L ".join(f"{sym._f(a)} {sym._f(b)}" for a, b in xy) + (" Z" if d["closed"] else "")
+            return f'<path{ident}{cls} d="{dd}" {st.attrs()} stroke-linejoin="round"/>', _resample(xy)
+        if p.kind == "line":
+            pts = [q for q in d["span"] if np.all(np.isfinite(q))]
+            u = d["direction"]
+            if not np.all(np.isfinite(u)) or np.linalg.norm(u) == 0 or not np.all(np.isfinite(d["point"])):
+                return "", []
+            u = u / np.linalg.norm(u)
+            o = d["point"]
+            if not pts:
+                pts = [o]
+            t = np.array([np.dot(q - o, u) for q in pts])
+            over = 4.0 * panel["scale"].per_mm
+            if np.ptp(t) == 0:
+                over = 12.0 * panel["scale"].per_mm
+            a, b = o + (t.min() - over) * u, o + (t.max() + over) * u
+            pa, pb = tf(a), tf(b)
+            return (f'<line{ident}{cls} x1="{sym._f(pa[0])}" y1="{sym._f(pa[1])}" x2="{sym._f(pb[0])}" '
+                    f'y2="{sym._f(pb[1])}" {st.attrs()}/>', _resample(np.array([pa, pb])))
+        if p.kind == "circle":
+            c, r = d["centre"], d["r"]
+            if not (np.all(np.isfinite(c)) and np.isfinite(r)):
+                return "", []
+            pc = tf(c)
+            rp = r / panel["scale"].per_mm
+            if not d["arcs"]:
+                t = np.linspace(0, 2 * np.pi, max(12, int(2 * np.pi * rp / 0.8)))
+                pts = list(pc + rp * np.stack([np.cos(t), np.sin(t)], -1))
+                return (f'<circle{ident}{cls} cx="{sym._f(pc[0])}" cy="{sym._f(pc[1])}" r="{sym._f(rp)}" '
+                        f'{st.attrs()}/>', pts)
+            parts, pts = [], []
+            for q in d["arcs"]:
+                pq = tf(q)
+                if not np.all(np.isfinite(pq)):
+                    continue
+                a0 = math.atan2(pq[1] - pc[1], pq[0] - pc[0])
+                half = min(math.pi, 5.0 / max(rp, 1e-9))
+                t = np.linspace(a0 - half, a0 + half, 16)
+                xy = pc + rp * np.stack([np.cos(t), np.sin(t)], -1)
+                parts.append("M " + " L ".join(f"{sym._f(x)} {sym._f(y)}" for x, y in xy))
+                pts += list(xy)
+            return f'<path{ident}{cls} d="{" ".join(parts)}" {st.attrs()}/>', pts
+        if p.kind == "arrow":
+            a, b = tf(d["tail"]), tf(d["head"])
+            if not (np.all(np.isfinite(a)) and np.all(np.isfinite(b))):
+                return "", []
+            L = float(np.linalg.norm(b - a))
+            if L < 1e-6:
+                return f'<g{ident}{cls}/>', []
+            u = (b - a) / L
+            head = sym.arrowhead(a, b, st.width, st.stroke)
+            b2 = b - u * min(1.5, 0.4 * L)
+            return (f'<g{ident}{cls}><line x1="{sym._f(a[0])}" y1="{sym._f(a[1])}" x2="{sym._f(b2[0])}" '
+                    f'y2="{sym._f(b2[1])}" {st.attrs()}/>{head}</g>', _resample(np.array([a, b])))
+        if p.kind == "dot":
+            c = tf(d["xy"])
+            if not np.all(np.isfinite(c)):
+                return "", []
+            fill = st.stroke if d["filled"] else "#fff"
+            return (f'<circle{ident}{cls} cx="{sym._f(c[0])}" cy="{sym._f(c[1])}" r="{sym._f(d["r"])}" '
+                    f'fill="{fill}" stroke="{st.stroke}" stroke-width="0.25"/>', [c])
+        if p.kind == "symbol":
+            args = {}
+            for k, v in d["args"].items():
+                if k in ("at", "to", "start", "end"):
+                    args[k] = tf(v)
+                elif k == "points":
+                    args[k] = tf(np.asarray(v, float))
+                elif k == "radius_world":
+                    args["r"] = v / panel["scale"].per_mm
+                elif k in ("down", "side", "axis"):
+                    v = np.asarray(v, float)
+                    args[k] = np.array([v[0], -v[1]])
+                else:
+                    args[k] = v
+            if any(not np.all(np.isfinite(v)) for k, v in args.items() if isinstance(v, np.ndarray)):
+                return "", []
+            svg, pts = _symbol(d["name"], args)
+            return f'<g{ident} class="symbol {d["name"]}{(" " + p.cls) if p.cls else ""}">{svg}</g>', pts
+        return "", []
+
+    def _place_labels(self, tfs: dict, panels: dict, samples: list, animate: float | None) -> list[str]:
+        grid = _Grid(samples)
+        placed: list[tuple[float, float, float, float]] = []
+        out = []
+        for lab in self.labels:
+            if lab.space not in tfs:
+                continue
+            if self.current_step is not None and lab.step is not None and lab.step > self.current_step and not animate:
+                continue
+            a = tfs[lab.space](lab.xy)
+            w, h = text_width(lab.text, lab.size), lab.size * 0.95
+            best, best_score = None, math.inf
+            cands = _candidates(lab.prefer)
+            for k, (dx, dy) in enumerate(cands):
+                for dist in (lab.clear + 1.0, lab.clear + 2.2, lab.clear + 3.8):
+                    # box anchored so that its nearest edge is `dist` away in direction (dx, dy)
+                    cx = a[0] + dx * (dist + w / 2)
+                    cy = a[1] + dy * (dist + h / 2)
+                    box = (cx - w / 2, cy - h / 2, cx + w / 2, cy + h / 2)
+                    score = 40.0 * sum(_overlap(box, q) for q in placed) / (w * h)
+                    score += grid.count(box) * 1.0 + 0.15 * k + 0.6 * dist
+                    if score < best_score:
+                        best, best_score = box, score
+            placed.append(best)
+            x0, y0, x1, y1 = best
+            ident = f' id="label-{lab.ident}"' if lab.ident else ""
+            style = ' font-style="italic"' if lab.italic else ""
+            el = (f'<text{ident} x="{sym._f(x0 + 0.2)}" y="{sym._f(y1 - 0.22 * lab.size)}" '
+                  f'font-size="{sym._f(lab.size)}"{style} fill="{lab.colour}">{label_markup(lab.text, lab.size)}</text>')
+            # a white halo keeps labels readable over thin construction lines
+            halo = (f'<rect x="{sym._f(x0)}" y="{sym._f(y0 + 0.1)}" width="{sym._f(x1 - x0)}" '
+                    f'height="{sym._f(y1 - y0 - 0.1)}" fill="#fff" fill-opacity="0.75"/>')
+            el = f"<g>{halo}{el}</g>"
+            if animate and lab.step is not None:
+                el = _appear(el, lab.step, animate)
+            out.append(el)
+        return out
+
+    # ------------------------------------------------------------------ output
+    def save(self, path: str | Path, *, dpi: float = 200.0, animate: float | None = None) -> Path:
+        """Write ``.svg``, ``.png`` (``dpi``) or ``.pdf``; PNG and PDF are converted from the SVG."""
+        path = Path(path)
+        svg = self.to_svg(animate=animate)
+        suffix = path.suffix.lower()
+        if suffix == ".svg":
+            path.write_text(svg, encoding="utf-8")
+        elif suffix in (".png", ".pdf"):
+            convert(svg, path, dpi=dpi)
+        else:
+            raise InputError(f"cannot write '{path}': the drawing formats are .svg, .png and .pdf")
+        return path
+
+
+def convert(svg: str, path: Path, dpi: float = 200.0) -> None:
+    """SVG text to PNG or PDF with cairosvg (needs the system cairo library)."""
+    try:
+        import cairosvg
+    except (ImportError, OSError) as exc:  # cairocffi raises OSError when libcairo is missing
+        raise InputError(f"writing {path.suffix} needs cairosvg and the cairo library "
+                         f"(e.g. apt-get install libcairo2); write .svg instead ({exc})") from None
+    data = svg.encode("utf-8")
+    if path.suffix.lower() == ".png":
+        cairosvg.svg2png(bytestring=data, write_to=str(path), dpi=dpi)
+    else:
+        cairosvg.svg2pdf(bytestring=data, write_to=str(path))
+
+
+def _symbol(name: str, a: dict) -> tuple[str, list]:
+    if name == "revolute":
+        return sym.revolute(a["at"])
+    if name == "fixed-pivot":
+        return sym.fixed_pivot(a["at"], a.get("down", (0, 1)))
+    if name == "bar":
+        return sym.bar(a["at"], a["to"])
+    if name == "plate":
+        return sym.plate(a["points"])
+    if name == "block":
+        return sym.block(a["at"], a["axis"])
+    if name == "guide":
+        return sym.guide(a["start"], a["end"], a["side"])
+    if name == "slot":
+        return sym.slot(a["start"], a["end"])
+    if name == "ground":
+        return sym.ground(a["start"], a["end"], a["side"])
+    if name == "pitch-circle":
+        return sym.pitch_circle(a["at"], a["r"])
+    raise ValueError(f"unknown symbol {name!r}")
+
+
+def _appear(svg: str, step: int, dur: float, vanish: bool = False) -> str:
+    begin = step * dur
+    anim = f'<set attributeName="visibility" to="visible" begin="{begin:g}s"/>'
+    if vanish:
+        anim += f'<set attributeName="visibility" to="hidden" begin="{begin + dur:g}s"/>'
+    return f'<g visibility="hidden">{anim}{svg}</g>'
+
+
+def _wrap(text: str, width: float, size: float = 3.3) -> list[str]:
+    per = max(20, int((width - 2 * MARGIN) / (0.5 * size)))
+    words, lines, cur = text.split(), [], ""
+    for w in words:
+        if len(cur) + len(w) + 1 > per and cur:
+            lines.append(cur)
+            cur = w
+        else:
+            cur = f"{cur} {w}".strip()
+    if cur:
+        lines.append(cur)
+    return lines or [""]
+
+
+def _resample(xy: np.ndarray, step: float = 0.8) -> list[np.ndarray]:
+    out = []
+    for a, b in zip(xy[:-1], xy[1:]):
+        n = max(2, int(np.linalg.norm(b - a) / step) + 1)
+        out += list(a + np.linspace(0, 1, n)[:, None] * (b - a))
+    return out
+
+
+def _candidates(prefer: np.ndarray | None) -> list[tuple[float, float]]:
+    dirs = [(1, -1), (1, 1), (-1, -1), (-1, 1), (1, 0), (-1, 0), (0, -1), (0, 1)]
+    dirs = [(dx / math.hypot(dx, dy), dy / math.hypot(dx, dy)) for dx, dy in dirs]
+    if prefer is not None and np.all(np.isfinite(prefer)) and np.linalg.norm(prefer) > 0:
+        p = np.asarray(prefer, float) / np.linalg.norm(prefer)
+        dirs.sort(key=lambda d: -(d[0] * p[0] + d[1] * p[1]))
+    return dirs
+
+
+def _overlap(a, b) -> float:
+    w = min(a[2], b[2]) - max(a[0], b[0])
+    h = min(a[3], b[3]) - max(a[1], b[1])
+    return w * h if w > 0 and h > 0 else 0.0
+
+
+class _Grid:
+    """Sample points of the drawn geometry in 2 mm buckets, to count what a label would cover."""
+
+    def __init__(self, pts: list, cell: float = 2.0) -> None:
+        self.cell = cell
+        self.b: dict[tuple[int, int], list] = {}
+        for p in pts:
+            if np.all(np.isfinite(p)):
+                self.b.setdefault((int(p[0] // cell), int(p[1] // cell)), []).append(p)
+
+    def count(self, box) -> int:
+        x0, y0, x1, y1 = box
+        n = 0
+        for i in range(int(x0 // self.cell), int(x1 // self.cell) + 1):
+            for j in range(int(y0 // self.cell), int(y1 // self.cell) + 1):
+                for p in self.b.get((i, j), ()):
+                    if x0 <= p[0] <= x1 and y0 <= p[1] <= y1:
+                        n += 1
+        return n
