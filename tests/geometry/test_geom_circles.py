@@ -5,6 +5,9 @@ import pytest
 
 from linkwork.geometry import Arc, Circle, GeometryError, Line, Point, Vector, intersect
 
+# numerical code must stay silent: NaN/inf are produced on purpose, never by accident
+pytestmark = pytest.mark.filterwarnings("error::RuntimeWarning")
+
 O = Point.at(0, 0)
 
 

@@ -8,6 +8,9 @@ from linkwork.geometry import (
     intersect, midpoint, orientation, perpendicular_bisector, polar, reflect,
 )
 
+# numerical code must stay silent: NaN/inf are produced on purpose, never by accident
+pytestmark = pytest.mark.filterwarnings("error::RuntimeWarning")
+
 
 def test_midpoint_bisector_foot():
     assert midpoint(Point.at(0, 0), Point.at(2, 4)).equals(Point.at(1, 2))

@@ -7,6 +7,9 @@ import pytest
 
 from linkwork.geometry import GeometryError, Line, Point, Vector, intersect
 
+# numerical code must stay silent: NaN/inf are produced on purpose, never by accident
+pytestmark = pytest.mark.filterwarnings("error::RuntimeWarning")
+
 
 def test_point_canonical_and_equality_up_to_scale():
     p = Point(np.array([2.0, 4.0, 2.0]))

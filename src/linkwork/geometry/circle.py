@@ -86,8 +86,9 @@ class Circle(Batch):
         d = 2 * cross2(b, c)
         longest = sides.max(axis=-1)
         flat = abs(d) <= tol * longest**2
-        with np.errstate(divide="ignore", invalid="ignore"):
+        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
             u = (dot(c, c)[..., None] * rot90(b) - dot(b, b)[..., None] * rot90(c)) / d[..., None]
+        u = np.where(flat[..., None], 0.0, u)  # centre offset; meaningless (maybe overflowing) when flat
         # for a line the normal is perpendicular to the longest side (the best-conditioned one)
         k = np.argmax(sides, axis=-1)[..., None]
         n = np.where(flat[..., None], rot90(np.where(k == 0, b, np.where(k == 1, c, c - b))), u)

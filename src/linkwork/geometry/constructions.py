@@ -60,7 +60,8 @@ def _det(p: Point, q: Point, r: Point) -> np.ndarray:
     xy = np.where(fin, xy - centroid[..., None, :], xy)
     spread = np.max(np.where(fin, norm(xy)[..., None], 0), axis=-2)
     xy = xy / np.where(fin, np.where(spread > 0, spread, 1)[..., None, :], norm(xy)[..., None])
-    return np.linalg.det(np.concatenate([xy, pts[..., 2:]], axis=-1))
+    with np.errstate(divide="ignore", invalid="ignore"):  # LAPACK warns on exactly singular input
+        return np.linalg.det(np.concatenate([xy, pts[..., 2:]], axis=-1))
 
 
 def collinear(p: Point, q: Point, r: Point, tol: float = 1e-9) -> np.ndarray:
