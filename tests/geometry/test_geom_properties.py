@@ -16,8 +16,8 @@ from linkwork.geometry import (
 # numerical code must stay silent: NaN/inf are produced on purpose, never by accident
 pytestmark = pytest.mark.filterwarnings("error::RuntimeWarning")
 
-settings.register_profile("geometry", max_examples=200, deadline=None)
-settings.load_profile("geometry")
+# per-test settings (a global profile would leak into other packages' tests)
+props = settings(max_examples=150, deadline=None)
 
 coord = st.floats(-100, 100, allow_nan=False, allow_infinity=False)
 xy = st.tuples(coord, coord)
@@ -41,6 +41,7 @@ def sine(l1, l2):
     return abs(n1[0] * n2[1] - n1[1] * n2[0])
 
 
+@props
 @given(xy, xy, xy, xy)
 def test_intersection_lies_on_both_lines(a, b, c, d):
     assume(far_apart(a, b) and far_apart(c, d))
@@ -50,6 +51,7 @@ def test_intersection_lies_on_both_lines(a, b, c, d):
     assert x.is_finite and l1.contains(x, 1e-8) and l2.contains(x, 1e-8)
 
 
+@props
 @given(small_int, small_int, small_int, small_int, small_int, small_int)
 def test_integer_lines_intersect_exactly(a1, b1, c1, a2, b2, c2):
     det = a1 * b2 - a2 * b1
@@ -60,6 +62,7 @@ def test_integer_lines_intersect_exactly(a1, b1, c1, a2, b2, c2):
     assert x.xy[1] == float(Fraction(c1 * a2 - c2 * a1, det))
 
 
+@props
 @given(xy, xy, xy)
 def test_parallel_lines_meet_at_their_common_direction(a, b, c):
     assume(far_apart(a, b))
@@ -70,6 +73,7 @@ def test_parallel_lines_meet_at_their_common_direction(a, b, c):
     assert x.coords[2] == 0 and x.equals(Point.at_infinity(np.subtract(b, a)))
 
 
+@props
 @given(xy, xy, st.fractions(-5, 5, max_denominator=16))
 def test_harmonic_conjugate_cross_ratio(a, b, t):
     assume(far_apart(a, b, d=1e-2) and t not in (0, 1) and abs(t - Fraction(1, 2)) > Fraction(1, 64))
@@ -80,6 +84,7 @@ def test_harmonic_conjugate_cross_ratio(a, b, t):
     assert np.isclose(t * (s - 1) / ((t - 1) * s), -1.0, rtol=1e-6)
 
 
+@props
 @given(xy, xy, xy, st.floats(-1e3, 1e3))
 def test_foot_of_perpendicular_minimises_distance(a, b, p, t):
     assume(far_apart(a, b))
@@ -91,6 +96,7 @@ def test_foot_of_perpendicular_minimises_distance(a, b, p, t):
     assert abs((P(p) - f).dot(line.direction)) <= 1e-9 * max(1.0, P(p).distance(f))
 
 
+@props
 @given(xy, xy, xy)
 def test_circle_through_three_points_passes_through_them(a, b, c):
     A, B, C = map(np.array, (a, b, c))
@@ -102,6 +108,7 @@ def test_circle_through_three_points_passes_through_them(a, b, c):
         assert circle.contains(P(q), 1e-8)
 
 
+@props
 @given(xy, st.floats(0.1, 50), xy, st.floats(0.1, 50))
 def test_circle_circle_points_and_validity(c1, r1, c2, r2):
     d = np.hypot(c1[0] - c2[0], c1[1] - c2[1])
@@ -116,6 +123,7 @@ def test_circle_circle_points_and_validity(c1, r1, c2, r2):
         assert orientation(P(c1), P(c2), res.plus) >= 0 >= orientation(P(c1), P(c2), res.minus)
 
 
+@props
 @given(xy, st.floats(0.1, 50), xy, xy)
 def test_circle_line_points_and_validity(c, r, a, b):
     assume(far_apart(a, b, d=1e-2))
@@ -130,6 +138,7 @@ def test_circle_line_points_and_validity(c, r, a, b):
         assert (res.plus - res.minus).dot(line.direction) >= 0  # plus is farther along the line
 
 
+@props
 @given(xy, xy, xy)
 def test_reflection_is_an_isometric_involution(a, b, p):
     assume(far_apart(a, b))
@@ -140,6 +149,7 @@ def test_reflection_is_an_isometric_involution(a, b, p):
 
 
 # |t| is kept away from rounding level: a + t d must be a representable, distinct point
+@props
 @given(xy, xy, st.floats(-10, 10).filter(lambda t: t == 0 or abs(t) > 1e-3), st.tuples(coord, coord))
 def test_line_through_a_direction_and_collinearity(a, b, t, d):
     assume(np.hypot(*d) > 1e-3)
@@ -150,6 +160,7 @@ def test_line_through_a_direction_and_collinearity(a, b, t, d):
     assert orientation(P(a), P(b), on) == -orientation(P(b), P(a), on)
 
 
+@props
 @given(xy, st.floats(0.5, 50), xy, xy)
 def test_pole_polar_reciprocity(c, r, p, q):
     # La Hire: Q lies on the polar of P  <=>  P lies on the polar of Q; test with Q projected onto polar(P)
@@ -160,6 +171,7 @@ def test_pole_polar_reciprocity(c, r, p, q):
     assert polar(qq, circle).contains(P(p), 1e-7)
 
 
+@props
 @given(xy, xy, xy)
 def test_tangent_circle_touches_line_and_passes_through_point(a, b, p):
     assume(far_apart(a, b))
@@ -171,6 +183,7 @@ def test_tangent_circle_touches_line_and_passes_through_point(a, b, p):
     assert abs((k.centre - P(a)).dot(line.direction)) <= 1e-8 * max(1.0, float(k.radius))
 
 
+@props
 @given(xy, xy, xy)
 def test_arc_through_three_points(a, m, b):
     A, M, B = map(np.array, (a, m, b))
@@ -185,6 +198,7 @@ def same(x, y):
     np.testing.assert_array_equal(x, y)  # exact, NaN == NaN
 
 
+@props
 @given(st.lists(st.tuples(xy, xy, xy, xy, st.floats(0, 60), st.floats(0, 60)), min_size=1, max_size=8))
 def test_batch_equals_scalar(items):
     items = [it for it in items if far_apart(it[0], it[1]) and far_apart(it[2], it[3])]

@@ -19,7 +19,7 @@ from typing import Any, Literal, NamedTuple
 
 import numpy as np
 
-from ._base import batch_shape, dot, frozen, norm, rot90, where_
+from ._base import batch_shape, dot, norm, rot90, where_
 from .circle import Circle
 from .errors import GeometryError
 from .line import Line, meet
@@ -70,7 +70,9 @@ def _lines(l1: Line, l2: Line, tol: float, coincident: str) -> Point:
 def _pair(plus: np.ndarray, minus: np.ndarray, valid: np.ndarray) -> IntersectionPair:
     """Assemble homogeneous coordinates, blanking invalid items to NaN."""
     plus, minus = (np.where(valid[..., None], v, np.nan) for v in (plus, minus))
-    return IntersectionPair(Point(plus), Point(minus), frozen(valid).astype(bool))
+    valid = np.array(valid, dtype=bool)
+    valid.flags.writeable = False
+    return IntersectionPair(Point(plus), Point(minus), valid)
 
 
 def _circle_line(circle: Circle, line: Line, tol: float) -> IntersectionPair:
