@@ -27,6 +27,9 @@ Two answers, reported side by side:
   listed. With the drivers' equations added, the rank says how many inputs the mechanism still
   needs, or which drivers are too many.
 
+`structure_report` gathers everything `linkwork structure` prints: these two, the Assur groups in
+solution order (`assur`), and the Grashof loops (`grashof`).
+
 A mechanism counts its folded pairs as the seeds draw them: a pin in a slot (`slot`,
 `circular-slot`) is the die block (*Stein*, *kulises akmens*) with a hinge and a sliding pair,
 so it adds one link, one hinge and one slider; a gear pair is a non-self-closed higher pair.
@@ -480,5 +483,79 @@ def _finite_step(mech: Mechanism, real: int, step: float = 1e-3) -> tuple[bool, 
     return True, 3 * k - numerical_rank(Jq, RANK_TOL)
 
 
-__all__ = ["Mobility", "PairCounts", "Redundant", "chain_counts", "counts", "grubler_constrained",
-           "hinge_groups", "kutzbach", "link_degrees", "link_types", "mobility", "slider_groups"]
+
+
+# ---------------------------------------------------------------------------- the whole report
+
+
+@dataclass(frozen=True)
+class StructureReport:
+    """Everything `linkwork structure` prints: counts, real mobility, Assur groups in solution
+    order (or why there is none), the mechanism's class, and the Grashof loops."""
+
+    mechanism: Mechanism
+    mobility: Mobility
+    link_types: dict[int, int]
+    groups: tuple | None  # AssurGroup, in solution order
+    structure_error: str | None
+    mechanism_class: int | None
+    loops: tuple  # grashof.LoopReport
+    input_limits: tuple[float, float] | None = None
+    input_limits_note: str | None = None
+
+    def as_dict(self) -> dict:
+        from .assur import ROMAN
+
+        mech = self.mechanism
+        return {
+            "mechanism": mech.name,
+            "units": {"length": mech.length_unit, "angle": "rad"},
+            **self.mobility.as_dict(),
+            "link_types": {str(k): v for k, v in self.link_types.items()},
+            "groups": None if self.groups is None else [g.as_dict() for g in self.groups],
+            "solution_order": None if self.groups is None else [list(g.links) for g in self.groups],
+            "structure_error": self.structure_error,
+            "mechanism_class": self.mechanism_class,
+            "mechanism_class_roman": ROMAN.get(self.mechanism_class) if self.mechanism_class else None,
+            "grashof": [lp.as_dict() for lp in self.loops],
+            "input_limits": None if self.input_limits is None else list(self.input_limits),
+            "input_limits_note": self.input_limits_note,
+        }
+
+
+def structure_report(mech: Mechanism, *, limits: bool = True) -> StructureReport:
+    """The structural analysis of `mech`. Over- and under-constrained mechanisms are reported,
+    not refused: their groups are missing and `structure_error` says why. With `limits`, the
+    whole mechanism's input limits are searched numerically (`kinematics.motion.input_limits`)
+    when it is constrained and has one driver."""
+    from ..errors import LinkworkError
+    from .assur import assur_groups, mechanism_class
+    from .grashof import loops
+
+    mob = mobility(mech)
+    groups, err = None, None
+    try:
+        groups = assur_groups(mech)
+    except LinkworkError as exc:
+        err = str(exc)
+    lim, note = None, None
+    if limits and groups is not None and len(mech.drivers) == 1 and mob.constrained:
+        from ..kinematics.motion import input_limits
+
+        try:
+            lim = input_limits(mech)
+            if lim is not None:
+                lim = (float(lim[0]), float(lim[1]))
+            else:
+                note = "the input turns fully"
+        except LinkworkError as exc:
+            note = str(exc)
+    return StructureReport(mechanism=mech, mobility=mob, link_types=link_types(mech),
+                           groups=groups, structure_error=err,
+                           mechanism_class=None if groups is None else mechanism_class(groups),
+                           loops=tuple(loops(mech)), input_limits=lim, input_limits_note=note)
+
+
+__all__ = ["Mobility", "PairCounts", "Redundant", "StructureReport", "chain_counts", "counts",
+           "grubler_constrained", "hinge_groups", "kutzbach", "link_degrees", "link_types",
+           "mobility", "slider_groups", "structure_report"]
