@@ -173,6 +173,7 @@ class Note:
 
     mask: np.ndarray
     message: str
+    limiting: bool = False  # True: the limiting construction was used, the results stand
 
 
 @dataclass(frozen=True, eq=False)
@@ -190,6 +191,7 @@ class Construction:
     spaces: dict[str, str] = field(default_factory=lambda: {"mechanism": "length"})
     scales: Any = None  # drawing scales used for vectors drawn on the mechanism (or None)
     sampled: int | None = None  # the sample index when this is one position of a batch
+    own_labels: bool = False  # the construction names the mechanism's points in its own notation
 
     # ------------------------------------------------------------------ degenerate cases
     @property
@@ -197,7 +199,8 @@ class Construction:
         """Mask of the samples at which the construction degenerates."""
         m = np.zeros(self.n, bool)
         for note in self.notes:
-            m |= np.broadcast_to(note.mask, (self.n,))
+            if not note.limiting:
+                m |= np.broadcast_to(note.mask, (self.n,))
         return m
 
     def messages(self, i: int | None = None) -> list[str]:
@@ -255,7 +258,7 @@ class Construction:
                           analytic=np.asarray(r.analytic)[i:i + 1],
                           scale=np.broadcast_to(r.scale, (self.n,))[i:i + 1])
                for k, r in self.results.items()}
-        notes = tuple(Note(np.broadcast_to(n.mask, (self.n,))[i:i + 1], n.message)
+        notes = tuple(Note(np.broadcast_to(n.mask, (self.n,))[i:i + 1], n.message, n.limiting)
                       for n in self.notes)
         return replace(self, elements=els, results=res, notes=notes, n=1, sampled=i)
 
@@ -334,6 +337,7 @@ class Builder:
         self.notes: list[Note] = []
         self.spaces = spaces or {"mechanism": "length"}
         self.scales = scales
+        self.own_labels = False
         self._spans: dict[str, list[Point]] = {}
 
     # ------------------------------------------------------------------ bookkeeping
@@ -366,11 +370,19 @@ class Builder:
             self.notes.append(Note(mask, message))
         return mask
 
+    def limiting(self, mask: Any, message: str) -> np.ndarray:
+        """Record that the limiting construction is used where ``mask`` holds (results stand)."""
+        mask = np.broadcast_to(np.asarray(mask, bool), (self.n,)).copy()
+        if mask.any():
+            self.notes.append(Note(mask, message, limiting=True))
+        return mask
+
     @property
     def bad(self) -> np.ndarray:
         m = np.zeros(self.n, bool)
         for note in self.notes:
-            m |= note.mask
+            if not note.limiting:
+                m |= note.mask
         return m
 
     # ------------------------------------------------------------------ ruler
@@ -511,7 +523,8 @@ class Builder:
         els = {k: replace(e, span=tuple(self._spans.get(k, ()))) for k, e in self.elements.items()}
         return Construction(self.name, self.title, self.source, self.n, els,
                             tuple(Step(t, tuple(k)) for t, k in self.steps), dict(self.results),
-                            tuple(self.notes), dict(self.spaces), self.scales)
+                            tuple(self.notes), dict(self.spaces), self.scales,
+                            own_labels=self.own_labels)
 
 
 def _nan_circle(c: Circle, bad: np.ndarray) -> Circle:

@@ -88,15 +88,17 @@ class Scene:
         return float(np.max(np.ptp(pts, axis=0))) if len(pts) > 1 else self.mech.length_scale
 
     def auto_scales(self, *, length: float | None = None, velocity: float | None = None,
-                    acceleration: float | None = None, paper_mm: float | None = None) -> Scales:
-        """Scales fitting the mechanism on the sheet, vectors about a fifth of the drawing."""
-        paper = paper_mm or 0.62 * SHEET_MM[0]
+                    acceleration: float | None = None, paper_mm: float | None = None,
+                    plan_mm: float | None = None) -> Scales:
+        """Scales fitting the mechanism on the sheet, vectors about a third of the drawing; with
+        ``plan_mm`` the velocity and acceleration scales fit plans of that size instead."""
+        paper = paper_mm or (0.45 if plan_mm else 0.62) * SHEET_MM[0]
         ext = self.extent()
         pts = self.moving_points
         vmax = max((float(np.linalg.norm(self.vel(p))) for p in pts), default=1.0)
         amax = max((float(np.nan_to_num(np.linalg.norm(self.acc(p)))) for p in pts), default=1.0)
         ls = length or nice_ceil(ext / paper)
-        vec_mm = 0.3 * ext / ls
+        vec_mm = plan_mm or 0.3 * ext / ls
         return Scales.auto(self.mech.length_unit, ext, vmax=vmax or 1.0, amax=amax or 1.0,
                            paper_mm=paper, vector_mm=vec_mm, length=ls, velocity=velocity,
                            acceleration=acceleration)
@@ -335,7 +337,8 @@ def _draw_element(fig: Figure, el: Element, step: int, hi: bool, layer: str) -> 
     elif isinstance(obj, Arrow):
         a, b = obj.tail.xy, obj.head.xy
         fig.arrow(a, b, **kw)
-        fig.used_scales.add(el.space if el.space != "mechanism" else "length")
+        if el.space == "mechanism" and el.kind in ("velocity", "acceleration"):
+            fig.used_scales.add(el.kind)
         if el.label:
             d = b - a
             fig.label(a + 0.6 * d, el.label, space=el.space, colour=colour, step=step, size=3.0,
@@ -380,7 +383,8 @@ def scene_figure(sc: Scene, show: Iterable[str] = ("mechanism",), *,
     if unknown:
         raise InputError(f"unknown layer(s) {', '.join(unknown)}; the layers are {', '.join(LAYERS)}")
     if sc.scales is None:
-        sc.scales = sc.auto_scales()
+        plans = construction is not None and any(q != "length" for q in construction.spaces.values())
+        sc.scales = sc.auto_scales(plan_mm=70.0 if plans else None)
     spaces = {"mechanism": sc.scales.length}
     titles = {}
     if construction is not None:
@@ -392,7 +396,10 @@ def scene_figure(sc: Scene, show: Iterable[str] = ("mechanism",), *,
     fig = Figure(sc.scales, title=title or sc.mech.name, spaces=spaces, titles=titles)
     for layer in show:
         if layer == "mechanism":
-            draw_mechanism(fig, sc)
+            # a construction that labels the mechanism's points in its own notation hides the
+            # file's point names
+            own = construction is not None and construction.own_labels
+            draw_mechanism(fig, sc, labels=not own)
         elif layer == "paths":
             draw_paths(fig, sc)
         elif layer == "velocities":
