@@ -67,8 +67,15 @@ class AssurGroup:
         return self.group.joints
 
     @property
+    def higher(self) -> bool:
+        """The group holds a higher pair (a gear), named by its equivalent lower-pair group."""
+        return any(n.startswith("gear pair") for n in self.notes)
+
+    @property
     def name(self) -> str:
         cls = f"class {ROMAN.get(self.assur_class, self.assur_class)}" if self.assur_class else ""
+        if self.higher:
+            cls += "; with a gear pair, by its equivalent link"
         if self.kind == "driver":
             return f"driving link ({cls})"
         if self.kind == "dyad":
@@ -139,6 +146,7 @@ def classify(mech: Mechanism, group: Group) -> AssurGroup:
                   unfolded_pairs=n_pairs, notes=tuple(notes))
     if group.drivers:
         if group.size == 1 and n_links == 1:
+            common["letters"] = "".join(d["letter"] for *_, d in outer)
             return AssurGroup(kind="driver", assur_class=1, dyad=None, **common)
         return AssurGroup(kind="driven group", assur_class=None, dyad=None, **common)
     H = nx.Graph()
