@@ -307,8 +307,17 @@ class Mobility:
         return sum(1 for r in self.redundant if not r.wedge)
 
     @property
+    def singular(self) -> bool:
+        """The design position is singular: the chain is rigid next to it (only infinitesimally
+        mobile), or it moves there with another mobility than next to it (a change position,
+        *Wechsellage*, *maiņas punkts*)."""
+        return self.finite_motion is False or (
+            self.off_design_mobility is not None and self.off_design_mobility != self.real_mobility)
+
+    @property
     def overclosed(self) -> bool:
-        return self.overclosure > 0
+        """Over-closed (*übergeschlossen*): redundant constraints that persist along the motion."""
+        return self.overclosure > 0 and not self.singular
 
     @property
     def constrained(self) -> bool:
@@ -317,27 +326,29 @@ class Mobility:
 
     def verdict(self) -> str:
         parts = []
+        if self.finite_motion is False:
+            parts.append(f"singular design position: the Jacobian leaves {self.real_mobility} "
+                         f"free motion{'s' if self.real_mobility != 1 else ''} there, but the chain "
+                         "does not move along it (infinitesimal mobility only; rigid next to it)")
+        elif self.singular:
+            parts.append(f"singular design position (dead or change position, Wechsellage): "
+                         f"mobility {self.real_mobility} there, {self.off_design_mobility} next to it")
         if self.real_mobility == 0:
             parts.append("rigid: no link can move (starr, negrozāma sistēma)")
         if self.overclosed:
             names = ", ".join(str(r) for r in self.redundant if not r.wedge)
-            parts.append(f"over-closed (übergeschlossen): moves only by its special dimensions; "
-                         f"{self.overclosure} redundant constraint"
+            parts.append(f"over-closed (übergeschlossen, pārāk slēgta ķēde): moves only by its "
+                         f"special dimensions; {self.overclosure} redundant constraint"
                          f"{'s' if self.overclosure > 1 else ''} ({names})")
         if self.inputs_needed > 0:
             parts.append(f"under-constrained: needs {self.inputs_needed} more input"
-                         f"{'s' if self.inputs_needed > 1 else ''}")
+                         f"{'s' if self.inputs_needed > 1 else ''}"
+                         + (" at the design position" if self.singular else ""))
         if self.surplus_drivers:
             parts.append("too many drivers: " + ", ".join(self.surplus_drivers)
                          + " cannot move independently")
-        if self.constrained and self.real_mobility > 0:
+        if self.constrained and self.real_mobility > 0 and not self.singular:
             parts.insert(0, "constrained motion (zwangläufig)")
-        if self.finite_motion is False:
-            parts.append("the design position is singular: the free motion found there does not "
-                         "continue (only infinitesimal mobility)")
-        elif self.off_design_mobility is not None and self.off_design_mobility != self.real_mobility:
-            parts.append(f"the design position is singular (dead or change position): next to it "
-                         f"the mobility is {self.off_design_mobility}")
         return "; ".join(parts)
 
     def as_dict(self) -> dict:
@@ -350,6 +361,7 @@ class Mobility:
             "redundant_constraints": [
                 {"joint": r.joint, "equation": r.equation, "wedge": r.wedge} for r in self.redundant],
             "overclosed": self.overclosed,
+            "singular_design_position": self.singular,
             "dependent_pairs": list(self.dependent_pairs),
             "drivers": list(self.drivers),
             "surplus_drivers": list(self.surplus_drivers),
