@@ -235,14 +235,16 @@ def bresse_circle(solution: Solution, link: str, relative_to: str | None = None,
 
 
 # ---------------------------------------------------------------------------- Euler–Savary
-def euler_savary(pole: Point, inflection_pole: Point, point: Point) -> Point:
+def euler_savary(pole: Point, inflection_pole: Point, point: Point, *, scale: float = 1.0,
+                 tol: float = TOL) -> Point:
     """The conjugate point (centre of curvature of the path) of `point` by Euler–Savary,
     from the pole P and the inflection pole W (all drawn in one plane, batches (N,)).
 
     With d = W − P and r = X − P: C = P − (d·r)/(|r|² − d·r)·r, which is Pöschl's eq. (88)
     ρ = r²/W′A and Rosenauer's (11) r² = k·k_w. Points on the inflection circle give C at
     infinity; a point at infinity (direction e) gives C = P − (d·e)e/|e|² on the return circle.
-    Needs a finite pole (no relative translation).
+    Needs a finite pole (no relative translation). A centre farther than scale/tol (a
+    radius of curvature beyond that) is put exactly at infinity.
     """
     P, Wp, X = (np.asarray(p.coords) for p in (pole, inflection_pole, point))
     with np.errstate(divide="ignore", invalid="ignore"):
@@ -253,6 +255,8 @@ def euler_savary(pole: Point, inflection_pole: Point, point: Point) -> Point:
         wx = X[:, 2]
         dr, rr = dot(d, r), dot(r, r)
         den = rr - dr * wx  # |r|² − d·r, homogenised by w
+        # |C − X| = |r|³/|den| for finite X: beyond scale/tol the centre is at infinity
+        den = np.where((wx != 0) & (np.abs(den) * scale <= tol * rr ** 1.5), 0.0, den)
         h = np.concatenate([Pxy * den[:, None] - (dr[:, None] * r), den[:, None]], axis=1)
     return make_point(h)
 
@@ -295,11 +299,14 @@ def _path_local(rm: RelativeMotion, s: np.ndarray, tol: float) -> tuple[np.ndarr
     vv = dot(v, v)
     vscale = norm(rm.point(rm.reference)[1]) + np.abs(rm.omega) * rm.scale
     cusp = np.sqrt(vv) <= tol * vscale
+    # an inflection: the centre farther than length_scale/tol is exactly at infinity
+    flat = ~cusp & (np.abs(cr) * rm.scale <= tol * vv ** 1.5)
+    cr = np.where(flat, 0.0, cr)
     h = np.concatenate([x * cr[:, None] + vv[:, None] * perp(v), cr[:, None]], axis=1)
     h[cusp] = np.concatenate([x, np.ones((len(x), 1))], axis=1)[cusp]
     with np.errstate(divide="ignore", invalid="ignore"):
         kappa = np.where(cusp, np.inf, cr / vv ** 1.5)
-        radius = np.where(cusp, 0.0, vv ** 1.5 / np.abs(cr))
+        radius = np.where(cusp, 0.0, np.where(flat, np.inf, vv ** 1.5 / np.abs(cr)))
     return x, h, radius, kappa
 
 

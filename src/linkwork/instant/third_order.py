@@ -105,7 +105,7 @@ class StationaryCurvature:
         out = np.empty_like(X)
         ins_P, ins_W = self.pole, _inflection_pole(self.motion, self.third)
         for i in range(k):
-            out[:, i] = euler_savary(ins_P, ins_W, Point.from_xy(X[:, i])).xy
+            out[:, i] = euler_savary(ins_P, ins_W, Point.from_xy(X[:, i]), scale=self.motion.scale).xy
         return out
 
     def residual(self, xy: np.ndarray) -> np.ndarray:
@@ -346,7 +346,8 @@ def burmester_points(solution: Solution, link: str, relative_to: str | None = No
         Ph = make_point(np.concatenate([t3.P, np.ones((Nn, 1))], axis=1))
         with np.errstate(divide="ignore", invalid="ignore"):
             Wl = t3.P + t3.b / (w ** 2)[:, None]
-        Cl = euler_savary(Ph, Point.from_xy(Wl), Point.from_xy(np.where(np.isfinite(Xk), Xk, 0.0))).xy
+        Cl = euler_savary(Ph, Point.from_xy(Wl), Point.from_xy(np.where(np.isfinite(Xk), Xk, 0.0)),
+                          scale=rm.scale).xy
         cen[good, k] = rm.to_world(Cl)[good]
     count = np.isfinite(pts[..., 0]).sum(axis=1)
     return BurmesterPoints(pts, cen, count)
