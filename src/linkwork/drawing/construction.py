@@ -154,6 +154,7 @@ class Result:
     analytic: np.ndarray
     scale: np.ndarray
     unit: str = ""
+    shown: tuple[np.ndarray, np.ndarray] | None = None  # (constructed, analytic) for reports
 
     @property
     def error(self) -> np.ndarray:
@@ -256,6 +257,7 @@ class Construction:
         els = {k: e.sample(i) for k, e in self.elements.items()}
         res = {k: replace(r, constructed=np.asarray(r.constructed)[i:i + 1],
                           analytic=np.asarray(r.analytic)[i:i + 1],
+                          shown=None if r.shown is None else tuple(np.asarray(x)[i:i + 1] for x in r.shown),
                           scale=np.broadcast_to(r.scale, (self.n,))[i:i + 1])
                for k, r in self.results.items()}
         notes = tuple(Note(np.broadcast_to(n.mask, (self.n,))[i:i + 1], n.message, n.limiting)
@@ -280,7 +282,7 @@ class Construction:
         for k, s in enumerate(self.steps, 1):
             lines.append(f"{k:2d}. {s.text}")
         for r in self.results.values():
-            c, a = np.asarray(r.constructed), np.asarray(r.analytic)
+            c, a = (np.asarray(x) for x in (r.shown or (r.constructed, r.analytic)))
             if self.n == 1:
                 lines.append(f"    {r.label} = {_fmt(c[0])} {r.unit}  (analytic {_fmt(a[0])}, "
                              f"relative error {float(np.asarray(r.error)[0]):.1e})")
@@ -506,7 +508,70 @@ class Builder:
             out.append(p)
         return out[0], out[1]
 
+    def copy_angle(self, key: str, V: Point, R1: Point, R2: Point, W: Point, S: Point, *,
+                   sense: int = 1, radius: Any = None, role: Role = Role.AUXILIARY,
+                   label: str | None = None, **kw) -> Line:
+        """Lay off at ``W``, from the ray W→S, the angle ∠R1 V R2 with compass and ruler:
+        a circle about V meets its rays in X1, X2; the same circle about W meets WS in Y1; the
+        circle about Y1 through the chord X1X2 meets it in Y2 (``sense`` +1: the angle keeps its
+        orientation, −1: it is laid off the other way). Returns the line W Y2 (drawn as a ray)."""
+        Vx, Wx = V.xy, W.xy
+
+        def unit(d):
+            with np.errstate(invalid="ignore", divide="ignore"):
+                return d / np.linalg.norm(d, axis=-1, keepdims=True)
+        if radius is None:
+            radius = 0.3 * np.minimum(np.linalg.norm(R1.xy - Vx, axis=-1), np.linalg.norm(S.xy - Wx, axis=-1))
+        rho = np.broadcast_to(np.asarray(radius, float), (self.n,))
+        X1 = Vx + rho[:, None] * unit(R1.xy - Vx)
+        X2 = Vx + rho[:, None] * unit(R2.xy - Vx)
+        Y1 = Wx + rho[:, None] * unit(S.xy - Wx)
+        chord = np.linalg.norm(X2 - X1, axis=-1)
+        # the chord transferred: the two intersections, the one with the right orientation
+        d = np.linalg.norm(Y1 - Wx, axis=-1)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            a = (d * d - chord * chord + rho * rho) / (2 * d)
+            h = np.sqrt(np.maximum(rho * rho - a * a, 0.0))
+        u = unit(Y1 - Wx)
+        nrm = np.stack([-u[:, 1], u[:, 0]], axis=-1)
+        o1 = np.sign((X1 - Vx)[:, 0] * (X2 - Vx)[:, 1] - (X1 - Vx)[:, 1] * (X2 - Vx)[:, 0])
+        Y2 = Wx + a[:, None] * u + (sense * np.where(o1 == 0, 1.0, o1) * h)[:, None] * nrm
+        sp = kw.get("space", "mechanism")
+        p1, p2, q1, q2 = (pt(x) for x in (X1, X2, Y1, Y2))
+        self.add(key + ".arc1", _circle_at(V, rho, self.n), Role.AUXILIARY, None, kind="circle",
+                 space=sp, arcs=(p1, p2))
+        self.add(key + ".arc2", _circle_at(W, rho, self.n), Role.AUXILIARY, None, kind="circle",
+                 space=sp, arcs=(q1, q2))
+        self.add(key + ".arc3", _circle_at(q1, chord, self.n), Role.AUXILIARY, None, kind="circle",
+                 space=sp, arcs=(q2,))
+        line, _ = safe_join(W, q2)
+        self.add(key, line, role, label, kind=kw.pop("kind", "line"), span=[W, q2], **kw)
+        return line
+
     # ------------------------------------------------------------------ results
+    def compare_points(self, key: str, label: str, description: str, constructed: Point,
+                       analytic: Point, length: float, origin: Any = (0.0, 0.0)) -> Result:
+        """Compare two batches of points, either possibly at infinity, by their projective
+        distance in units of ``length`` about ``origin``: |Δ|/length for nearby finite points,
+        the sine of the angle between directions for points at infinity."""
+        o = np.asarray(origin, float)
+
+        def h(p):
+            c = np.array(p.coords, float)
+            c = np.concatenate([(c[..., :2] - c[..., 2:] * o) / length, c[..., 2:]], axis=-1)
+            with np.errstate(invalid="ignore", divide="ignore"):
+                return c / np.linalg.norm(c, axis=-1, keepdims=True)
+        hc, ha = h(constructed), h(analytic)
+        s = np.sign(np.sum(hc * ha, axis=-1))
+        hc = hc * np.where(s == 0, 1.0, s)[..., None]
+        r = self.compare(key, label, description, hc, ha, np.ones(self.n), "")
+        with np.errstate(invalid="ignore", divide="ignore"):
+            shown = tuple(np.where(p.is_finite[..., None], p.coords[..., :2], np.inf)
+                          for p in (constructed, analytic))
+        r = replace(r, shown=shown)
+        self.results[key] = r
+        return r
+
     def compare(self, key: str, label: str, description: str, constructed: Any, analytic: Any,
                 scale: Any, unit: str = "") -> Result:
         """Record a number read off the construction next to its analytic value."""
@@ -538,6 +603,15 @@ def _nan_circle(c: Circle, bad: np.ndarray) -> Circle:
     r.flags.writeable = False
     object.__setattr__(obj, "radius", r)
     return obj
+
+
+def _circle_at(centre: Point, radius: np.ndarray, n: int) -> Circle:
+    c = np.where(np.isnan(centre.xy), 0.0, centre.xy)
+    r = np.broadcast_to(np.asarray(radius, float), (n,))
+    bad = np.isnan(centre.xy).any(-1) | ~np.isfinite(r)
+    circ = Circle(Point.from_xy(c - np.stack([np.where(bad, 0, r), np.zeros(n)], -1)), Vector.of(1.0, 0.0),
+                  np.where(bad, 0.0, r))
+    return _nan_circle(circ, bad) if bad.any() else circ
 
 
 def xy(p: Point) -> np.ndarray:

@@ -362,6 +362,25 @@ def _draw_element(fig: Figure, el: Element, step: int, hi: bool, layer: str) -> 
 
 
 # ---------------------------------------------------------------------------- the figure
+def construction_extent(con: Construction, space: str = "mechanism") -> float:
+    """Size of the drawn construction in ``space`` (finite points, circles)."""
+    pts = []
+    for el in con.elements.values():
+        if el.space != space:
+            continue
+        o = el.obj
+        if isinstance(o, Point) and o.is_finite:
+            pts.append(o.xy)
+        elif isinstance(o, Circle) and not o.is_line and np.isfinite(o.radius):
+            c, r = o.centre.xy, float(o.radius)
+            if not el.arcs:
+                pts += [c + r, c - r]
+        elif isinstance(o, (Segment, Arrow)):
+            pts += [o.start.xy, o.end.xy] if isinstance(o, Segment) else [o.tail.xy, o.head.xy]
+    pts = np.array([p for p in pts if np.all(np.isfinite(p))]).reshape(-1, 2)
+    return float(np.max(np.ptp(pts, axis=0))) if len(pts) > 1 else 0.0
+
+
 def construction_spaces(con: Construction, scales: Scales) -> dict[str, Scale]:
     out = {"mechanism": scales.length}
     for name, q in con.spaces.items():
@@ -384,7 +403,12 @@ def scene_figure(sc: Scene, show: Iterable[str] = ("mechanism",), *,
         raise InputError(f"unknown layer(s) {', '.join(unknown)}; the layers are {', '.join(LAYERS)}")
     if sc.scales is None:
         plans = construction is not None and any(q != "length" for q in construction.spaces.values())
-        sc.scales = sc.auto_scales(plan_mm=70.0 if plans else None)
+        ext = None
+        if construction is not None:
+            ext = max(sc.extent(), construction_extent(construction.sample(sc.index)
+                                                       if construction.sampled is None else construction))
+        sc.scales = sc.auto_scales(plan_mm=70.0 if plans else None,
+                                   length=None if ext is None else nice_ceil(ext / (0.45 if plans else 0.9) / SHEET_MM[0]))
     spaces = {"mechanism": sc.scales.length}
     titles = {}
     if construction is not None:

@@ -272,7 +272,7 @@ class Figure:
             panels[name] = dict(lo=lo, hi=hi, scale=scale, ox=ox, oy=oy, x=x, y=top, w=w, h=h)
             x += w + GAP + 2 * MARGIN
             height = max(height, h)
-        width = max(x - GAP - MARGIN, 120.0)
+        width = max(x - GAP - MARGIN + 22.0, 120.0)  # room for labels right of the last panel
         return panels, width, top + height + MARGIN
 
     @staticmethod
