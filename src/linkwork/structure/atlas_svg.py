@@ -7,14 +7,15 @@ quadrilateral, …) through its hinges, and every hinge a ``<circle>``.  Nothing
 else in the picture uses those three element kinds, so a reader (or a test) can
 count links and hinges from the file.
 
-Hinge positions come from a NetworkX Kamada–Kawai layout of the *line graph* of
-the chain (hinges as nodes, two hinges adjacent when they sit on a common
-link): the sides of every link are then pulled to about the same length, which
-gives the bar-and-plate look of the textbook figures.
+Hinge positions come from NetworkX's spring layout of the *line graph* of the
+chain (hinges as nodes, two hinges adjacent when they sit on a common link),
+started for planar chains from Tutte's barycentric drawing so that bars rarely
+cross (see :func:`hinge_positions`).
 """
 
 from __future__ import annotations
 
+import itertools
 import math
 from collections.abc import Iterable
 from pathlib import Path
@@ -22,6 +23,7 @@ from typing import TYPE_CHECKING
 from xml.sax.saxutils import escape, quoteattr
 
 import networkx as nx
+import numpy as np
 
 if TYPE_CHECKING:
     from linkwork.structure.atlas import Chain
@@ -30,15 +32,72 @@ _MARGIN = 28.0
 _CAPTION = 22.0
 
 
+def _outer_face(g: nx.Graph) -> list[int] | None:
+    """The longest face of a planar embedding of ``g`` (``None`` if ``g`` is not planar)."""
+    planar, embedding = nx.check_planarity(g)
+    if not planar:
+        return None
+    seen: set[tuple[int, int]] = set()
+    best: list[int] = []
+    for u, v in sorted(embedding.edges()):
+        if (u, v) in seen:
+            continue
+        face = embedding.traverse_face(u, v, mark_half_edges=seen)
+        if len(face) > len(best):
+            best = face
+    return best
+
+
+def _barycentric(g: nx.Graph, outer: list[int]) -> dict[int, np.ndarray]:
+    """Tutte's barycentric placement: outer face on a circle, every other link at the
+    mean of its neighbours.  For a planar chain this starts the layout without
+    crossings (Tutte 1963); NetworkX has no such layout, and it is one linear solve.
+    """
+    nodes = sorted(g.nodes())
+    index = {v: i for i, v in enumerate(nodes)}
+    a = np.zeros((len(nodes), len(nodes)))
+    rhs = np.zeros((len(nodes), 2))
+    for i, v in enumerate(outer):
+        angle = 2 * math.pi * i / len(outer)
+        a[index[v], index[v]] = 1.0
+        rhs[index[v]] = (math.cos(angle), math.sin(angle))
+    on_outer = set(outer)
+    for v in nodes:
+        if v in on_outer:
+            continue
+        a[index[v], index[v]] = g.degree(v)
+        for w in g[v]:
+            a[index[v], index[w]] -= 1.0
+    xy = np.linalg.solve(a, rhs)
+    return {v: xy[index[v]] for v in nodes}
+
+
 def hinge_positions(chain: Chain, *, size: float = 300.0) -> dict[tuple[int, int], tuple[float, float]]:
-    """Drawing coordinates (SVG units, y down) of every hinge of ``chain``."""
-    line = nx.line_graph(chain.graph())
-    # Sort nodes so the layout does not depend on set iteration order.
-    ordered = nx.Graph()
-    ordered.add_nodes_from(sorted(line.nodes()))
-    ordered.add_edges_from(sorted(tuple(sorted(e)) for e in line.edges()))
-    start = nx.circular_layout(ordered)
-    pos = nx.kamada_kawai_layout(ordered, pos=start)
+    """Drawing coordinates (SVG units, y down) of every hinge of ``chain``.
+
+    The hinges are laid out by NetworkX's spring layout on the line graph (hinge
+    nodes, joined when they sit on a common link), so the sides of every link
+    get similar lengths.  For a planar chain the layout starts from Tutte's
+    barycentric drawing of the link graph (hinges at the middle of their edges)
+    with the hinges of the outer face held fixed, which keeps most sketches free
+    of crossing bars; non-planar chains start from a seeded random layout.
+    """
+    g = chain.graph()
+    line = nx.Graph()
+    line.add_nodes_from(sorted(chain.edges))
+    for v in sorted(g.nodes()):
+        at_v = sorted(tuple(sorted((v, w))) for w in g[v])
+        line.add_edges_from(itertools.combinations(at_v, 2))
+    outer = _outer_face(g)
+    if outer is None:
+        pos = nx.spring_layout(line, seed=7)
+    else:
+        links = _barycentric(g, outer)
+        start = {(a, b): (links[a] + links[b]) / 2 for a, b in chain.edges}
+        fixed = [tuple(sorted((outer[i], outer[(i + 1) % len(outer)]))) for i in range(len(outer))]
+        # Few iterations: enough to open up collinear binary strings and flat
+        # plates, too few to undo the planar start.
+        pos = nx.spring_layout(line, pos=start, fixed=fixed, iterations=20, seed=7)
     xs = [p[0] for p in pos.values()]
     ys = [p[1] for p in pos.values()]
     span = max(max(xs) - min(xs), max(ys) - min(ys)) or 1.0
@@ -46,7 +105,7 @@ def hinge_positions(chain: Chain, *, size: float = 300.0) -> dict[tuple[int, int
     cx = (max(xs) + min(xs)) / 2
     cy = (max(ys) + min(ys)) / 2
     return {
-        tuple(sorted(h)): (size / 2 + (p[0] - cx) * scale, size / 2 - (p[1] - cy) * scale)  # type: ignore[misc]
+        h: (size / 2 + (float(p[0]) - cx) * scale, size / 2 - (float(p[1]) - cy) * scale)  # type: ignore[misc]
         for h, p in pos.items()
     }
 
