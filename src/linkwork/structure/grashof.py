@@ -80,9 +80,11 @@ class FourBarClass:
         return f"{kind} {base} ({german}{extra})"
 
 
-def classify_four_bar(frame: float, input: float, coupler: float, output: float) -> FourBarClass:
+def classify_four_bar(frame: float, input: float, coupler: float, output: float, *,
+                      crossed: bool | None = None) -> FourBarClass:
     """Grashof class of the four-bar with these link lengths, the frame fixed, the input and the
-    output pivoted on the frame."""
+    output pivoted on the frame. `crossed` (the coupler crosses the frame's line between the
+    pivots, as drawn) tells a parallel from an antiparallel crank."""
     lengths = [frame, input, coupler, output]
     if min(lengths) <= 0:
         raise StructureError("four-bar link lengths must be positive")
@@ -112,7 +114,13 @@ def classify_four_bar(frame: float, input: float, coupler: float, output: float)
     if grashof == "change point":
         eq = lambda x, y: abs(x - y) <= TOL * scale  # noqa: E731
         if eq(frame, coupler) and eq(input, output):
-            special = "parallel or antiparallel crank" if not eq(frame, input) else "rhombus"
+            if eq(frame, input):
+                special = "rhombus"
+            elif crossed is None:
+                special = "parallel or antiparallel crank"
+            else:
+                special = ("antiparallel crank, Antiparallelkurbel" if crossed
+                           else "parallel crank, Parallelkurbel")
         elif (eq(frame, input) and eq(coupler, output)) or (eq(frame, output) and eq(coupler, input)):
             special = "kite (deltoid, Galloway)"
     return FourBarClass(frame, input, coupler, output, grashof, kind, inp, out, cpl, special)
@@ -382,8 +390,10 @@ def _four_bar(mech: Mechanism, cyc, edges, notes) -> LoopReport:
         P = [P[3], P[2], P[1], P[0]]
         lengths = [lengths[0], lengths[3], lengths[2], lengths[1]]
     d_, a, b, c = lengths
-    cls = classify_four_bar(d_, a, b, c)
     O_in, A, B, O_out = P[0], P[1], P[2], P[3]
+    # crossed (antiparallel) when the loop O_in A B O_out, as drawn, intersects itself
+    crossed = _segments_cross(O_in, A, B, O_out) or _segments_cross(A, B, O_out, O_in)
+    cls = classify_four_bar(d_, a, b, c, crossed=crossed)
     mu = four_bar_transmission(d_, a, b, c)
     report = dict(
         chain="four-bar",
@@ -400,6 +410,17 @@ def _four_bar(mech: Mechanism, cyc, edges, notes) -> LoopReport:
         elif not cls.output_turns_fully:
             report["dead_positions"] = _four_bar_dead_positions(O_in, A, B, O_out, a, b, c, d_, offset)
     return LoopReport(**report)
+
+
+def _cross2(u: np.ndarray, v: np.ndarray) -> float:
+    return float(u[0] * v[1] - u[1] * v[0])
+
+
+def _segments_cross(p1, p2, q1, q2) -> bool:
+    """The segments p1p2 and q1q2 cross at a point inside both."""
+    d1, d2 = _cross2(p2 - p1, q1 - p1), _cross2(p2 - p1, q2 - p1)
+    d3, d4 = _cross2(q2 - q1, p1 - q1), _cross2(q2 - q1, p2 - q1)
+    return d1 * d2 < 0 and d3 * d4 < 0
 
 
 def _angle(v: np.ndarray) -> float:
@@ -489,58 +510,66 @@ def _slider_crank(mech: Mechanism, cyc, edges, effective, notes) -> LoopReport:
     hinge_xy = P[(k + 2) % 4]  # the hinge joining X and Y
     len_X = float(np.hypot(*(R_a - hinge_xy)))
     len_Y = float(np.hypot(*(R_b - hinge_xy)))
-    e = abs(float(u[0] * (R_a - R_b)[1] - u[1] * (R_a - R_b)[0]))
+    e = abs(_cross2(u, R_a - R_b))
     tol = TOL * max(len_X, len_Y, e)
+    # the crank is the hinge-hinge link that turns fully (the shorter one if neither does);
+    # the guide is the sliding link next to it, the block the one next to the rod
     if len_X + e <= len_Y + tol or (len_Y + e > len_X + tol and len_X <= len_Y):
         crank, rod, guide, block = X, Y, pl_a, pl_b
         r, l = len_X, len_Y
-        O, Apin, Bpin = R_a, hinge_xy, R_b
+        H_cg, H_cr, H_rb = R_a, hinge_xy, R_b  # hinges crank-guide, crank-rod, rod-block
     else:
         crank, rod, guide, block = Y, X, pl_b, pl_a
         r, l = len_Y, len_X
-        O, Apin, Bpin = R_b, hinge_xy, R_a
+        H_cg, H_cr, H_rb = R_b, hinge_xy, R_a
     role = {guide: "guide", rod: "rod", crank: "crank", block: "block"}
     cls = classify_slider_crank(r, l, e, role[mech.frame])
     report = dict(chain="slider-crank",
                   links={"crank": crank, "rod": rod, "block": block, "guide": guide},
                   lengths={"crank": r, "rod": l, "offset": e}, name=cls.name,
                   grashof=cls.grashof, type=f"type {cls.inversion}", inversion=cls.inversion,
-                  input_turns_fully=None, notes=notes)
-    if cls.inversion == "I":
-        mu = slider_crank_transmission(r, l, e)
+                  notes=notes)
+    drv = _driver_of(mech, cyc)
+    if mech.frame in (guide, block):
+        # types I and IV: the line of stroke is fixed. D is the hinge-hinge link pivoted on the
+        # frame (at O), E the other one, hinged to D at A and to the sliding link at B.
+        if mech.frame == guide:
+            D, O, A, B = crank, H_cg, H_cr, H_rb
+        else:
+            D, O, A, B = rod, H_rb, H_cr, H_cg
+        rd, le = float(np.hypot(*(A - O))), float(np.hypot(*(B - A)))
+        mu = slider_crank_transmission(rd, le, e)
         report["transmission"] = mu
         report["min_transmission"] = min_transmission(mu)
-        drv = _driver_of(mech, cyc)
-        report["input_turns_fully"] = (cls.grashof != "non-Grashof") if (
-            drv is not None and drv.driven == crank) else (False if drv is not None else None)
-        report.update(_slider_crank_limits(mech, drv, crank, O, Apin, Bpin, u, r, l, cls))
-    elif cls.inversion in ("II", "III"):
-        drv = _driver_of(mech, cyc)
+        turns = rd + e <= le + tol
         if drv is not None:
-            moving = drv.driven
-            if cls.inversion == "II":
-                report["input_turns_fully"] = (moving == crank and cls.grashof != "non-Grashof")
-            else:
-                report["input_turns_fully"] = cls.grashof != "non-Grashof"
+            report["input_turns_fully"] = turns and drv.driven == D
+            report.update(_stroke_limits(mech, drv, D, O, A, B, u, rd, le, turns))
+    elif cls.inversion == "II" and drv is not None:
+        # the rod is fixed: the crank turns about H_cr, the slotted lever (the block) swings
+        # about H_rb; its line passes through the crank pin H_cg
+        report["input_turns_fully"] = drv.driven == crank and cls.grashof != "non-Grashof"
+        if drv.driven == crank and cls.grashof == "Grashof" and mech.joint(drv.joint).kind == "revolute":
+            report["dead_positions"] = _lever_limits(mech, drv, H_cr, H_cg, H_rb, u, r, l, e)
+    elif cls.inversion == "III" and drv is not None:
+        report["input_turns_fully"] = cls.grashof != "non-Grashof"
     return LoopReport(**report)
 
 
-def _slider_crank_limits(mech: Mechanism, drv, crank, O, A, B, u, r, l, cls) -> dict:
-    """Dead centres of a type I slider-crank (crank and rod in line) or, if the crank only
-    swings, its limit positions; as driver input values."""
-    if drv is None:
-        return {}
+def _stroke_limits(mech: Mechanism, drv, D, O, A, B, u, r, l, turns) -> dict:
+    """Limit positions of a slider-crank whose line of stroke is fixed (types I and IV): the
+    dead centres (link D on the frame and the rod in line) when D turns fully, else the limits
+    of D's swing; as driver input values."""
     n = np.array([-u[1], u[0]])
     e_signed = float(np.dot(B - O, n))  # the line of stroke is {O + s·u + e·n}
     s0 = float(np.dot(B - O, u))
-    sign = 1.0 if s0 - float(np.dot(A - O, u)) >= 0 else -1.0  # pin side along u
     joint = mech.joint(drv.joint)
-    if joint.kind == "revolute" and drv.driven != crank:
+    if joint.kind == "revolute" and drv.driven != D:
         return {}
-    if cls.grashof == "non-Grashof":
+    if not turns:
         if joint.kind != "revolute":
             return {}
-        # the crank swings: |r sin φ − e| ≤ l, φ measured from u towards n
+        # D swings: |r sin φ − e| ≤ l, φ measured from u towards n
         phi0 = math.atan2(float(np.dot(A - O, n)), float(np.dot(A - O, u)))
         lims = []
         for b_ in ((e_signed + l) / r, (e_signed - l) / r):
@@ -554,29 +583,51 @@ def _slider_crank_limits(mech: Mechanism, drv, crank, O, A, B, u, r, l, cls) -> 
             return {}
         off = mech.driver_input_at_design(drv)
         return {"input_limits": (off + max(below), off + min(above))}
+    sign = 1.0 if s0 - float(np.dot(A - O, u)) >= 0 else -1.0  # side of the pin along u
     s_ext = sign * math.sqrt(max(0.0, (l + r) ** 2 - e_signed ** 2))
     s_fold = sign * math.sqrt(max(0.0, (l - r) ** 2 - e_signed ** 2))
-    # crank angles at the dead centres: the crank points at (stretched) or away from the pin
+    # crank angles at the dead centres: D points at (stretched) or away from the pin
     B_ext = O + s_ext * u + e_signed * n
     B_fold = O + s_fold * u + e_signed * n
     th_ext = _angle(B_ext - O)
-    th_fold = _angle(O - B_fold) if l > r else _angle(B_fold - O)
+    th_fold = _angle(O - B_fold)
     stroke = abs(s_ext - s_fold)
     between = abs(math.remainder(th_ext - th_fold, 2 * math.pi))
     delta = abs(math.pi - between)
-    out: dict = {}
     if joint.kind == "prismatic":
         ax = float(np.dot(joint.axis, u))
         lo, hi = sorted(((s_fold - s0) * ax, (s_ext - s0) * ax))
-        out["input_limits"] = (lo, hi)
-    else:
-        offset = _input_offset(mech, drv, O, A)
-        dead = {"input": [th_ext + offset, th_fold + offset],
-                "slider_position": [s_ext, s_fold], "stroke": stroke,
-                "dead_position_angle": delta,
-                "time_ratio": (math.pi + delta) / (math.pi - delta)}
-        out["dead_positions"] = dead
-    return out
+        return {"input_limits": (lo, hi)}
+    offset = _input_offset(mech, drv, O, A)
+    return {"dead_positions": {"input": [th_ext + offset, th_fold + offset],
+                               "slider_position": [s_ext, s_fold], "stroke": stroke,
+                               "dead_position_angle": delta,
+                               "time_ratio": (math.pi + delta) / (math.pi - delta)}}
+
+
+def _lever_limits(mech: Mechanism, drv, C, A, B, u, r, d, e) -> dict:
+    """Oscillating crank-slotted lever (type II) driven by its crank C–A: the lever about B
+    swings while its slot line (through the pin A, at distance e from B) sweeps the crank
+    circle; its limits are where the line touches the circle. Input values there, the lever's
+    swing, δ and the time ratio of the quick return."""
+    CB = C - B
+    n0 = np.array([-u[1], u[0]])
+    if float(np.dot(A - B, n0)) < 0:
+        n0 = -n0  # the slot's normal pointing from B to the line: n·(X − B) = e on the line
+    w = CB / d
+    alpha0 = math.atan2(_cross2(w, n0), float(np.dot(w, n0)))  # from C − B to the normal
+    a1, a2 = math.acos(max(-1.0, min(1.0, (e + r) / d))), math.acos(max(-1.0, min(1.0, (e - r) / d)))
+    limits = (a1, a2) if alpha0 >= 0 else (-a1, -a2)
+    inputs = []
+    offset = _input_offset(mech, drv, C, A)
+    for a in limits:
+        n = np.array([w[0] * math.cos(a) - w[1] * math.sin(a), w[0] * math.sin(a) + w[1] * math.cos(a)])
+        touch = C - (d * math.cos(a) - e) * n
+        inputs.append(_angle(touch - C) + offset)
+    between = abs(math.remainder(inputs[0] - inputs[1], 2 * math.pi))
+    delta = abs(math.pi - between)
+    return {"input": inputs, "output_swing": a2 - a1, "dead_position_angle": delta,
+            "time_ratio": (math.pi + delta) / (math.pi - delta)}
 
 
 __all__ = ["FourBarClass", "LoopReport", "SliderCrankClass", "classify_four_bar",
