@@ -222,7 +222,8 @@ class Construction:
         ok = ~self.degenerate
         worst = 0.0
         for r in self.results.values():
-            e = np.broadcast_to(r.error, (self.n,))[ok]
+            ref = np.isfinite(np.asarray(r.analytic, float).reshape(self.n, -1)).all(axis=1)
+            e = np.broadcast_to(r.error, (self.n,))[ok & ref]
             if e.size:
                 worst = max(worst, float(np.max(np.where(np.isnan(e), np.inf, e))))
         return worst
@@ -235,7 +236,9 @@ class Construction:
         bad = []
         for r in self.results.values():
             e = np.broadcast_to(r.error, (self.n,))
-            fail = ok & ~(e <= rtol)
+            # where the analytic value itself is undefined there is nothing to compare with
+            ref = np.isfinite(np.asarray(r.analytic, float).reshape(self.n, -1)).all(axis=1)
+            fail = ok & ref & ~(e <= rtol)
             if fail.any():
                 k = int(np.argmax(np.where(fail, np.nan_to_num(e, nan=np.inf), -1)))
                 bad.append(f"{r.label} ({r.description}): relative error {e[k]:.3g} at sample {k} "
@@ -396,7 +399,8 @@ class Builder:
         """The line through ``p`` and ``q`` (either may be a point at infinity: a direction)."""
         line, same = safe_join(p, q)
         if same.any():
-            self.degenerate(same, why or f"the points of line {label or key} coincide, so the line is undetermined")
+            self.degenerate(same & ~self.bad,
+                            why or f"the points of line {label or key} coincide, so the line is undetermined")
         span = [x for x in (p, q)]
         return self.add(key, line, role, label, kind=kw.pop("kind", "line"), span=span, **kw)
 
@@ -432,10 +436,15 @@ class Builder:
         scale = np.linalg.norm(l1.coords[..., :2], axis=-1) * np.linalg.norm(l2.coords[..., :2], axis=-1)
         par = abs(x[..., 2]) <= 1e-13 * scale
         x[..., 2] = np.where(par, 0.0, x[..., 2])
-        undefined = np.isnan(x).any(axis=-1) | (x == 0).all(axis=-1)
+        inputs_nan = np.isnan(x).any(axis=-1)
+        coincide = (x == 0).all(axis=-1) & ~inputs_nan
+        undefined = inputs_nan | coincide
         x = np.where(undefined[..., None], np.nan, x)
+        self.degenerate(coincide & ~self.bad, f"the two lines through {label or key} coincide, so "
+                        f"{label or key} is undetermined")
         if finite:
-            self.degenerate(par & ~undefined, why or f"the lines meeting in {label or key} are parallel, so it lies at infinity")
+            self.degenerate(par & ~undefined & ~self.bad,
+                            why or f"the lines meeting in {label or key} are parallel, so it lies at infinity")
             x = np.where(par[..., None], np.nan, x)
         p = Point(x)
         self.add(key, p, role, label, kind=kw.pop("kind", "point"), **kw)
@@ -563,7 +572,7 @@ class Builder:
                 return c / np.linalg.norm(c, axis=-1, keepdims=True)
         hc, ha = h(constructed), h(analytic)
         s = np.sign(np.sum(hc * ha, axis=-1))
-        hc = hc * np.where(s == 0, 1.0, s)[..., None]
+        hc = hc * np.where((s == 0) | np.isnan(s), 1.0, s)[..., None]
         r = self.compare(key, label, description, hc, ha, np.ones(self.n), "")
         with np.errstate(invalid="ignore", divide="ignore"):
             shown = tuple(np.where(p.is_finite[..., None], p.coords[..., :2], np.inf)
@@ -585,6 +594,14 @@ class Builder:
         return r
 
     def finish(self) -> Construction:
+        # a result left undefined where no degenerate case was recorded still gets a message
+        for r in list(self.results.values()):
+            c = np.asarray(r.constructed, float).reshape(self.n, -1)
+            ref = np.isfinite(np.asarray(r.analytic, float).reshape(self.n, -1)).all(axis=1)
+            nan = np.isnan(c).any(axis=1) & ~self.bad & ref
+            if nan.any():
+                self.degenerate(nan, f"{r.label} ({r.description}) is undefined at this position "
+                                     "(a degenerate configuration of the construction)")
         els = {k: replace(e, span=tuple(self._spans.get(k, ()))) for k, e in self.elements.items()}
         return Construction(self.name, self.title, self.source, self.n, els,
                             tuple(Step(t, tuple(k)) for t, k in self.steps), dict(self.results),
@@ -623,5 +640,5 @@ def pt(a: np.ndarray) -> Point:
     """Finite points from an (..., 2) array that may contain NaN rows (undefined items)."""
     a = np.asarray(a, float)
     c = np.concatenate([a, np.ones(a.shape[:-1] + (1,))], axis=-1)
-    c[np.isnan(a).any(-1)] = np.nan
+    c[~np.isfinite(a).all(-1)] = np.nan
     return Point(c)
