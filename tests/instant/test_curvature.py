@@ -116,7 +116,7 @@ def test_circles_by_engine_accelerations(link, rel):
 def test_return_circle_is_the_mirror_image_in_the_pole_tangent():
     mech, _ = _f1()
     sol = linkwork.solve(mech, np.radians([20.0, 75.0, 200.0]), order=2)
-    for link, rel in (("coupler", None), ("coupler", "rocker")):
+    for link, rel in (("coupler", None), ("crank", "rocker")):
         ins = instant(sol, link, rel)
         ic, rc = inflection_circle(sol, link, rel), return_circle(sol, link, rel)
         P = ins.pole.xy
@@ -329,3 +329,17 @@ def test_instantaneous_translation_with_angular_acceleration():
     for p in xy:
         v, a = relative_kinematics(sol, "coupler", "frame", p[None])
         assert abs(cross(v, a)[0]) / np.linalg.norm(v) < 1e-6 * np.linalg.norm(a)
+
+
+def test_rotation_about_a_hinge():
+    # links joined by a hinge turn about it: the pole stays put (u = 0, D = 0), the inflection
+    # circle shrinks to the hinge and every path is a circle about it
+    mech, _ = _f1()
+    sol = linkwork.solve(mech, np.radians([20.0, 200.0]), velocities=[1.0, 2.0],
+                         accelerations=[0.5, 0.0], order=2)
+    ins = instant(sol, "coupler", "rocker")
+    B = sol.point("B").position
+    assert np.allclose(ins.pole.xy, B) and np.allclose(ins.diameter, 0)
+    assert np.allclose(ins.pole_velocity.xy, 0) and np.isnan(ins.pole_normal.xy).all()
+    assert np.allclose(inflection_circle(sol, "coupler", "rocker").radius, 0)
+    assert np.allclose(curvature_centre(sol, "coupler", "C", "rocker").centre.xy, B, atol=1e-9)

@@ -7,8 +7,7 @@ import pytest
 
 import linkwork
 from linkwork.instant import (ball_point, burmester_points, curvature_centre, fourth_order,
-                              inflection_circle, instant, stationary_curvature)
-from linkwork.geometry import Point
+                              inflection_circle, stationary_curvature)
 
 import instant_mechanisms as im
 from instant_mechanisms import cross
@@ -122,7 +121,7 @@ def test_burmester_points():
         kap, dk = _kappa_rates(sol, "coupler", np.where(fin[:, None], xy, 0.0))
         assert np.all(np.abs(dk[fin]) < 1e-7 * (np.abs(kap[fin]) + 1))
 
-        def rate(x):
+        def rate(x, s=s):
             sx = linkwork.solve(mech, x, order=3)
             return _kappa_rates(sx, "coupler", sx.point_on("coupler", s).position)[1]
 

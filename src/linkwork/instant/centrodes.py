@@ -79,7 +79,7 @@ def centrodes(solution: Solution, link: str, relative_to: str | None = None, *,
     d = Ph[:, :2] - Ph[:, 2:] * z
     moving = make_point(np.concatenate([np.stack([c * d[:, 0] + s * d[:, 1],
                                                   -s * d[:, 0] + c * d[:, 1]], axis=1), Ph[:, 2:]], axis=1))
-    w, al = loc.omega, loc.alpha
+    w = loc.omega
     with np.errstate(divide="ignore", invalid="ignore"):
         u = perp(loc.b) / w[:, None]
         D = np.where(loc.translating, np.inf, norm(loc.b) / w ** 2)

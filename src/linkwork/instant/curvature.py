@@ -117,7 +117,10 @@ def local_invariants(rm: RelativeMotion, tol: float = TOL) -> Local:
     with np.errstate(divide="ignore", invalid="ignore"):
         b = a - (al / w)[:, None] * v - w[:, None] * perp(v)
         b[translating] = np.nan
-        ascale = np.where(translating, norm(a), norm(b))
+        # a rotation about a fixed pole (u = 0, e.g. a crank): b = 0 exactly, D = 0
+        fixed = ~translating & (norm(b) <= tol * (norm(a) + (w * w + np.abs(al)) * L))
+        b[fixed] = 0.0
+        ascale = np.where(translating, norm(a), np.where(fixed, (w * w + np.abs(al)) * L, norm(b)))
         al = np.where(np.abs(al) * L <= tol * ascale, 0.0, al)
     pole = np.concatenate([w[:, None] * X0 + perp(v), w[:, None]], axis=1)
     return Local(X0, v, a, jerk, w, al, wdd, translating, pole, b)
@@ -141,6 +144,7 @@ def instant(solution: Solution, link: str, relative_to: str | None = None, *,
         n = b / norm(b)[:, None]
     W = np.concatenate([(w ** 3)[:, None] * X0 + w[:, None] * a - al[:, None] * v, (w ** 3)[:, None]], axis=1)
     H = np.concatenate([al[:, None] * X0 + perp(a) + w[:, None] * v, al[:, None]], axis=1)
+    H[(norm(b) == 0) & (al == 0)] = np.nan  # uniform rotation about a fixed pole: every point
     den = al ** 2 + w ** 4
     G = np.concatenate([den[:, None] * X0 + al[:, None] * perp(a) + (w ** 2)[:, None] * a, den[:, None]], axis=1)
     return Instant(
