@@ -78,6 +78,17 @@ class Scene:
         mech = self.mech
         return [p for p in mech.points if mech.point_owner[p] != mech.frame]
 
+    def box(self, grow: float = 0.6) -> tuple[np.ndarray, np.ndarray]:
+        """World box around the mechanism and its paths, grown by ``grow`` times its size."""
+        pts = [self.pos(p) for p in self.mech.points]
+        if self.motion is not None:
+            for p in self.moving_points:
+                pts += list(self.motion.point(p).position[::5])
+        pts = np.array([p for p in pts if np.all(np.isfinite(p))]).reshape(-1, 2)
+        lo, hi = pts.min(0), pts.max(0)
+        g = grow * max(float(np.max(hi - lo)), self.mech.length_scale * 0.2)
+        return lo - g, hi + g
+
     def extent(self) -> float:
         """Size of the drawing (mechanism and paths) in mechanism units."""
         pts = [self.pos(p) for p in self.mech.points]
@@ -381,6 +392,24 @@ def construction_extent(con: Construction, space: str = "mechanism") -> float:
     return float(np.max(np.ptp(pts, axis=0))) if len(pts) > 1 else 0.0
 
 
+def construction_box(con: Construction, space: str = "mechanism"):
+    """World box of the finite points of a sampled construction in ``space`` (or None)."""
+    pts = []
+    for el in con.elements.values():
+        if el.space == space and isinstance(el.obj, Point) and el.obj.is_finite:
+            pts.append(el.obj.xy)
+        elif el.space == space and isinstance(el.obj, Circle) and not el.obj.is_line and not el.arcs:
+            c, r = el.obj.centre.xy, float(el.obj.radius)
+            if np.all(np.isfinite(c)) and np.isfinite(r):
+                pts += [c - r, c + r]
+    pts = np.array([p for p in pts if np.all(np.isfinite(p))]).reshape(-1, 2)
+    if len(pts) == 0:
+        return None
+    lo, hi = pts.min(0), pts.max(0)
+    g = 0.05 * max(float(np.max(hi - lo)), 1e-12)
+    return lo - g, hi + g
+
+
 def construction_spaces(con: Construction, scales: Scales) -> dict[str, Scale]:
     out = {"mechanism": scales.length}
     for name, q in con.spaces.items():
@@ -418,6 +447,15 @@ def scene_figure(sc: Scene, show: Iterable[str] = ("mechanism",), *,
         titles = {n: {"velocity": "velocity plan", "acceleration": "acceleration plan"}.get(q, "")
                   for n, q in construction.spaces.items() if n != "mechanism"}
     fig = Figure(sc.scales, title=title or sc.mech.name, spaces=spaces, titles=titles)
+    # the mechanism panel shows the mechanism, its paths and the construction; far-off circles,
+    # centrodes and poles are cut at this box
+    box = sc.box()
+    if construction is not None:
+        con = construction.sample(sc.index) if construction.sampled is None else construction
+        cb = construction_box(con)
+        if cb is not None:
+            box = (np.minimum(box[0], cb[0]), np.maximum(box[1], cb[1]))
+    fig.clip["mechanism"] = box
     for layer in show:
         if layer == "mechanism":
             # a construction that labels the mechanism's points in its own notation hides the

@@ -164,6 +164,7 @@ class Figure:
         self.current_step: int | None = None  # highlight this step (single-step drawing)
         self._ids: set[str] = set()
         self.used_scales: set[str] = {s.quantity for s in self.spaces.values()}
+        self.clip: dict[str, tuple[np.ndarray, np.ndarray]] = {}  # space -> world box shown
 
     # ------------------------------------------------------------------ adding
     def space(self, name: str, scale: Scale, title: str = "") -> None:
@@ -256,6 +257,9 @@ class Figure:
             pts = [q for p in self.prims if p.space == name for q in self._world_points(p)]
             pts += [lab.xy for lab in self.labels if lab.space == name]
             pts = np.array([q for q in pts if np.all(np.isfinite(q))]).reshape(-1, 2)
+            if name in self.clip:
+                clo, chi = self.clip[name]
+                pts = pts[np.all((pts >= clo) & (pts <= chi), axis=1)]
             if len(pts) == 0:
                 continue
             lo, hi = pts.min(0), pts.max(0)
@@ -305,6 +309,11 @@ class Figure:
             svg, pts = self._render(p, tfs[p.space], panels[p.space])
             if not svg:
                 continue
+            svg = f'<g clip-path="url(#clip-{_ident(p.space)})">{svg}</g>'
+            pnl = panels[p.space]
+            x0, y0 = pnl["x"] - MARGIN, pnl["y"] - MARGIN
+            x1, y1 = pnl["x"] + pnl["w"] + MARGIN, pnl["y"] + pnl["h"] + MARGIN
+            pts = [q for q in pts if x0 <= q[0] <= x1 and y0 <= q[1] <= y1]
             samples += pts
             if animate and p.step is not None:
                 svg = _appear(svg, p.step, animate)
@@ -347,7 +356,12 @@ class Figure:
                 f'height="{sym._f(height)}mm" viewBox="0 0 {sym._f(width)} {sym._f(height)}" '
                 f'font-family="{FONT}">',
                 f'<title>{html.escape(plain(self.title))}</title>',
-                f'<rect x="0" y="0" width="{sym._f(width)}" height="{sym._f(height)}" fill="#fff"/>']
+                f'<rect x="0" y="0" width="{sym._f(width)}" height="{sym._f(height)}" fill="#fff"/>',
+                "<defs>" + "".join(
+                    f'<clipPath id="clip-{_ident(n)}"><rect x="{sym._f(p["x"] - MARGIN)}" '
+                    f'y="{sym._f(p["y"] - MARGIN)}" width="{sym._f(p["w"] + 2 * MARGIN)}" '
+                    f'height="{sym._f(p["h"] + 2 * MARGIN)}"/></clipPath>' for n, p in panels.items())
+                + "</defs>"]
         return "\n".join(head + out + ["</svg>"]) + "\n"
 
     def _legend(self, y: float, width: float, extra: list[str]) -> tuple[str, float]:
@@ -393,12 +407,27 @@ class Figure:
         cls = f' class="{p.cls}"' if p.cls else ""
         if p.kind == "path":
             xy = tf(d["xy"])
-            ok = np.isfinite(xy).all(-1)
+            far = _far(panel)
+            ok = np.isfinite(xy).all(-1) & np.all((xy > far[0]) & (xy < far[1]), axis=-1)
             if ok.sum() < 2:
                 return "", []
-            xy = xy[ok]
-            dd = "M " + " L ".join(f"{sym._f(a)} {sym._f(b)}" for a, b in xy) + (" Z" if d["closed"] else "")
-            return f'<path{ident}{cls} d="{dd}" {st.attrs()} stroke-linejoin="round"/>', _resample(xy)
+            runs, cur = [], []
+            for q, good in zip(xy, ok):
+                if good:
+                    cur.append(q)
+                elif cur:
+                    runs.append(cur)
+                    cur = []
+            if cur:
+                runs.append(cur)
+            runs = [r for r in runs if len(r) >= 2]
+            if not runs:
+                return "", []
+            dd = " ".join("M " + " L ".join(f"{sym._f(a)} {sym._f(b)}" for a, b in r) for r in runs)
+            if d["closed"] and len(runs) == 1 and ok.all():
+                dd += " Z"
+            pts = [q for r in runs for q in _resample(np.array(r))]
+            return f'<path{ident}{cls} d="{dd}" {st.attrs()} stroke-linejoin="round"/>', pts
         if p.kind == "line":
             pts = [q for q in d["span"] if np.all(np.isfinite(q))]
             u = d["direction"]
@@ -413,7 +442,9 @@ class Figure:
             if np.ptp(t) == 0:
                 over = 12.0 * panel["scale"].per_mm
             a, b = o + (t.min() - over) * u, o + (t.max() + over) * u
-            pa, pb = tf(a), tf(b)
+            pa, pb = _clip_segment(tf(a), tf(b), _far(panel))
+            if pa is None:
+                return "", []
             return (f'<line{ident}{cls} x1="{sym._f(pa[0])}" y1="{sym._f(pa[1])}" x2="{sym._f(pb[0])}" '
                     f'y2="{sym._f(pb[1])}" {st.attrs()}/>', _resample(np.array([pa, pb])))
         if p.kind == "circle":
@@ -422,6 +453,15 @@ class Figure:
                 return "", []
             pc = tf(c)
             rp = r / panel["scale"].per_mm
+            if rp > 4000.0:
+                # a circle this large is a straight line on the sheet: its tangent nearest the panel
+                mid = np.array([panel["x"] + panel["w"] / 2, panel["y"] + panel["h"] / 2])
+                u = (mid - pc) / np.linalg.norm(mid - pc)
+                q = pc + rp * u
+                t = np.array([-u[1], u[0]]) * 2 * (panel["w"] + panel["h"])
+                a, b = q - t, q + t
+                return (f'<line{ident}{cls} x1="{sym._f(a[0])}" y1="{sym._f(a[1])}" x2="{sym._f(b[0])}" '
+                        f'y2="{sym._f(b[1])}" {st.attrs()}/>', _resample(np.array([a, b]), 2.0))
             if not d["arcs"]:
                 t = np.linspace(0, 2 * np.pi, max(12, int(2 * np.pi * rp / 0.8)))
                 pts = list(pc + rp * np.stack([np.cos(t), np.sin(t)], -1))
@@ -573,6 +613,34 @@ def _appear(svg: str, step: int, dur: float, vanish: bool = False) -> str:
     if vanish:
         anim += f'<set attributeName="visibility" to="hidden" begin="{begin + dur:g}s"/>'
     return f'<g visibility="hidden">{anim}{svg}</g>'
+
+
+def _far(panel: dict) -> tuple[np.ndarray, np.ndarray]:
+    """A box well beyond the panel (paper mm): geometry outside it is not written at all."""
+    pad = 2 * (panel["w"] + panel["h"]) + 50
+    return (np.array([panel["x"] - pad, panel["y"] - pad]),
+            np.array([panel["x"] + panel["w"] + pad, panel["y"] + panel["h"] + pad]))
+
+
+def _clip_segment(a: np.ndarray, b: np.ndarray, box) -> tuple:
+    """Liang–Barsky clipping of the segment a–b to ``box``; (None, None) if it misses."""
+    lo, hi = box
+    d = b - a
+    t0, t1 = 0.0, 1.0
+    for k in range(2):
+        for p, q in ((-d[k], a[k] - lo[k]), (d[k], hi[k] - a[k])):
+            if p == 0:
+                if q < 0:
+                    return None, None
+                continue
+            r = q / p
+            if p < 0:
+                t0 = max(t0, r)
+            else:
+                t1 = min(t1, r)
+    if t0 > t1 or not np.isfinite(t0 + t1):
+        return None, None
+    return a + t0 * d, a + t1 * d
 
 
 def _wrap(text: str, width: float, size: float = 3.3) -> list[str]:

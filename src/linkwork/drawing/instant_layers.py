@@ -1,0 +1,136 @@
+"""The layers of instantaneous geometry, drawn from :mod:`linkwork.instant`.
+
+Owns :func:`draw_instant`: ``poles`` (all relative poles P_ij, numbered as the books number the
+links), ``pole-lines`` (the Aronhold–Kennedy lines of the pole schedule), ``centrodes`` (fixed
+and moving centrode of each moving link over the whole motion: *Rastpolbahn*, *Gangpolbahn*,
+the moving one carried to the drawn position), ``inflection`` (*Wendekreis* with W₀ and the pole
+tangent and normal), ``return`` (*Rückkehrkreis*), ``bresse`` (Bresse circle) and ``gamma``
+(acceleration centre Γ). The curvature layers are drawn for the links whose motion is not a pure
+rotation about a frame pivot (for those the circles collapse onto the pivot); points at infinity
+are listed in the legend instead of being drawn.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..geometry import Circle
+from ..instant import (bresse_circle, centrodes, inflection_circle, instant, pole_schedule, poles,
+                       return_circle)
+from ..model import Revolute
+from .svg import COLOURS, Figure, Style
+
+
+def curvature_links(sc) -> list[str]:
+    """Moving links not turning about a frame pivot (their circles are worth drawing)."""
+    mech = sc.mech
+    pivoted = {(set(j.links) - {mech.frame}).pop() for j in mech.joints
+               if isinstance(j, Revolute) and mech.frame in j.links}
+    return [ln for ln in mech.moving_links if ln not in pivoted]
+
+
+def _label(t: str) -> str:
+    return "P_{" + t[1:] + "}" if t.startswith("P") else t
+
+
+def _circle(fig: Figure, c: Circle, i: int, layer: str, kind: str, label: str, span) -> None:
+    c = c[i]
+    st = Style(stroke=COLOURS[kind], width=0.35, dash="2.2 1.2" if kind == "return" else None)
+    if bool(c.is_line):
+        line = c.tangent_line
+        a, b, k = line.coords
+        o = np.array([-a * k, -b * k]) / (a * a + b * b)
+        fig.line(o, np.array([b, -a]), span, style=st, layer=layer, ident=f"{layer}-line")
+        fig.note(f"{label} is a straight line at this position")
+        return
+    ctr, r = c.centre.xy, float(c.radius)
+    if not (np.all(np.isfinite(ctr)) and np.isfinite(r)):
+        return
+    fig.circle(ctr, r, style=st, layer=layer, ident=f"{layer}-circle")
+    fig.label(ctr + r * np.array([np.cos(0.6), np.sin(0.6)]), label, colour=COLOURS[kind], size=2.8)
+
+
+def draw_instant(fig: Figure, sc, layer: str) -> None:
+    sol, i, mech = sc.sol, sc.index, sc.mech
+    if layer in ("poles", "pole-lines"):
+        ps = poles(sol)
+        if layer == "poles":
+            fig.note("poles: " + ps.legend())
+        if layer == "pole-lines":
+            sch = pole_schedule(mech)
+            for st in sch.derived:
+                for src in st.lines[:2]:
+                    if src.poles is None:
+                        continue
+                    p, q = (ps[x].coords[i] for x in src.poles)
+                    if not (np.all(np.isfinite(p)) and np.all(np.isfinite(q))):
+                        continue
+                    ln = np.cross(p, q)
+                    a, b, k = ln
+                    if a == 0 and b == 0:
+                        continue
+                    o = np.array([-a * k, -b * k]) / (a * a + b * b)
+                    span = [x[:2] / x[2] for x in (p, q) if x[2] != 0]
+                    fig.line(o, np.array([b, -a]), span, style=Style(stroke="#888", width=0.18),
+                             layer="pole-lines")
+        if layer == "pole-lines":
+            return
+        for pair in ps:
+            P = ps[pair][i]
+            lab = _label(ps.label(*pair))
+            if P.is_finite:
+                fig.dot(P.xy, r=0.6, style=Style(stroke="#000"), layer="poles", ident=f"pole-{ps.label(*pair)}")
+                fig.label(P.xy, lab, size=2.8, ident=f"pole-{ps.label(*pair)}")
+            elif P.is_infinite:
+                d = P.direction.xy
+                fig.note(f"{lab} at infinity (direction {np.degrees(np.arctan2(d[1], d[0])) % 180:.1f}\u00b0)")
+        return
+    links = curvature_links(sc)
+    ext = sc.extent()
+    for ln in links:
+        ins = instant(sol, ln)
+        P = ins.pole[i]
+        if not P.is_finite:
+            fig.note(f"{ln}: translating instantaneously (pole at infinity), no {layer} drawn")
+            continue
+        span = [P.xy - ext * 0.3 * np.array([1, 0]), P.xy + ext * 0.3 * np.array([1, 0])]
+        if layer == "centrodes":
+            if sc.motion is None:
+                continue
+            from ..kinematics import solve
+            full = solve(mech, sc.motion.inputs, velocities=sc.motion.link(mech.drivers[0].driven).omega
+                         if len(mech.drivers) == 1 else None)
+            cen = centrodes(full, ln, curvature=False)
+            fig.path(cen.fixed_xy, style=Style(stroke=COLOURS["centrode"], width=0.35), layer="centrodes",
+                     ident=f"centrode-fixed-{ln}")
+            # the moving centrode, carried into the drawn position of the link
+            th = float(sol.pose_derivatives(ln)[0, i, 2])
+            x0 = sol.pose_derivatives(ln)[0, i, :2]
+            m = cen.moving_xy
+            R = np.array([[np.cos(th), -np.sin(th)], [np.sin(th), np.cos(th)]])
+            fig.path(m @ R.T + x0, style=Style(stroke=COLOURS["centrode"], width=0.35, dash="3 1.5"),
+                     layer="centrodes", ident=f"centrode-moving-{ln}")
+            fig.note(f"centrodes of {ln}: fixed solid, moving dashed")
+        elif layer == "inflection":
+            _circle(fig, inflection_circle(sol, ln), i, "inflection", "inflection", f"inflection circle ({ln})", span)
+            W = ins.inflection_pole[i]
+            if W.is_finite:
+                fig.dot(W.xy, r=0.6, style=Style(stroke=COLOURS["inflection"]), layer="inflection")
+                fig.label(W.xy, "W_0", colour=COLOURS["inflection"], size=3.0)
+                fig.line(P.xy, W.xy - P.xy, [P.xy, W.xy], style=Style(stroke="#555", width=0.18),
+                         layer="inflection", ident=f"pole-normal-{ln}")
+            t = ins.pole_tangent.xy[i]
+            if np.all(np.isfinite(t)):
+                fig.line(P.xy, t, [P.xy - 0.2 * ext * t, P.xy + 0.2 * ext * t],
+                         style=Style(stroke="#555", width=0.18), layer="inflection", ident=f"pole-tangent-{ln}")
+            fig.dot(P.xy, r=0.6, layer="inflection")
+            fig.label(P.xy, "P", size=3.0)
+        elif layer == "return":
+            _circle(fig, return_circle(sol, ln), i, "return", "return", f"return circle ({ln})", span)
+        elif layer == "bresse":
+            _circle(fig, bresse_circle(sol, ln), i, "bresse", "bresse", f"Bresse circle ({ln})", span)
+        elif layer == "gamma":
+            G = ins.acceleration_pole[i]
+            if G.is_finite:
+                fig.dot(G.xy, r=0.7, style=Style(stroke=COLOURS["gamma"]), layer="gamma", ident=f"gamma-{ln}")
+                fig.label(G.xy, "\u0393", colour=COLOURS["gamma"], size=3.2)
