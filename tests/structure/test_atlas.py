@@ -108,11 +108,13 @@ def test_counts_match_published_numbers(n_links, published):
 
 def test_twelve_links_match_published_count_within_a_minute():
     atlas._cache.pop(12, None)  # time a fresh build
-    start = time.perf_counter()
+    # CPU time of this process, so that other jobs on a shared machine do not
+    # make the test flaky (about 5 s on one core when measured).
+    start = time.process_time()
     chains = enumerate_chains(12)
-    elapsed = time.perf_counter() - start
+    elapsed = time.process_time() - start
     assert len(chains) == 6856
-    assert elapsed < 60, f"12-link atlas took {elapsed:.1f} s"
+    assert elapsed < 60, f"12-link atlas took {elapsed:.1f} s of CPU time"
 
 
 def test_link_type_mixes_are_rosenauers():
