@@ -404,3 +404,43 @@ def osculating_centre(positions_fn, u, h):
         uc = ((c * c).sum(-1)[:, None] * perp(b) - (b * b).sum(-1)[:, None] * perp(c)) / d[:, None]
         return p + uc
     return (4 * through(h / 2) - through(h)) / 3
+
+
+def cardan(r: float) -> str:
+    """A planet of radius r rolling inside a fixed ring of radius 2r (Cardan circles), pivoted
+    on the arm at the ring's centre S; the planet carries its pitch point T and a point K."""
+    return f"""
+name = "Cardan circles"
+[points]
+{_pts({"S": (0, 0), "O": (r, 0), "T": (2 * r, 0), "K": (1.5 * r, 0.3 * r)})}
+[links]
+frame = ["S"]
+arm = ["S", "O"]
+planet = ["O", "T", "K"]
+[joints]
+S = {{ type = "revolute", links = ["frame", "arm"] }}
+O = {{ type = "revolute", links = ["arm", "planet"] }}
+mesh = {{ type = "gear", links = ["frame", "planet"], carrier = "arm", radii = [{2 * r!r}, {r!r}], kind = "internal" }}
+[driver]
+joint = "S"
+"""
+
+
+def circular_slot_four_bar() -> str:
+    """The crank pin A runs in a circular slot of the rocker, centred at the rocker's point K
+    (kinematically the four-bar O2-A-K-O4)."""
+    return f"""
+name = "crank in a curved slot"
+[points]
+{_pts({"O2": (0, 0), "A": (1.0, 1.2), "K": (3.5, 3.0), "O4": (5.0, 0.0)})}
+[links]
+frame = ["O2", "O4"]
+crank = ["O2", "A"]
+rocker = ["O4", "K"]
+[joints]
+O2 = {{ type = "revolute", links = ["frame", "crank"] }}
+O4 = {{ type = "revolute", links = ["rocker", "frame"] }}
+A = {{ type = "circular-slot", links = ["rocker", "crank"], center = "K" }}
+[driver]
+joint = "O2"
+"""

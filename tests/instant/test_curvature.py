@@ -343,3 +343,18 @@ def test_rotation_about_a_hinge():
     assert np.allclose(ins.pole_velocity.xy, 0) and np.isnan(ins.pole_normal.xy).all()
     assert np.allclose(inflection_circle(sol, "coupler", "rocker").radius, 0)
     assert np.allclose(curvature_centre(sol, "coupler", "C", "rocker").centre.xy, B, atol=1e-9)
+
+
+def test_cardan_circles():
+    # internal rolling with ρ_p = 2ρ_π: D = 2ρ_π, the inflection circle is the moving centrode
+    # and its points move on straight lines (Rosenauer §15 eq. 10, §31; digest 001a E.1 item 10)
+    mech = linkwork.load_text(im.cardan(1.0))
+    sol = linkwork.solve(mech, np.radians([10.0, 100.0, 220.0]), order=2)
+    ins = instant(sol, "planet")
+    assert np.allclose(ins.diameter, 2.0)
+    ic = inflection_circle(sol, "planet")
+    assert np.allclose(ic.centre.xy, sol.point("O").position) and np.allclose(ic.radius, 1.0)
+    for ang in np.radians([0.0, 77.0, 190.0]):
+        s = mech.points["O"] + np.array([np.cos(ang), np.sin(ang)])
+        cc = curvature_centre(sol, "planet", s)
+        assert cc.centre.is_infinite.all() and np.isinf(cc.radius).all()

@@ -194,3 +194,15 @@ def test_discrepancy_is_projective():
     b = Point(np.array([[-2.0, 0.0, 0.0], [3.0, 4.0 + 1e-6, 1.0]]))
     d = pole_discrepancy(a, b, 1.0)
     assert d[0] == 0.0 and 0 < d[1] < 1e-6
+
+
+def test_circular_slot_and_internal_gear_agree():
+    mech = linkwork.load_text(im.circular_slot_four_bar())
+    sch = pole_schedule(mech)
+    assert sch.lines() == ["P12 = hinge O2", "P13 = hinge O4", "P23 = n(A) ∩ P12P13"]
+    _agree(mech, np.radians([40.0, 50.2, 60.0]))
+    mech = linkwork.load_text(im.cardan(1.0))
+    assert "P13 = pitch point of gear mesh" in pole_schedule(mech).lines()
+    sol, P, K = _agree(mech, np.radians([0.0, 33.0, 250.0]))
+    ang = np.radians([0.0, 33.0, 250.0])
+    assert np.allclose(P["frame", "planet"].xy, 2.0 * np.c_[np.cos(ang), np.sin(ang)])
