@@ -36,7 +36,7 @@ import numpy as np
 from ..errors import InputError
 from ..geometry import Circle, Line, Point, Vector, intersect
 from ..kinematics import Solution
-from .motion import TOL, RelativeMotion, cross, dot, make_point, norm, perp, relative_motion
+from .motion import TOL, RelativeMotion, cross, dot, make_point, norm, perp, relative_motion, rotate
 
 
 # ---------------------------------------------------------------------------- the invariants
@@ -343,9 +343,7 @@ def conjugate(solution: Solution, link: str, direction, relative_to: str | None 
     `curvature_centre`."""
     ins = instant(solution, link, relative_to, tol=tol)
     rm = ins.motion
-    e = np.broadcast_to(np.asarray(direction, dtype=float), (len(rm), 2))
-    th = rm.derivatives[0, :, 2] + rm.base[:, 2]  # to the frame's axes
-    ew = np.stack([np.cos(th) * e[:, 0] - np.sin(th) * e[:, 1], np.sin(th) * e[:, 0] + np.cos(th) * e[:, 1]], axis=1)
+    ew = rotate(rm.derivatives[0, :, 2] + rm.base[:, 2], np.asarray(direction, dtype=float))
     inf = Point(np.concatenate([ew, np.zeros((len(rm), 1))], axis=1))
     return euler_savary(ins.pole, ins.inflection_pole, inf)
 
@@ -393,9 +391,7 @@ def line_envelope(solution: Solution, link: str, point, direction, relative_to: 
     ins = instant(solution, link, relative_to, tol=tol)
     rm = ins.motion
     s = _design(solution, point)
-    g = np.asarray(direction, dtype=float)
-    th = rm.derivatives[0, :, 2] + rm.base[:, 2]
-    gw = np.stack([np.cos(th) * g[0] - np.sin(th) * g[1], np.sin(th) * g[0] + np.cos(th) * g[1]], axis=1)
+    gw = rotate(rm.derivatives[0, :, 2] + rm.base[:, 2], np.asarray(direction, dtype=float))
     gw = gw / norm(gw)[:, None]
     Q = rm.to_world(rm.point(s)[0])
     P = ins.pole.xy

@@ -3,7 +3,8 @@
 Owns `RelativeMotion` (the pose of link i in the own coordinates of link j, with its exact time
 derivatives, taken from the core engine's solution, never by differencing) and the small
 homogeneous-coordinate helpers the other modules share (mapping points, vectors and
-generalised circles from link j's coordinates to the drawing at each sample).
+generalised circles from link j's coordinates to the drawing at each sample). The vector
+helpers `perp` (J, the quarter turn), `cross`, `dot`, `norm` are the geometry layer's.
 
 Link j's coordinates coincide with the frame's in the design position (see
 `linkwork.model.mechanism`), so for `relative_to = frame` the relative motion *is* the absolute
@@ -24,6 +25,7 @@ import numpy as np
 
 from ..errors import InputError, ModelError
 from ..geometry import Circle, Point, Vector
+from ..geometry._base import cross2 as cross, dot, norm, rot90 as perp  # noqa: F401 (shared here)
 from ..kinematics import Solution
 
 #: default relative tolerance for deciding that an instantaneous quantity is at infinity
@@ -31,21 +33,10 @@ from ..kinematics import Solution
 TOL = 1e-9
 
 
-def perp(v: np.ndarray) -> np.ndarray:
-    """Counter-clockwise quarter turn of (..., 2) vectors (the J of the formulas)."""
-    return np.stack([-v[..., 1], v[..., 0]], axis=-1)
-
-
-def cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    return a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0]
-
-
-def dot(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    return np.sum(a * b, axis=-1)
-
-
-def norm(a: np.ndarray) -> np.ndarray:
-    return np.sqrt(dot(a, a))
+def rotate(theta: np.ndarray, v: np.ndarray) -> np.ndarray:
+    """Vectors v (..., 2) turned by the angles theta (...)."""
+    c, s = np.cos(theta), np.sin(theta)
+    return np.stack([c * v[..., 0] - s * v[..., 1], s * v[..., 0] + c * v[..., 1]], axis=-1)
 
 
 def _c(xy: np.ndarray) -> np.ndarray:
@@ -123,6 +114,10 @@ class RelativeMotion:
     def to_world(self, xy: np.ndarray) -> np.ndarray:
         """Frame coordinates (N, 2) of points given in `relative_to`'s coordinates."""
         return _xy(_c(self.base[:, :2]) + np.exp(1j * self.base[:, 2]) * _c(xy))
+
+    def to_local(self, xy: np.ndarray) -> np.ndarray:
+        """`relative_to`'s coordinates (N, 2) of frame points xy (the inverse of `to_world`)."""
+        return _xy(np.exp(-1j * self.base[:, 2]) * (_c(np.asarray(xy, dtype=float)) - _c(self.base[:, :2])))
 
     def rotate_to_world(self, v: np.ndarray) -> np.ndarray:
         """Frame components (N, 2) of vectors given in `relative_to`'s axes."""

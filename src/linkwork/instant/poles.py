@@ -30,7 +30,7 @@ from ..errors import ModelError
 from ..geometry import Line, Point
 from ..kinematics import Solution
 from ..model import CircularSlot, Gear, Mechanism, Prismatic, Revolute, Slot
-from .motion import TOL, make_point, perp
+from .motion import TOL, make_point, perp, rotate
 
 Pair = tuple[str, str]
 
@@ -309,9 +309,7 @@ def _primary_pole(solution: Solution, step: PoleStep) -> np.ndarray:
         xy = solution.point_on(j.links[0], mech.points[j.point]).position
         return np.concatenate([xy, np.ones((N, 1))], axis=1)
     if isinstance(j, Prismatic):
-        th = solution.pose_derivatives(j.links[0])[0, :, 2]
-        g = np.stack([np.cos(th) * j.axis[0] - np.sin(th) * j.axis[1],
-                      np.sin(th) * j.axis[0] + np.cos(th) * j.axis[1]], axis=1)
+        g = rotate(solution.pose_derivatives(j.links[0])[0, :, 2], j.axis)
         return np.concatenate([perp(g), np.zeros((N, 1))], axis=1)
     if isinstance(j, Gear):
         return np.concatenate([gear_pitch_point(solution, j), np.ones((N, 1))], axis=1)
@@ -330,9 +328,7 @@ def gear_pitch_point(solution: Solution, g: Gear) -> np.ndarray:
         n = np.array([-guide.axis[1], guide.axis[0]])
         probe = mech.points[g.point] if g.point else mech.points[guide.point]
         m = n if np.dot(probe - centre, n) >= 0 else -n
-        th = solution.pose_derivatives(g.carrier)[0, :, 2]
-        mw = np.stack([np.cos(th) * m[0] - np.sin(th) * m[1], np.sin(th) * m[0] + np.cos(th) * m[1]], axis=1)
-        return c1 + r1 * mw
+        return c1 + r1 * rotate(solution.pose_derivatives(g.carrier)[0, :, 2], m)
     c2 = solution.point_on(g.carrier, mech.points[mech.wheel_centre(g, g.links[1])]).position
     if g.gear_kind == "external":
         return (r2 * c1 + r1 * c2) / (r1 + r2)
@@ -347,9 +343,7 @@ def _normal_line(solution: Solution, joint: str, L: float) -> np.ndarray:
     X = solution.point_on(b, mech.points[j.point]).position
     N = len(solution)
     if isinstance(j, Slot):
-        th = solution.pose_derivatives(a)[0, :, 2]
-        g = np.stack([np.cos(th) * j.axis[0] - np.sin(th) * j.axis[1],
-                      np.sin(th) * j.axis[0] + np.cos(th) * j.axis[1]], axis=1)
+        g = rotate(solution.pose_derivatives(a)[0, :, 2], j.axis)
         line = np.concatenate([g, -(g * X).sum(1, keepdims=True) / L], axis=1)
     else:
         K = solution.point_on(a, mech.points[j.center]).position

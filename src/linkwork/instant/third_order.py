@@ -30,12 +30,8 @@ from ..geometry import Point
 from ..kinematics import Solution
 from ..kinematics.solution import Status
 from .curvature import Local, euler_savary, local_invariants
-from .motion import (TOL, RelativeMotion, dot, exp_derivatives, leibniz, make_point, norm, perp,
+from .motion import (TOL, RelativeMotion, _c, dot, exp_derivatives, leibniz, make_point, norm, perp,
                      relative_motion)
-
-
-def _c(xy: np.ndarray) -> np.ndarray:
-    return xy[..., 0] + 1j * xy[..., 1]
 
 
 @dataclass(frozen=True)
@@ -112,16 +108,10 @@ class StationaryCurvature:
         """(N,) dimensionless defect of frame points (N, 2) from the cubic (0 on it)."""
         t3 = self.third
         rm = self.motion
-        loc = _to_local(rm, xy) - t3.P
+        loc = rm.to_local(xy) - t3.P
         f = dot(loc, loc) * dot(t3.L, loc) + 3 * dot(t3.b, loc) * dot(perp(t3.b), loc)
         scale = norm(t3.L) * norm(loc) ** 3 + 3 * dot(t3.b, t3.b) * dot(loc, loc)
         return f / scale
-
-
-def _to_local(rm: RelativeMotion, xy: np.ndarray) -> np.ndarray:
-    d = _c(np.asarray(xy, dtype=float)) - _c(rm.base[:, :2])
-    z = np.exp(-1j * rm.base[:, 2]) * d
-    return np.stack([z.real, z.imag], axis=-1)
 
 
 def _inflection_pole(rm: RelativeMotion, t3: _Third) -> Point:
