@@ -302,9 +302,11 @@ joint = "S"
 
 
 def six_link(joints: dict[str, tuple], links: dict[str, list[str]], frame: str, driver: str,
-             extra: str = "") -> str:
-    """A hinge chain from named joint points: joints {name: (x, y, link_a, link_b)}."""
-    pts = {k: (v[0], v[1]) for k, v in joints.items()}
+             extra: str = "", rng=None) -> str:
+    """A hinge chain from named joint points: joints {name: (x, y, link_a, link_b)}; with `rng`
+    every point is moved at random by up to ±0.6 in x and y (a random member of the family)."""
+    shake = (lambda: rng.uniform(-0.6, 0.6, 2)) if rng is not None else (lambda: np.zeros(2))
+    pts = {k: np.array(v[:2], dtype=float) + shake() for k, v in joints.items()}
     jl = "\n".join(f'{k} = {{ type = "revolute", links = ["{v[2]}", "{v[3]}"] }}' for k, v in joints.items())
     ll = "\n".join(f'{k} = [{", ".join(repr(p) for p in ps)}]'.replace("'", '"') for k, ps in links.items())
     return f"""
@@ -322,7 +324,7 @@ joint = "{driver}"
 """
 
 
-def watt() -> str:
+def watt(rng=None) -> str:
     """Watt chain with Rosenauer's numbering (§91): joints 12, 23, 34, 45, 56, 16, 25; link 6
     is the frame, link 1 is driven at 16."""
     j = {"J16": (0, 0, "l1", "l6"), "J56": (10, 0, "l5", "l6"), "J12": (2, 3, "l1", "l2"),
@@ -330,10 +332,10 @@ def watt() -> str:
          "J45": (11, 6, "l4", "l5")}
     links = {"l1": ["J16", "J12"], "l2": ["J12", "J23", "J25"], "l3": ["J23", "J34"],
              "l4": ["J34", "J45"], "l5": ["J45", "J56", "J25"], "l6": ["J16", "J56"]}
-    return six_link(j, links, "l6", "J16")
+    return six_link(j, links, "l6", "J16", rng=rng)
 
 
-def stephenson() -> str:
+def stephenson(rng=None) -> str:
     """Stephenson chain as reconstructed for Rosenauer §92: joints 12, 23, 34, 15, 45, 16, 46,
     ternary links 1 and 4; link 6 is the frame, link 1 driven at 16."""
     j = {"J16": (0, 0, "l1", "l6"), "J46": (10, 0, "l4", "l6"), "J15": (3, 4, "l1", "l5"),
@@ -341,10 +343,10 @@ def stephenson() -> str:
          "J34": (8, 8, "l3", "l4")}
     links = {"l1": ["J16", "J12", "J15"], "l2": ["J12", "J23"], "l3": ["J23", "J34"],
              "l4": ["J34", "J45", "J46"], "l5": ["J15", "J45"], "l6": ["J16", "J46"]}
-    return six_link(j, links, "l6", "J16")
+    return six_link(j, links, "l6", "J16", rng=rng)
 
 
-def rosenkranz() -> str:
+def rosenkranz(rng=None) -> str:
     """Pöschl's Beispiel 16 (Rosenkranz indicator) topology: joints 16, 12, 24, 23, 45, 36 and
     the slider 56 (a block on a guide of the frame)."""
     j = {"J16": (0, 0, "l1", "l6"), "J36": (8, 0, "l3", "l6"), "J12": (1, 3, "l1", "l2"),
@@ -352,7 +354,7 @@ def rosenkranz() -> str:
     links = {"l1": ["J16", "J12"], "l2": ["J12", "J23", "J24"], "l3": ["J23", "J36"],
              "l4": ["J24", "J45"], "l5": ["J45"], "l6": ["J16", "J36"]}
     extra = 'J56 = { type = "prismatic", links = ["l6", "l5"], axis = [1, 0.2], point = "J45" }'
-    return six_link(j, links, "l6", "J16", extra)
+    return six_link(j, links, "l6", "J16", extra, rng=rng)
 
 
 def no_four_bar_loops() -> str:

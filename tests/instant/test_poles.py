@@ -134,6 +134,16 @@ def test_random_crank_slotted_levers_agree(slot):
         _agree(mech, u0 + np.radians(rng.uniform(-40, 40, 6)))
 
 
+@pytest.mark.parametrize("builder", [im.watt, im.stephenson, im.rosenkranz])
+def test_random_six_bars_agree(builder):
+    rng = np.random.default_rng(13)
+    for _ in range(8):
+        mech = linkwork.load_text(builder(rng))
+        u0 = mech.driver_input_at_design(mech.drivers[0])
+        sol, P, _ = _agree(mech, u0 + np.radians(rng.uniform(-6, 6, 5)))
+        assert max(float(np.nanmax(pl.residual)) for pl in pole_lines(P, mech.length_scale)) < 1e-9
+
+
 def test_swinging_blocks_agree():
     for slot in (False, True):
         mech = linkwork.load_text(im.swinging_block(1.0, (4.0, 0.5), 0.8, slot=slot))
