@@ -224,6 +224,33 @@ def test_piston_driven_engine_starts_from_the_block():
     assert groups[1].dyad == "RRR"
 
 
+def test_curved_slot_dyad():
+    text = """
+name = "crank and coupler with its end in a circular slot"
+[points]
+O2 = [0, 0]
+A  = [0, 10]
+B  = [30, 30]
+O4 = [40, 0]
+[links]
+frame   = ["O2", "O4"]
+crank   = ["O2", "A"]
+coupler = ["A", "B"]
+[joints]
+O2 = { type = "revolute", links = ["frame", "crank"] }
+A  = { type = "revolute", links = ["crank", "coupler"] }
+B  = { type = "circular-slot", links = ["frame", "coupler"], center = "O4" }
+[driver]
+joint = "O2"
+"""
+    groups = assur_groups(linkwork.load_text(text))
+    # the coupler alone is a group (2 + 1 constraints); with its die block unfolded: hinge on
+    # the crank, hinge to the block, block sliding in the curved slot: R-R-P
+    g = groups[1]
+    assert g.links == ("coupler",) and g.dyad == "RRP"
+    assert g.unfolded_links == 2 and any("Kulisse" in n for n in g.notes)
+
+
 def test_driver_between_moving_links_gives_a_driven_group():
     # the ellipsograph is driven at the hinge between block A and the rod
     groups = assur_groups(linkwork.load("library:ellipsograph"))

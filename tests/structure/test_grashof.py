@@ -394,3 +394,36 @@ def test_two_slider_chains_are_named():
     assert lp.chain == "two-slider" and "elliptic trammel" in lp.name
     (lp,) = loops(linkwork.load_text(SCOTCH_YOKE))
     assert lp.chain == "two-slider" and "Scotch yoke" in lp.name
+
+
+KULISSE = """
+name = "four-bar with the rocker replaced by a curved slot"
+[points]
+O2 = [0, 0]
+A  = [0, 10]
+B  = [30, 30]
+O4 = [40, 0]
+[links]
+frame   = ["O2", "O4"]
+crank   = ["O2", "A"]
+coupler = ["A", "B"]
+[joints]
+O2 = { type = "revolute", links = ["frame", "crank"] }
+A  = { type = "revolute", links = ["crank", "coupler"] }
+B  = { type = "circular-slot", links = ["frame", "coupler"], center = "O4" }
+[driver]
+joint = "O2"
+"""
+
+
+def test_curved_slot_acts_as_the_rocker_it_replaces():
+    # Rosenauer §4, Fig. 30: B's arc about O4 may be a block in a circular slot of radius O4B
+    # without changing the motion: frame 40, crank 10, coupler √1300, "rocker" √1000
+    mech = linkwork.load_text(KULISSE)
+    (lp,) = loops(mech)
+    assert lp.chain == "four-bar" and lp.type == "crank-rocker"
+    assert list(lp.lengths.values()) == pytest.approx([40, 10, math.sqrt(1300), math.sqrt(1000)])
+    sol = whole_motion(mech, step=math.radians(0.01))
+    B = sol.point("B").position
+    psi = np.arctan2(B[:, 1], B[:, 0] - 40)
+    assert lp.dead_positions["output_swing"] == pytest.approx(psi.max() - psi.min(), abs=1e-6)

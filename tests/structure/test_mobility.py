@@ -198,6 +198,32 @@ def test_every_library_mechanism_moves_with_its_drivers(name):
     assert m.count_mobility == m.real_mobility
 
 
+def test_curved_slot_counts_as_block_hinge_and_slider():
+    # Rosenauer §4, Fig. 30: a four-bar whose rocker is a block in a circular slot has
+    # 3 revolutes + 1 curved sliding pair and is still constrained
+    text = """
+name = "curved slot"
+[points]
+O2 = [0, 0]
+A  = [0, 10]
+B  = [30, 30]
+O4 = [40, 0]
+[links]
+frame   = ["O2", "O4"]
+crank   = ["O2", "A"]
+coupler = ["A", "B"]
+[joints]
+O2 = { type = "revolute", links = ["frame", "crank"] }
+A  = { type = "revolute", links = ["crank", "coupler"] }
+B  = { type = "circular-slot", links = ["frame", "coupler"], center = "O4" }
+[driver]
+joint = "O2"
+"""
+    m = mobility(linkwork.load_text(text))
+    assert (m.counts.n, m.counts.g, m.counts.s) == (4, 3, 1)
+    assert m.counts.constrained and m.real_mobility == 1 and m.constrained
+
+
 def test_six_bars_have_four_binary_and_two_ternary_links():
     # n = 6: n₂ = 4, n₃ = 2 (001c §90, lines 5271–5273)
     for name in ("stephenson-iii-six-bar", "watt-i-six-bar", "pmks-stephenson-iii"):
