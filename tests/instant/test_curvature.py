@@ -88,9 +88,11 @@ def test_euler_savary_agrees_with_velocity_acceleration_curvature():
 
 
 # ---------------------------------------------------------------------------- circles
-@pytest.mark.parametrize("link,rel", [("coupler", None), ("rocker", "crank"), ("coupler", "crank"),
-                                      ("crank", "coupler")])
+@pytest.mark.parametrize("link,rel", [("coupler", None), ("rocker", "crank"), ("crank", "rocker"),
+                                      ("frame", "coupler")])
 def test_circles_by_engine_accelerations(link, rel):
+    # (pairs joined by a hinge turn about it: their circles shrink to the hinge, see
+    # test_rotation_about_a_hinge)
     mech, _ = _f1()
     u = np.radians([20.0, 75.0, 200.0])
     sol = linkwork.solve(mech, u, velocities=np.array([1.0, -2.0, 1.5]),
