@@ -24,6 +24,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Hashable, Iterable
+from contextlib import nullcontext
 from dataclasses import dataclass
 from functools import lru_cache
 from typing import Any, Union
@@ -280,48 +281,52 @@ def _check_n(n_links: int) -> None:
 _cache: dict[int, tuple[Chain, ...]] = {}
 
 
+def _progress_bar(progress: bool) -> Any:
+    """A transient Rich progress bar on stderr, or a context yielding ``None``."""
+    if not progress:
+        return nullcontext(None)
+    from rich.console import Console
+    from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
+
+    return Progress(
+        TextColumn("{task.description}"),
+        BarColumn(),
+        MofNCompleteColumn(),
+        TimeElapsedColumn(),
+        console=Console(stderr=True),
+        transient=True,
+    )
+
+
 def _build(n_links: int, *, progress: bool) -> tuple[Chain, ...]:
-    from contextlib import nullcontext
-
-    bar_cm: Any = nullcontext(None)
-    if progress:
-        from rich.console import Console
-        from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
-
-        bar_cm = Progress(
-            TextColumn("{task.description}"),
-            BarColumn(),
-            MofNCompleteColumn(),
-            TimeElapsedColumn(),
-            console=Console(stderr=True),
-            transient=True,
-        )
     raws: list[tuple[RawChain, tuple[int, ...]]] = []
-    with bar_cm as bar:
-        task = bar.add_task(f"{n_links}-link contracted graphs", total=None) if bar else None
+    chains: list[Chain] = []
+    with _progress_bar(progress) as bar:
+        task = bar.add_task(f"{n_links} links: contracted graphs", total=None) if bar else None
         units = work_units(n_links)
         if bar:
-            bar.update(task, description=f"{n_links}-link chains", total=len(units), completed=0)
+            bar.update(task, total=len(units), completed=0)
         for unit in units:
             if bar:
-                mix = "+".join(map(str, unit.mix))
-                bar.update(task, description=f"{n_links}-link chains, mix {mix}")
+                bar.update(task, description=f"{n_links} links: chains of mix {'/'.join(map(str, unit.mix))}")
             raws.extend((raw, unit.mix) for raw in expand_unit(unit))
             if bar:
                 bar.advance(task)
 
-    # By construction (one labelling per orbit of each contracted graph) no two
-    # chains are isomorphic.  The certificate + exact test below is the
-    # independent guard the atlas relies on for that claim.
-    buckets: dict[tuple[tuple[int, ...], str], list[nx.Graph]] = {}
-    chains: list[Chain] = []
-    for raw, mix in raws:
-        g = _typed(nx.Graph(raw.hinges))
-        bucket = buckets.setdefault((mix, _wl_hash(g)), [])
-        if any(nx.is_isomorphic(g, h) for h in bucket):
-            continue
-        bucket.append(g)
-        chains.append(_to_chain(raw, len(chains) + 1, mix))
+        # By construction (one labelling per orbit of each contracted graph) no
+        # two chains are isomorphic.  The certificate + exact test below is the
+        # independent guard the atlas relies on for that claim.
+        if bar:
+            bar.update(task, description=f"{n_links} links: isomorphism check", total=len(raws), completed=0)
+        buckets: dict[tuple[tuple[int, ...], str], list[nx.Graph]] = {}
+        for raw, mix in raws:
+            g = _typed(nx.Graph(raw.hinges))
+            bucket = buckets.setdefault((mix, _wl_hash(g)), [])
+            if not any(nx.is_isomorphic(g, h) for h in bucket):
+                bucket.append(g)
+                chains.append(_to_chain(raw, len(chains) + 1, mix))
+            if bar:
+                bar.advance(task)
     return tuple(chains)
 
 
