@@ -551,3 +551,29 @@ def test_report_of_a_library_six_bar():
     doc = rep.as_dict()
     assert doc["real_mobility"] == 1 and doc["counts"]["g"] == 7
     assert doc["solution_order"][0] == ["crank"]
+
+
+def test_design_jacobian_by_hand():
+    from linkwork.kinematics.jacobian import design_jacobian
+
+    mech = linkwork.load("library:crank-rocker")
+    J = design_jacobian(mech, drivers=True)
+    # 4 hinges × (x, y) + 1 driver; 3 moving links × (x, y, θ)
+    assert J.matrix.shape == (9, 9)
+    assert J.rows[:2] == (("O2", "x"), ("O2", "y")) and J.rows[-1] == ("O2", "driver")
+    col = {c: i for i, c in enumerate(J.columns)}
+    row = {r: i for i, r in enumerate(J.rows)}
+    # hinge A = (0, 10) between crank and coupler: residual p_coupler(A) − p_crank(A), with
+    # p(A) = (x − 10 sin θ, y + 10 cos θ) on each link, so ∂/∂θ at θ = 0 is ∓(−10, 0)
+    assert J.matrix[row["A", "x"], col["crank", "θ"]] == pytest.approx(10.0)
+    assert J.matrix[row["A", "x"], col["coupler", "θ"]] == pytest.approx(-10.0)
+    assert J.matrix[row["A", "y"], col["crank", "θ"]] == pytest.approx(0.0)
+    assert J.matrix[row["A", "x"], col["coupler", "x"]] == pytest.approx(1.0)
+    assert J.matrix[row["A", "x"], col["crank", "x"]] == pytest.approx(-1.0)
+    # hinge B = (30, 30): the joint's links are coupler, rocker, so the residual is
+    # p_rocker(B) − p_coupler(B), and ∂p_rocker(B)/∂θ = (−30, 30) enters with a plus
+    assert J.matrix[row["B", "x"], col["rocker", "θ"]] == pytest.approx(-30.0)
+    assert J.matrix[row["B", "y"], col["rocker", "θ"]] == pytest.approx(30.0)
+    # the driver fixes the crank's angle, in length units (× the drawing's diagonal)
+    assert J.matrix[row["O2", "driver"], col["crank", "θ"]] == pytest.approx(mech.length_scale)
+    assert J.rank() == 9
