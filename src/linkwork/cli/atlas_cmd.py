@@ -56,21 +56,25 @@ def _table(n_links: int, chains: list[Chain]) -> Table:
     table = Table(
         title=f"Planar 1-DOF hinge chains with {n_links} links: {len(chains)}",
         caption=(
-            f"each chain: {first.n_hinges} hinges, {first.loops} independent loops, "
+            f"each chain: {first.n_hinges} hinges, {first.loops} independent "
+            f"loop{'s' if first.loops != 1 else ''}, "
             f"{first.poles} poles, {first.pole_lines} pole lines"
         ),
     )
+    named = any(chain.name for chain in chains)  # names exist for 4 and 6 links only
     table.add_column("chain", justify="right")
     table.add_column(f"mix {header}")
-    table.add_column("name")
+    if named:
+        table.add_column("name")
     table.add_column("inversions", justify="right")
     table.add_column("input choices", justify="right")
     table.add_column("hinges")
     for chain in chains:
+        name = [chain.name or ""] if named else []
         table.add_row(
             chain.label,
             _mix_text(chain.mix),
-            chain.name or "",
+            *name,
             str(chain.n_inversions),
             str(chain.n_input_choices),
             " ".join(f"{a}-{b}" for a, b in chain.edges),
