@@ -33,6 +33,7 @@ import networkx as nx
 
 from linkwork.structure.atlas_contracted import RawChain, expand_unit, link_type_mixes, work_units
 from linkwork.structure.atlas_rigidity import rigid_subchain
+from linkwork.structure.mobility import kutzbach
 
 __all__ = [
     "SUPPORTED_LINK_COUNTS",
@@ -203,7 +204,7 @@ def isomorphic(a: ChainLike, b: ChainLike) -> bool:
 def mobility(x: ChainLike) -> int:
     """Grübler mobility ``3(n - 1) - 2j`` of the whole chain."""
     g = _as_graph(x)
-    return 3 * (g.number_of_nodes() - 1) - 2 * g.number_of_edges()
+    return kutzbach(g.number_of_nodes(), lower=g.number_of_edges())
 
 
 def find_rigid_subchain(x: ChainLike) -> frozenset[Hashable] | None:

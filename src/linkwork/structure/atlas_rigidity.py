@@ -19,7 +19,7 @@ Links are the integers ``0 .. n-1`` here; the public wrappers in
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Sequence
+from collections.abc import Sequence
 
 # (k, l) of the pebble game: 3 pebbles per link (its 3 planar degrees of freedom),
 # l = 4 because a sub-chain must keep one degree of freedom beyond the 3 of a
@@ -100,9 +100,3 @@ def rigid_subchain(n: int, hinges: Sequence[tuple[int, int]]) -> frozenset[int] 
                 out[v].append(u)
     return None
 
-
-def subchain_mobility(links: Iterable[int], hinges: Iterable[tuple[int, int]]) -> int:
-    """Grübler mobility ``3(k - 1) - 2j`` of the sub-chain spanned by ``links``."""
-    chosen = set(links)
-    j = sum(1 for a, b in hinges if a in chosen and b in chosen)
-    return 3 * (len(chosen) - 1) - 2 * j
