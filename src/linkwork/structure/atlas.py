@@ -33,6 +33,7 @@ import networkx as nx
 
 from linkwork.structure.atlas_contracted import RawChain, expand_unit, link_type_mixes, work_units
 from linkwork.structure.atlas_rigidity import rigid_subchain
+from linkwork.structure.atlas_svg import write_atlas_svg  # re-exported
 from linkwork.structure.mobility import kutzbach
 
 __all__ = [
@@ -53,8 +54,8 @@ __all__ = [
 ]
 
 #: Link counts the atlas enumerates.  One-degree-of-freedom hinge chains need an
-#: even number of links (Grübler: j = 3n/2 - 2); 14 links (hundreds of
-#: thousands of chains) is out of scope.
+#: even number of links (Grübler: j = 3n/2 - 2); 14 links and more would take
+#: far longer and are out of scope.
 SUPPORTED_LINK_COUNTS: tuple[int, ...] = (4, 6, 8, 10, 12)
 
 #: Names of link types by number of hinges.
@@ -376,5 +377,3 @@ def _index(n_links: int) -> dict[str, tuple[Chain, ...]]:
         index.setdefault(certificate(chain), []).append(chain)
     return {k: tuple(v) for k, v in index.items()}
 
-
-from linkwork.structure.atlas_svg import write_atlas_svg  # noqa: E402  (re-export; atlas_svg imports Chain)
