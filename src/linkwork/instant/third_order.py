@@ -256,10 +256,25 @@ def burmester_points(solution: Solution, link: str, relative_to: str | None = No
     d²κ/dt² = 0 on the cubic is N″Q − ½N′Q′ − (3/2)N Q″ = 0, a polynomial in ρ whose constant
     and quartic coefficients vanish; with ρ = num/den from the cubic the remaining expression
     is a trigonometric polynomial in the ray angle, whose roots are found on a grid of `grid`
-    angles and refined by bisection, for all samples at once.
+    angles and refined by bisection, for all samples at once (in blocks of `CHUNK` samples,
+    which bounds the memory of the grid).
     """
     sol4 = solution if solution.order >= 4 else fourth_order(solution, input_snap)
-    rm = relative_motion(sol4, link, relative_to)
+    full = relative_motion(sol4, link, relative_to)
+    parts = []
+    for start in range(0, len(full), CHUNK):
+        sl = slice(start, start + CHUNK)
+        rm = RelativeMotion(full.link, full.relative_to, full.derivatives[:, sl], full.base[sl],
+                            full.reference, full.scale)
+        parts.append(_burmester(rm, grid, tol))
+    return BurmesterPoints(*(np.concatenate(a) for a in zip(*parts, strict=True)))
+
+
+#: samples per block in `burmester_points`
+CHUNK = 256
+
+
+def _burmester(rm: RelativeMotion, grid: int, tol: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     loc = local_invariants(rm, tol)
     t3 = _third(rm, loc)
     th = rm.angle_derivatives()
@@ -340,5 +355,5 @@ def burmester_points(solution: Solution, link: str, relative_to: str | None = No
                           scale=rm.scale).xy
         cen[good, k] = rm.to_world(Cl)[good]
     count = np.isfinite(pts[..., 0]).sum(axis=1)
-    return BurmesterPoints(pts, cen, count)
+    return pts, cen, count
 
