@@ -37,11 +37,12 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
+import networkx as nx
 import numpy as np
 
 from ..errors import StructureError
 from ..model import Mechanism
-from .groups import Group
+from .groups import Group, solution_order
 
 TOL = 1e-9  # relative, for the Grashof equality
 
@@ -233,7 +234,9 @@ class LoopReport:
     notes: tuple[str, ...] = field(default=())
 
     def as_dict(self) -> dict:
-        deg = (lambda v: None if v is None else [math.degrees(x) for x in v])
+        def deg(v):
+            return None if v is None else [math.degrees(x) for x in v]
+
         return {
             "chain": self.chain, "links": self.links, "lengths": self.lengths, "name": self.name,
             "grashof": self.grashof, "type": self.type, "inversion": self.inversion,
@@ -270,24 +273,18 @@ def _loop_candidates(mech: Mechanism, G) -> list[list[str]]:
     """Four-link loops to classify: the whole mechanism if it is one, else the frame, the
     driving link and the first group attached to both (the base four-bar of a six-bar)."""
     if G.number_of_nodes() == 4 and G.number_of_edges() == 4:
-        import networkx as nx
-
         simple = nx.Graph(G)
         cycles = [c for c in nx.simple_cycles(simple) if len(c) == 4]
         if cycles:
             return [cycles[0]]
-    from .groups import solution_order
-
     try:
         groups = solution_order(mech)
-    except Exception:  # over- or under-constrained: no base loop to speak of
+    except StructureError:  # over- or under-constrained: no base loop to speak of
         return []
     if not groups or groups[0].size != 1 or not groups[0].drivers:
         return []
     crank = groups[0].links[0]
     out = []
-    import networkx as nx
-
     for g in groups[1:]:
         members = set(g.links) | {n for n in G.nodes if isinstance(n, str) and ":" in n
                                   and _owner_joint(n) in g.joints}
@@ -344,7 +341,6 @@ def _driver_of(mech: Mechanism, cyc: list[str]):
 
 
 def _classify_loop(mech: Mechanism, cyc: list[str], edges) -> LoopReport:
-    letters = [d["letter"] for *_, d in edges]
     curved = [d for *_, d in edges if d["letter"] == "P" and "center" in d]
     effective = ["R" if (d["letter"] == "R" or "center" in d) else "P" for *_, d in edges]
     notes = tuple(f"curved slot {d['joint']} counted as a hinge at its centre {d['center']}"

@@ -38,7 +38,7 @@ so it adds one link, one hinge and one slider; a gear pair is a non-self-closed 
 from __future__ import annotations
 
 from collections import defaultdict
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from fractions import Fraction
 
 import numpy as np
@@ -295,7 +295,6 @@ class Mobility:
     inputs_needed: int
     finite_motion: bool | None = None
     off_design_mobility: int | None = None
-    notes: tuple[str, ...] = field(default=())
 
     @property
     def count_mobility(self) -> int:
@@ -464,7 +463,7 @@ def _finite_step(mech: Mechanism, real: int, step: float = 1e-3) -> tuple[bool, 
     J0 = constraint_jacobian(mech)
     _, _, Vt = np.linalg.svd(J0.scaled)
     free = Vt[3 * k - real:]  # right null space, scaled coordinates (angles × scale)
-    # a deterministic direction: the free vector that moves the most coordinates evenly
+    # a deterministic direction in the free space: the sum of its basis vectors
     d = free.sum(axis=0) if real > 1 else free[0]
     if np.linalg.norm(d) < 1e-12:
         d = free[0]
