@@ -577,3 +577,67 @@ def test_design_jacobian_by_hand():
     # the driver fixes the crank's angle, in length units (× the drawing's diagonal)
     assert J.matrix[row["O2", "driver"], col["crank", "θ"]] == pytest.approx(mech.length_scale)
     assert J.rank() == 9
+
+
+def _peaucellier_text():
+    """Peaucellier's inversor (Pöschl §66a): AO₁ = O₁O₂ = r = 10, bars O₂B = O₂C = a = 25,
+    rhombus ABQC of side b = 10, drawn at crank angle 60° (coordinates: test setup)."""
+    import math
+
+    import numpy as np
+
+    r, a, b = 10.0, 25.0, 10.0
+    O1, O2 = np.array([0.0, 0.0]), np.array([-r, 0.0])
+    A = O1 + r * np.array([math.cos(math.pi / 3), math.sin(math.pi / 3)])
+    d = np.hypot(*(A - O2))
+    u = (A - O2) / d
+    x = (a * a - b * b + d * d) / (2 * d)  # B, C on the circles about O₂ (a) and A (b)
+    h = math.sqrt(a * a - x * x)
+    nrm = np.array([-u[1], u[0]])
+    B, C = O2 + x * u + h * nrm, O2 + x * u - h * nrm
+    Q = B + C - A
+    pts = {"O1": O1, "O2": O2, "A": A, "B": B, "C": C, "Q": Q}
+    points = "\n".join(f"{k} = [{float(v[0])!r}, {float(v[1])!r}]" for k, v in pts.items())
+    return f"""
+name = "Peaucellier inversor"
+[points]
+{points}
+[links]
+frame = ["O1", "O2"]
+crank = ["O1", "A"]
+AB = ["A", "B"]
+AC = ["A", "C"]
+BQ = ["B", "Q"]
+CQ = ["C", "Q"]
+O2B = ["O2", "B"]
+O2C = ["O2", "C"]
+[joints]
+O1 = {{ type = "revolute", links = ["frame", "crank"] }}
+O2b = {{ type = "revolute", links = ["frame", "O2B"], point = "O2" }}
+O2c = {{ type = "revolute", links = ["frame", "O2C"], point = "O2" }}
+Ab = {{ type = "revolute", links = ["crank", "AB"], point = "A" }}
+Ac = {{ type = "revolute", links = ["crank", "AC"], point = "A" }}
+Bq = {{ type = "revolute", links = ["AB", "BQ"], point = "B" }}
+Bo = {{ type = "revolute", links = ["AB", "O2B"], point = "B" }}
+Cq = {{ type = "revolute", links = ["AC", "CQ"], point = "C" }}
+Co = {{ type = "revolute", links = ["AC", "O2C"], point = "C" }}
+Q = {{ type = "revolute", links = ["BQ", "CQ"] }}
+[driver]
+joint = "O1"
+"""
+
+
+def test_peaucellier_file_counts_its_double_hinges():
+    mech = linkwork.load_text(_peaucellier_text())
+    c = counts(mech)
+    # Pöschl §66a: n = 8, g = 10 with A, B, C and O₂ counted double: g₁ = 2 (O₁, Q), g₂ = 4
+    assert (c.n, c.g1, c.g2, c.g) == (8, 2, 4, 10)
+    assert c.grubler == 4
+    m = mobility(mech)
+    assert m.real_mobility == 1 and m.constrained and not m.redundant
+    # and it is Peaucellier's: Q runs on the line at (a² − b²)/(2r) = 26.25 from O₂ (eq. 104);
+    # the rhombus closes while |O₂A| = 20 cos(φ/2) ≥ a − b = 15, i.e. φ ≤ 82.8°
+    import numpy as np
+
+    sol = linkwork.solve(mech, np.radians(np.linspace(-80, 80, 17)))
+    assert sol.point("Q").position[:, 0] == pytest.approx(np.full(17, -10.0 + 26.25), abs=1e-9)
