@@ -33,7 +33,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import InputError
+from ..errors import ModelError
 from ..geometry import Circle, Line, Point, Vector, intersect
 from ..kinematics import Solution
 from .motion import TOL, RelativeMotion, cross, dot, make_point, norm, perp, relative_motion, rotate
@@ -73,10 +73,6 @@ class Instant:
 
     motion: RelativeMotion
     local: Local
-    omega: np.ndarray
-    alpha: np.ndarray
-    omega_ddot: np.ndarray | None
-    translating: np.ndarray
     pole: Point
     pole_velocity: Vector
     pole_acceleration: Vector
@@ -86,6 +82,22 @@ class Instant:
     inflection_pole: Point
     tangential_pole: Point
     acceleration_pole: Point
+
+    @property
+    def omega(self) -> np.ndarray:
+        return self.local.omega
+
+    @property
+    def alpha(self) -> np.ndarray:
+        return self.local.alpha
+
+    @property
+    def omega_ddot(self) -> np.ndarray | None:
+        return self.local.omega_ddot
+
+    @property
+    def translating(self) -> np.ndarray:
+        return self.local.translating
 
     @property
     def link(self) -> str:
@@ -148,8 +160,7 @@ def instant(solution: Solution, link: str, relative_to: str | None = None, *,
     den = al ** 2 + w ** 4
     G = np.concatenate([den[:, None] * X0 + al[:, None] * perp(a) + (w ** 2)[:, None] * a, den[:, None]], axis=1)
     return Instant(
-        motion=rm, local=loc, omega=w, alpha=al, omega_ddot=loc.omega_ddot,
-        translating=loc.translating, pole=rm.point_to_world(loc.pole),
+        motion=rm, local=loc, pole=rm.point_to_world(loc.pole),
         pole_velocity=rm.vector_to_world(u), pole_acceleration=rm.vector_to_world(b),
         pole_tangent=rm.vector_to_world(t), pole_normal=rm.vector_to_world(n), diameter=D,
         inflection_pole=rm.point_to_world(W), tangential_pole=rm.point_to_world(H),
@@ -169,19 +180,6 @@ def acceleration_pole(solution: Solution, link: str, relative_to: str | None = N
 
 
 # ---------------------------------------------------------------------------- circles
-def _circle(rm: RelativeMotion, centre: np.ndarray, radius: np.ndarray, line: np.ndarray,
-            normal: np.ndarray, through: np.ndarray) -> Circle:
-    """Proper circles (centre, radius) where ~line, straight lines (normal, a point) where
-    line; in `relative_to`'s coordinates, returned in the frame."""
-    # as a|r|² + b·r + c = 0 about `origin`: a circle about its centre (a = 1, b = 0, c = −R²),
-    # a line through `through` (a = 0, b = its normal, c = 0)
-    origin = np.where(line[:, None], through, centre)
-    a = np.where(line, 0.0, 1.0)
-    b = np.where(line[:, None], normal, 0.0)
-    c = np.where(line, 0.0, -radius ** 2)
-    return rm.circle_to_world(a, b, c, origin)
-
-
 def _inflection_local(rm: RelativeMotion, loc: Local) -> tuple[np.ndarray, ...]:
     w, al, X0, v, a = loc.omega, loc.alpha, loc.X0, loc.v, loc.a
     with np.errstate(divide="ignore", invalid="ignore"):
@@ -202,7 +200,7 @@ def inflection_circle(solution: Solution, link: str, relative_to: str | None = N
     P to the inflection pole W. A straight line where the relative motion translates."""
     rm = relative_motion(solution, link, relative_to)
     loc = local_invariants(rm, tol)
-    return _circle(rm, *_inflection_local(rm, loc))
+    return rm.circle_to_world(*_inflection_local(rm, loc))
 
 
 def return_circle(solution: Solution, link: str, relative_to: str | None = None, *,
@@ -213,7 +211,7 @@ def return_circle(solution: Solution, link: str, relative_to: str | None = None,
     motion (`relative_to` relative to `link`), which it is (Rosenauer §17, §76)."""
     inv = relative_motion(solution, relative_to or solution.mechanism.frame, link)
     loc = local_invariants(inv, tol)
-    return _circle(inv, *_inflection_local(inv, loc))
+    return inv.circle_to_world(*_inflection_local(inv, loc))
 
 
 def bresse_circle(solution: Solution, link: str, relative_to: str | None = None, *,
@@ -235,7 +233,7 @@ def bresse_circle(solution: Solution, link: str, relative_to: str | None = None,
         normal = np.where(loc.translating[:, None], perp(v), perp(loc.b))
         through = np.where(loc.translating[:, None],
                            X0 + (dot(a, v) / (al * dot(v, v)))[:, None] * perp(v), P)
-    return _circle(rm, centre, radius, flat, normal, through)
+    return rm.circle_to_world(centre, radius, flat, normal, through)
 
 
 # ---------------------------------------------------------------------------- Euler–Savary
@@ -289,7 +287,6 @@ def _design(solution: Solution, point) -> np.ndarray:
     mech = solution.mechanism
     if isinstance(point, str):
         if point not in mech.points:
-            from ..errors import ModelError
             raise ModelError(f"mechanism '{mech.name}' has no point '{point}'")
         return np.asarray(mech.points[point], dtype=float)
     return np.asarray(point, dtype=float)
@@ -444,8 +441,3 @@ def bobillier_pole_tangent(solution: Solution, link: str, a, b, relative_to: str
     t = _angle(ra) - beta
     return Vector(np.stack([np.cos(t), np.sin(t)], axis=1))
 
-
-def require_finite(ins: Instant, what: str) -> None:
-    if ins.translating.all():
-        raise InputError(f"{what}: the relative motion is a translation at every sample "
-                         "(the pole is at infinity)")

@@ -134,36 +134,21 @@ class RelativeMotion:
     def vector_to_world(self, v: np.ndarray) -> Vector:
         return Vector(self.rotate_to_world(v))
 
-    def circle_to_world(self, a: np.ndarray, b: np.ndarray, c: np.ndarray, origin: np.ndarray) -> Circle:
-        """The generalised circle a|r|² + b·r + c = 0, r = X − origin (coordinates of
-        `relative_to`), as a `Circle` in the frame. a = 0 gives a straight line (radius inf),
-        a = b = 0 an undefined (NaN) item."""
+    def circle_to_world(self, centre: np.ndarray, radius: np.ndarray, line: np.ndarray,
+                        normal: np.ndarray, through: np.ndarray) -> Circle:
+        """Circles (N,) given in `relative_to`'s coordinates, as `Circle`s in the frame: proper
+        circles (centre, radius) where ~line, straight lines (a normal vector and a point
+        through which they pass, radius inf) where line; NaN items where undefined."""
         with np.errstate(divide="ignore", invalid="ignore"):
-            line = a == 0
-            bb = dot(b, b)
-            safe_a = np.where(line, 1.0, a)
-            centre = origin - b / (2 * safe_a[:, None])
-            r2 = bb / (4 * safe_a ** 2) - c / safe_a
-            radius = np.sqrt(np.maximum(r2, 0.0))
-            # proper circles: anchor left of the centre, normal +x (as Circle.at)
             ex = np.array([1.0, 0.0])
-            anchor_c = self.to_world(centre) - radius[:, None] * ex
-            # lines: the foot of the perpendicular from `origin`, normal b/|b|
-            foot = origin - (c / bb)[:, None] * b
-            anchor_l = self.to_world(foot)
-            normal_l = self.rotate_to_world(b / np.sqrt(bb)[:, None])
-            anchor = np.where(line[:, None], anchor_l, anchor_c)
-            normal = np.where(line[:, None], normal_l, ex)
+            anchor = np.where(line[:, None], self.to_world(through),
+                              self.to_world(centre) - radius[:, None] * ex)
+            nw = self.rotate_to_world(normal / norm(normal)[:, None])
+            nrm = np.where(line[:, None], nw, ex)
             rad = np.where(line, np.inf, radius)
-            bad = ~np.isfinite(anchor).all(axis=1) | ~np.isfinite(normal).all(axis=1) | (line & (bb == 0))
-            anchor[bad] = np.nan
-            normal[bad] = np.nan
-            rad = np.where(bad, np.nan, rad)
-        return Circle(Point.from_xy(anchor), Vector(normal), rad)
-
-    def inverse(self, solution: Solution) -> "RelativeMotion":
-        """The inverse motion: `relative_to` with respect to `link`."""
-        return relative_motion(solution, self.relative_to, self.link)
+        bad = ~np.isfinite(anchor).all(axis=1) | ~np.isfinite(nrm).all(axis=1) | np.isnan(rad)
+        anchor[bad], nrm[bad], rad[bad] = np.nan, np.nan, np.nan
+        return Circle(Point.from_xy(anchor), Vector(nrm), rad)
 
 
 def make_point(h: np.ndarray) -> Point:
@@ -172,10 +157,6 @@ def make_point(h: np.ndarray) -> Point:
     bad = ~np.isfinite(h).all(axis=-1) | (h == 0).all(axis=-1)
     h[bad] = np.nan
     return Point(h)
-
-
-def homogeneous(p: Point) -> np.ndarray:
-    return np.asarray(p.coords)
 
 
 def link_reference(solution: Solution, link: str) -> np.ndarray:
