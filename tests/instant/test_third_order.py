@@ -139,3 +139,20 @@ def test_third_order_needs_jerks():
     mech = _mech()
     with pytest.raises(linkwork.LinkworkError, match="order=3"):
         stationary_curvature(linkwork.solve(mech, U, order=2), "coupler")
+
+
+def test_centre_point_curve_holds_the_conjugates():
+    # the centre-point curve (Euler–Savary images of the cubic) against the osculating centres
+    # computed from the engine's velocities and accelerations at the same points
+    mech = _mech()
+    sol = linkwork.solve(mech, U, order=3)
+    sc = stationary_curvature(sol, "coupler")
+    X, C = sc.points(9, limit=3 * mech.length_scale), sc.centre_points(9, limit=3 * mech.length_scale)
+    for k in range(1, 9):
+        fin = np.isfinite(X[:, k]).all(axis=1) & np.isfinite(C[:, k]).all(axis=1)
+        if not fin.any():
+            continue
+        pm = sol.point_on("coupler", sol.local("coupler", np.where(fin[:, None], X[:, k], 0.0)))
+        V, A = pm.velocity, pm.acceleration
+        ref = pm.position + ((V * V).sum(1) / cross(V, A))[:, None] * np.c_[-V[:, 1], V[:, 0]]
+        assert np.allclose(C[fin, k], ref[fin], rtol=1e-8, atol=1e-8)
