@@ -112,7 +112,11 @@ def _loops_table(rep: StructureReport) -> Table:
     t.add_column("quantity")
     t.add_column("value")
     for lp in rep.loops:
-        t.add_row("loop", ", ".join(f"{k} {v}" for k, v in lp.links.items()))
+        if lp.chain == "slider-crank":  # Rosenauer's numbering of the chain's links (001a §4)
+            num = {"crank": 1, "rod": 2, "block": 3, "guide": 4}
+            t.add_row("chain links", ", ".join(f"{num[k]} {k} = {v}" for k, v in lp.links.items()))
+        else:
+            t.add_row("loop", ", ".join(f"{k} = {v}" for k, v in lp.links.items()))
         t.add_row("type", escape(lp.name))
         if lp.lengths:
             t.add_row("lengths", ", ".join(f"{k} {v:.6g}" for k, v in lp.lengths.items()))
