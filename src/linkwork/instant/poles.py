@@ -305,7 +305,7 @@ def _primary_pole(solution: Solution, step: PoleStep) -> np.ndarray:
     mech = solution.mechanism
     j = mech.joint(step.joint)
     N = len(solution)
-    if isinstance(j, (Revolute,)) or step.rule == "common hinge":
+    if isinstance(j, Revolute):
         xy = solution.point_on(j.links[0], mech.points[j.point]).position
         return np.concatenate([xy, np.ones((N, 1))], axis=1)
     if isinstance(j, Prismatic):
@@ -441,7 +441,8 @@ def pole_lines(poles_: Poles, scale: float) -> list[PoleLine]:
     for i, j, k in combinations(poles_.links, 3):
         prs = ((i, j), (j, k), (i, k))
         S = [_scaled(np.asarray(poles_.points[p].coords), scale) for p in prs]
-        residual = np.abs(np.linalg.det(np.stack(S, axis=1)))
+        with np.errstate(invalid="ignore"):
+            residual = np.abs(np.linalg.det(np.stack(S, axis=1)))
         cands = [np.cross(S[0], S[1]), np.cross(S[1], S[2]), np.cross(S[0], S[2])]
         nr = np.stack([np.linalg.norm(c, axis=1) for c in cands], axis=1)
         pick = np.argmax(np.where(np.isfinite(nr), nr, -1.0), axis=1)
