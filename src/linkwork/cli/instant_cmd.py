@@ -154,7 +154,8 @@ def _poles_command(mechanism: str, at: Optional[str], schedule: bool, fmt: Forma
                           _point_text(K[pair], k), "—" if not np.isfinite(d) else f"{d:.1e}")
             tables.append(t)
         text = _render(tables)
-        text += (f"{len(P)} poles = n(n−1)/2 with n = {n}; {pole_line_count(n)} pole lines "
+        nl = pole_line_count(n)
+        text += (f"{len(P)} poles = n(n−1)/2 with n = {n}; {nl} pole line{'s' if nl != 1 else ''} "
                  f"= n(n−1)(n−2)/6\n")
         if schedule:
             text += "\nThree-pole theorem (Aronhold–Kennedy) schedule:\n  " + "\n  ".join(sch.lines()) + "\n"
