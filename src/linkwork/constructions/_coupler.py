@@ -69,7 +69,10 @@ def coupler_data(mech: Mechanism, sol: Solution, link: str | None = None,
         return Point.at_infinity(perp(g)), f"C_{upper(c.point).replace('_', '')}"
     Ca, la = centre(a)
     Cb, lb = centre(b)
-    others = [p for p in mech.link(link).points if p not in (a.point, b.point)]
+    design = mech.points
+    others = [p for p in mech.link(link).points if p not in (a.point, b.point)
+              and min(np.hypot(*(design[p] - design[a.point])), np.hypot(*(design[p] - design[b.point])))
+              > 1e-9 * mech.length_scale]
     if point is not None:
         if point not in mech.link(link).points:
             raise InputError(f"point '{point}' is not a point of link '{link}'")

@@ -47,10 +47,14 @@ def inflection_from_two_points(mech: Mechanism, inputs, *, link: str | None = No
     sol = as_solution(mech, inputs)
     n = len(sol)
     link = link or _default_link(mech)
-    pts = points or tuple(p for p in dict.fromkeys(mech.link(link).points))[:2]
-    if len(pts) < 2:
-        from ..errors import InputError
-        raise InputError(f"link '{link}' needs two points")
+    from ..model import Revolute
+    from ..errors import InputError
+    for j in mech.joints:
+        if isinstance(j, Revolute) and set(j.links) == {link, mech.frame}:
+            raise InputError(f"link '{link}' turns about the frame pivot {j.point}: its pole stays at "
+                             f"{j.point} and its inflection and Bresse circles shrink to that point; "
+                             "choose a coupler (--link)")
+    pts = points or _two_points(mech, link)
     nA, nB = pts
     # the given vectors, from the plans (a ruler construction of their own, not drawn here)
     hidden = Builder("plans", "", "", n, spaces={"mechanism": "length", "velocity": "velocity",
@@ -129,11 +133,39 @@ def inflection_from_two_points(mech: Mechanism, inputs, *, link: str | None = No
     return b.finish()
 
 
+def _two_points(mech: Mechanism, link: str) -> tuple[str, str]:
+    """The two points of ``link`` farthest apart (distinct points are needed)."""
+    from itertools import combinations
+    from ..errors import InputError
+    pts = list(dict.fromkeys(mech.link(link).points))
+    best, d = None, 1e-9 * mech.length_scale
+    for p, q in combinations(pts, 2):
+        dd = float(np.hypot(*(mech.points[p] - mech.points[q])))
+        if dd > d:
+            best, d = (p, q), dd
+    if best is None:
+        raise InputError(f"link '{link}' needs two distinct points")
+    return best
+
+
 def _default_link(mech: Mechanism) -> str:
+    """The coupler, or else the first moving link with two distinct points that does not turn
+    about a frame pivot (for those the circles collapse onto the pivot)."""
     try:
         return coupler_link(mech)
     except Exception:
-        return mech.moving_links[-1]
+        pass
+    from ..model import Revolute
+    pivoted = {(set(j.links) - {mech.frame}).pop() for j in mech.joints
+               if isinstance(j, Revolute) and mech.frame in j.links}
+    for ln in list(mech.moving_links):
+        if ln not in pivoted:
+            try:
+                _two_points(mech, ln)
+                return ln
+            except Exception:
+                continue
+    return mech.moving_links[-1]
 
 
 def _bisector(P: Point, G: Point):

@@ -296,6 +296,8 @@ class Construction:
 
 def _fmt(v: Any) -> str:
     v = np.asarray(v, float)
+    if v.ndim == 1 and v.size == 2 and np.isinf(v[0]):
+        return f"at infinity, direction {v[1]:.6g}\u00b0"
     if v.ndim == 0:
         return f"{float(v):.6g}"
     return "(" + ", ".join(f"{float(x):.6g}" for x in v) + ")"
@@ -575,7 +577,11 @@ class Builder:
         hc = hc * np.where((s == 0) | np.isnan(s), 1.0, s)[..., None]
         r = self.compare(key, label, description, hc, ha, np.ones(self.n), "")
         with np.errstate(invalid="ignore", divide="ignore"):
-            shown = tuple(np.where(p.is_finite[..., None], p.coords[..., :2], np.inf)
+            # finite points as (x, y); points at infinity as (inf, direction angle in degrees)
+            shown = tuple(np.where(p.is_finite[..., None], p.coords[..., :2],
+                                   np.stack([np.full(p.shape, np.inf),
+                                             np.degrees(np.arctan2(p.coords[..., 1], p.coords[..., 0])) % 180],
+                                            axis=-1))
                           for p in (constructed, analytic))
         r = replace(r, shown=shown)
         self.results[key] = r

@@ -1,0 +1,122 @@
+"""`linkwork draw` and `linkwork plot`: drawings (SVG, PNG, PDF) and diagrams over the motion.
+
+Owns the two commands. ``draw`` solves the mechanism at one input (``--at``), draws the chosen
+layers (``--show``), optionally one of the classical constructions (``--construction``; checked
+against the exact values before anything is written) and, with ``--steps``, one drawing per step
+(FILE-01.svg, FILE-02.svg, …) or, with ``--animate``, one SVG in which the steps appear one after
+another. ``plot`` draws positions, velocities or accelerations of points and links over the whole
+motion, or a v–s diagram (``--vs``).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Optional
+
+import numpy as np
+import typer
+
+from ..errors import InputError
+from .common import input_value, load_mechanism, user_errors
+
+
+def _list(text: Optional[str]) -> list[str]:
+    return [t.strip() for t in text.split(",") if t.strip()] if text else []
+
+
+def register(app: typer.Typer) -> None:
+    @app.command()
+    def draw(
+        mechanism: str = typer.Argument(..., help="a mechanism file, or library:NAME"),
+        at: Optional[str] = typer.Option(None, "--at", help="input value: degrees (revolute) or the file's length unit (prismatic) unless a unit is written; default: the design position"),
+        show: str = typer.Option("mechanism", "--show", help="layers, comma-separated: mechanism, paths, velocities, accelerations, poles, pole-lines, centrodes, inflection, return, bresse, gamma"),
+        construction: Optional[str] = typer.Option(None, "--construction", help="rotated-velocities, velocity-plan, acceleration-plan, euler-savary, bobillier, hartmann, two-points, klein, kennedy"),
+        point: Optional[str] = typer.Option(None, "--point", help="the point whose centre of curvature a curvature construction seeks"),
+        link: Optional[str] = typer.Option(None, "--link", help="the link of a curvature construction (default: the coupler)"),
+        steps: bool = typer.Option(False, "--steps", help="one drawing per construction step (FILE-01.svg, …)"),
+        animate: Optional[float] = typer.Option(None, "--animate", help="one SVG whose steps appear one after another, SECONDS apart"),
+        length_scale: Optional[float] = typer.Option(None, "--length-scale", help="mechanism units per mm of paper"),
+        velocity_scale: Optional[float] = typer.Option(None, "--velocity-scale", help="velocity units per mm of paper"),
+        acceleration_scale: Optional[float] = typer.Option(None, "--acceleration-scale", help="acceleration units per mm of paper"),
+        dpi: float = typer.Option(200.0, "--dpi", help="resolution of PNG output"),
+        output: str = typer.Option(..., "-o", "--output", help="FILE.svg, FILE.png or FILE.pdf"),
+    ) -> None:
+        """Draw the mechanism at one position with layers and a construction, as the books do."""
+        with user_errors():
+            from ..constructions import construct
+            from ..drawing import scene_figure
+            from ..drawing.layers import Scene
+            from ..kinematics import solve
+            mech = load_mechanism(mechanism)
+            out = Path(output)
+            if out.suffix.lower() not in (".svg", ".png", ".pdf"):
+                raise InputError(f"-o {output}: write .svg, .png or .pdf")
+            if animate is not None and out.suffix.lower() != ".svg":
+                raise InputError("--animate writes an animated SVG: give -o FILE.svg")
+            if at is None:
+                value = np.array([mech.driver_input_at_design(d) for d in mech.drivers])[None, :]
+                sol = solve(mech, value)
+            else:
+                kind, v = input_value(mech, at)
+                sol = solve(mech, times=[v]) if kind == "time" else solve(mech, np.array([v]))
+            if sol.status[0] == 2:
+                raise InputError(f"mechanism '{mech.name}' cannot be assembled at {at}")
+            sc = Scene(mech, sol)
+            if any(x is not None for x in (length_scale, velocity_scale, acceleration_scale)):
+                sc.scales = sc.auto_scales(length=length_scale, velocity=velocity_scale,
+                                           acceleration=acceleration_scale,
+                                           plan_mm=70.0 if construction in ("velocity-plan", "acceleration-plan") else None)
+            layers = _list(show)
+            con = None
+            if construction:
+                opts = {}
+                if point and construction in ("euler-savary", "bobillier", "hartmann"):
+                    opts["point"] = point
+                if link and construction in ("euler-savary", "bobillier", "hartmann", "two-points"):
+                    opts["link"] = link
+                if construction == "rotated-velocities" and sc.scales is not None and velocity_scale:
+                    opts["scales"] = sc.scales
+                con = construct(construction, mech, sol, **opts)
+                con.require(0)
+                con.check()
+                typer.echo(con.describe())
+            elif steps or animate:
+                raise InputError("--steps and --animate need a --construction")
+            if con is not None and steps:
+                written = []
+                for k in range(len(con.steps)):
+                    fig = scene_figure(sc, layers, construction=con, step=k)
+                    p = out.with_name(f"{out.stem}-{k + 1:02d}{out.suffix}")
+                    fig.save(p, dpi=dpi)
+                    written.append(p)
+                typer.echo(f"wrote {len(written)} drawings {written[0]} … {written[-1]}")
+                return
+            fig = scene_figure(sc, layers, construction=con)
+            fig.save(out, dpi=dpi, animate=animate)
+            typer.echo(f"wrote {out}")
+
+    @app.command()
+    def plot(
+        mechanism: str = typer.Argument(..., help="a mechanism file, or library:NAME"),
+        point: Optional[str] = typer.Option(None, "--point", help="points, comma-separated"),
+        link: Optional[str] = typer.Option(None, "--link", help="links, comma-separated"),
+        quantity: str = typer.Option("velocity", "--quantity", help="position, velocity or acceleration"),
+        against: str = typer.Option("input", "--against", help="input (angle or displacement) or time"),
+        component: str = typer.Option("x,y,magnitude", "--component", help="x, y, magnitude (points)"),
+        vs: bool = typer.Option(False, "--vs", help="the v–s diagram of the (first) point instead"),
+        output: str = typer.Option(..., "-o", "--output", help="FILE.png, FILE.pdf or FILE.svg"),
+    ) -> None:
+        """Plot positions, velocities, accelerations over the whole motion, or a v–s diagram."""
+        with user_errors():
+            from ..drawing.plots import motion_plot, save, vs_plot
+            mech = load_mechanism(mechanism)
+            points, links = _list(point), _list(link)
+            if vs:
+                if not points:
+                    raise InputError("--vs needs --point")
+                fig = vs_plot(mech, points[0])
+            else:
+                fig = motion_plot(mech, points=points, links=links, quantity=quantity, against=against,
+                                  components=_list(component))
+            save(fig, output)
+            typer.echo(f"wrote {output}")

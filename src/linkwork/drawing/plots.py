@@ -1,0 +1,169 @@
+"""Plots over the whole motion with Matplotlib (*Weg-, Geschwindigkeits- und
+Beschleunigungsdiagramme*).
+
+Owns :func:`motion_plot` (positions, velocities or accelerations of chosen points — components
+and magnitude — and angles, angular velocities or accelerations of chosen links, against the
+input or the time) and :func:`vs_plot` (the v–s diagram of a point, Rosenauer §61 II: velocity
+over the path; for a point on a straight line the acceleration is the diagram's subnormal
+v·dv/ds, drawn as a check for a chosen position). Both return a Matplotlib ``Figure``
+(Agg backend, no display needed); :func:`save` writes PNG, PDF or SVG.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Sequence
+
+import numpy as np
+
+from ..errors import InputError
+from ..kinematics import Solution, whole_motion
+from ..model import Mechanism
+
+QUANTITIES = ("position", "velocity", "acceleration")
+COMPONENTS = ("x", "y", "magnitude")
+
+
+def _plt():
+    import matplotlib
+    matplotlib.use("Agg", force=False)
+    import matplotlib.pyplot as plt
+    return plt
+
+
+def _abscissa(mech: Mechanism, sol: Solution, against: str) -> tuple[np.ndarray, str]:
+    if against == "time":
+        if sol.time is not None:
+            return sol.time, "time t [s]"
+        d = mech.drivers[0]
+        w = sol.link(d.driven).omega if mech.joint(d.joint).kind == "revolute" else None
+        u = sol.inputs[:, 0]
+        rate = np.gradient(u) if w is None else w
+        dt = np.diff(u) / np.where(rate[:-1] == 0, np.nan, rate[:-1])
+        t = np.concatenate([[0.0], np.nancumsum(np.abs(dt))])
+        return t, "time t [s]"
+    if against != "input":
+        raise InputError(f"plot against 'input' or 'time', not '{against}'")
+    d = mech.drivers[0]
+    if mech.joint(d.joint).kind == "revolute":
+        u = np.degrees(sol.inputs[:, 0])
+        # unwrap a full turn into a monotonic axis as the books plot it
+        return u, f"input angle \u03c6 [\u00b0] ({d.joint})"
+    return sol.inputs[:, 0], f"input displacement s [{mech.length_unit}] ({d.joint})"
+
+
+def motion_plot(mech: Mechanism, *, points: Sequence[str] = (), links: Sequence[str] = (),
+                quantity: str = "velocity", against: str = "input",
+                components: Sequence[str] = COMPONENTS, solution: Solution | None = None,
+                title: str | None = None):
+    """Quantity of points and links over the whole motion (or over ``solution``'s samples)."""
+    if quantity not in QUANTITIES:
+        raise InputError(f"quantity must be one of {', '.join(QUANTITIES)}, not '{quantity}'")
+    bad = [c for c in components if c not in COMPONENTS]
+    if bad:
+        raise InputError(f"unknown component(s) {', '.join(bad)}; use x, y, magnitude")
+    if not points and not links:
+        raise InputError("choose at least one point (--point) or link (--link) to plot")
+    for p in points:
+        if p not in mech.points:
+            raise InputError(f"mechanism '{mech.name}' has no point '{p}'")
+    for ln in links:
+        mech.link(ln)
+    sol = solution or whole_motion(mech)
+    x, xlabel = _abscissa(mech, sol, against)
+    plt = _plt()
+    nax = (1 if points else 0) + (1 if links else 0)
+    fig, axes = plt.subplots(nax, 1, figsize=(8.0, 3.2 * nax + 0.6), sharex=True, squeeze=False)
+    axes = axes[:, 0]
+    unit = mech.length_unit
+    sym = {"position": ("r", unit), "velocity": ("v", f"{unit}/s"), "acceleration": ("a", f"{unit}/s\u00b2")}
+    k = 0
+    if points:
+        ax = axes[k]
+        k += 1
+        s, u = sym[quantity]
+        for p in points:
+            m = sol.point(p)
+            arr = {"position": m.position, "velocity": m.velocity, "acceleration": m.acceleration}[quantity]
+            for c in components:
+                y = np.linalg.norm(arr, axis=1) if c == "magnitude" else arr[:, "xy".index(c)]
+                style = "-" if c == "magnitude" else ("--" if c == "x" else ":")
+                lab = f"|{s}$_{{{p}}}$|" if c == "magnitude" else f"{s}$_{{{p},{c}}}$"
+                ax.plot(x, y, style, lw=1.2, label=lab)
+        ax.set_ylabel(f"{quantity} [{u}]")
+        ax.legend(loc="best", fontsize=8, ncol=2)
+        ax.grid(True, lw=0.3, alpha=0.6)
+    if links:
+        ax = axes[k]
+        for ln in links:
+            m = sol.link(ln)
+            if quantity == "position":
+                y, lab, u = np.degrees(np.unwrap(m.angle)), f"\u03c6$_{{{ln}}}$", "\u00b0"
+            elif quantity == "velocity":
+                y, lab, u = m.omega, f"\u03c9$_{{{ln}}}$", "rad/s"
+            else:
+                y, lab, u = m.alpha, f"\u03b1$_{{{ln}}}$", "rad/s\u00b2"
+            ax.plot(x, y, lw=1.2, label=lab)
+        ax.set_ylabel({"position": "angle", "velocity": "angular velocity",
+                       "acceleration": "angular acceleration"}[quantity] + f" [{u}]")
+        ax.legend(loc="best", fontsize=8)
+        ax.grid(True, lw=0.3, alpha=0.6)
+    axes[-1].set_xlabel(xlabel)
+    fig.suptitle(title or f"{mech.name}: {quantity} over the whole motion", fontsize=11)
+    fig.tight_layout()
+    return fig
+
+
+def path_coordinate(position: np.ndarray, velocity: np.ndarray) -> tuple[np.ndarray, np.ndarray, bool]:
+    """(s, v, straight): the path coordinate and the velocity along it. A straight path uses the
+    displacement along its line (signed); a curved one the arc length and the signed speed
+    (positive along the first direction of travel)."""
+    d = position - position[0]
+    span = np.nanmax(np.linalg.norm(d, axis=1))
+    if span == 0:
+        return np.zeros(len(d)), np.zeros(len(d)), True
+    # principal direction; the path is straight if the points deviate by < 1e-9 of its span
+    c = position - np.nanmean(position, axis=0)
+    _, sv, vt = np.linalg.svd(np.nan_to_num(c), full_matrices=False)
+    straight = sv[1] <= 1e-9 * max(sv[0], 1e-300)
+    if straight:
+        e = vt[0]
+        return c @ e, velocity @ e, True
+    seg = np.linalg.norm(np.diff(position, axis=0), axis=1)
+    s = np.concatenate([[0.0], np.cumsum(seg)])
+    t = np.diff(position, axis=0)
+    t = np.vstack([t, t[-1:]])
+    sign = np.sign(np.sum(t * velocity, axis=1))
+    return s, sign * np.linalg.norm(velocity, axis=1), False
+
+
+def vs_plot(mech: Mechanism, point: str, *, solution: Solution | None = None, title: str | None = None):
+    """The v–s diagram of ``point`` over the whole motion (Rosenauer §61 II)."""
+    if point not in mech.points:
+        raise InputError(f"mechanism '{mech.name}' has no point '{point}'")
+    sol = solution or whole_motion(mech)
+    m = sol.point(point)
+    s, v, straight = path_coordinate(m.position, m.velocity)
+    plt = _plt()
+    fig, ax = plt.subplots(figsize=(7.0, 4.5))
+    ax.plot(s, v, lw=1.3, color="#1f4e9c")
+    ax.axhline(0.0, color="#888", lw=0.5)
+    u = mech.length_unit
+    ax.set_xlabel(("displacement s" if straight else "arc length s") + f" [{u}]")
+    ax.set_ylabel(f"velocity v$_{{{point}}}$ [{u}/s]")
+    ax.grid(True, lw=0.3, alpha=0.6)
+    if straight:
+        ax.text(0.02, 0.96, "acceleration = subnormal v\u00b7dv/ds", transform=ax.transAxes, fontsize=8,
+                va="top")
+    fig.suptitle(title or f"{mech.name}: v\u2013s diagram of {point}", fontsize=11)
+    fig.tight_layout()
+    return fig
+
+
+def save(fig, path: str | Path, dpi: float = 150.0) -> Path:
+    path = Path(path)
+    if path.suffix.lower() not in (".png", ".pdf", ".svg"):
+        raise InputError(f"cannot write '{path}': plots are written as .png, .pdf or .svg")
+    fig.savefig(path, dpi=dpi)
+    _plt().close(fig)
+    return path
