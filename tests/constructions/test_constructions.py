@@ -2,6 +2,8 @@
 curvature layer to 1e-9 (relative); the numbers asserted come from the engine, linkwork.instant
 or closed forms, never from the construction itself."""
 
+import zlib
+
 import numpy as np
 import pytest
 
@@ -21,9 +23,9 @@ CASES = {
     "rotated-velocities": FOUR_BARS + SLIDER_CRANKS + SIX_BARS + SLOTTED,
     "velocity-plan": FOUR_BARS + SLIDER_CRANKS + SIX_BARS + SLOTTED,
     "acceleration-plan": FOUR_BARS + SLIDER_CRANKS + SIX_BARS + SLOTTED,
-    "euler-savary": FOUR_BARS + SLIDER_CRANKS,
-    "bobillier": FOUR_BARS + SLIDER_CRANKS,
-    "hartmann": FOUR_BARS + SLIDER_CRANKS,
+    "euler-savary": FOUR_BARS + SLIDER_CRANKS + ["ellipsograph"],
+    "bobillier": FOUR_BARS + SLIDER_CRANKS + ["ellipsograph"],
+    "hartmann": FOUR_BARS + SLIDER_CRANKS + ["ellipsograph"],
     "two-points": FOUR_BARS + SLIDER_CRANKS + SIX_BARS + ["whitworth-quick-return"],
     "klein": SLIDER_CRANKS,
     "kennedy": FOUR_BARS + SLIDER_CRANKS + SIX_BARS + SLOTTED + ["ellipsograph", "roemer-mechanism"],
@@ -34,7 +36,7 @@ def random_positions(name: str, n: int = 40, seed: int = 5):
     """n random positions along the whole motion, each with its own input velocity sense."""
     mech = linkwork.load(f"library:{name}")
     motion = linkwork.whole_motion(mech, step=np.radians(0.25))
-    rng = np.random.default_rng(abs(hash((name, seed))) % 2**32)
+    rng = np.random.default_rng(zlib.crc32(f"{name}-{seed}".encode()))
     k = np.sort(rng.choice(len(motion), size=min(n, len(motion)), replace=False))
     w = motion.link(mech.drivers[0].driven).omega[k]
     return mech, linkwork.solve(mech, motion.inputs[k], velocities=w)
@@ -52,6 +54,23 @@ def test_construction_matches_analytic(name, mech_name):
     assert con.degenerate.mean() < 0.2
     for i in np.flatnonzero(con.degenerate):
         assert con.messages(i), "a degenerate position needs a message"
+
+
+@pytest.mark.parametrize("mech_name", ["crank-rocker", "double-rocker", "slider-crank-offset",
+                                       "pmks-slider-crank-tracer", "antiparallelogram"])
+def test_dense_sweep_through_singular_positions(mech_name):
+    """Every 0.2° of the whole motion, limit positions, poles at infinity and change points
+    included: wherever a construction gives a result it is right to 1e-9; elsewhere it says why."""
+    mech = linkwork.load(f"library:{mech_name}")
+    motion = linkwork.whole_motion(mech, step=np.radians(0.2))
+    for name in CONSTRUCTIONS:
+        try:
+            con = construct(name, mech, motion)
+        except linkwork.LinkworkError:
+            continue  # not applicable to this mechanism (said clearly, tested elsewhere)
+        con.check(RTOL)
+        for i in np.flatnonzero(con.degenerate):
+            assert con.messages(i)
 
 
 def test_every_construction_is_covered():

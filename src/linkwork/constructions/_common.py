@@ -50,6 +50,44 @@ def rotate(theta: np.ndarray, v: np.ndarray) -> np.ndarray:
     return np.stack([c * v[..., 0] - s * v[..., 1], s * v[..., 0] + c * v[..., 1]], axis=-1)
 
 
+#: a position where some link turns this many times faster than the input counts as (nearly) a
+#: dead centre for the constructions (regular positions of the library mechanisms stay below 10)
+NEAR_DEAD_CENTRE = 30.0
+
+
+def singular_positions(b, sol: Solution) -> None:
+    """Record the positions the engine reports as dead centres or change points (a singular
+    group Jacobian: velocities are not determined there) or as unassemblable."""
+    from ..kinematics import Status
+    b.length = sol.mechanism.length_scale
+    st = np.asarray(sol.status)
+    b.degenerate((st == Status.SINGULAR) & ~b.bad,
+                 "the mechanism is at a dead centre or change point here (its velocities are not "
+                 "determined by the input), so no construction can be made at this position")
+    b.degenerate((st == Status.UNREACHABLE) & ~b.bad, "the mechanism cannot be assembled at this input")
+    amp = velocity_amplification(sol)
+    b.degenerate((amp > NEAR_DEAD_CENTRE) & ~b.bad,
+                 f"the mechanism is within a hair of a dead centre (a link turns more than "
+                 f"{NEAR_DEAD_CENTRE:g} times as fast as the input): velocities grow without bound "
+                 "there and neither the drawing nor the exact solution is meaningful")
+
+
+def velocity_amplification(sol: Solution) -> np.ndarray:
+    """max |ω_link| / |input rate| (per length_scale for a prismatic input): unbounded at dead
+    centres, a few units elsewhere."""
+    mech = sol.mechanism
+    d = mech.drivers[0]
+    if len(mech.drivers) != 1:
+        return np.zeros(len(sol))
+    w = np.max(np.abs(np.stack([sol.link(ln).omega for ln in mech.moving_links])), axis=0)
+    if mech.joint(d.joint).kind == "revolute":
+        rate = np.abs(sol.link(d.driven).omega - (sol.link(d.base).omega if d.base != mech.frame else 0))
+    else:
+        rate = np.abs(np.linalg.norm(sol.point(mech.joint(d.joint).point).velocity, axis=1)) / mech.length_scale
+    with np.errstate(invalid="ignore", divide="ignore"):
+        return np.where(rate > 0, w / rate, 0.0)
+
+
 def as_solution(mech: Mechanism, inputs) -> Solution:
     """A solution at ``inputs`` (radians or length; an existing Solution is passed through)."""
     if isinstance(inputs, Solution):

@@ -35,6 +35,22 @@ from ._plan import upper
 
 ANGLE_A = np.radians(60.0)  # direction of the arbitrary line (a) against the ray
 
+#: a pole farther than this many times the mechanism's size from it is "off the sheet": the link
+#: nearly translates, every line through P is nearly parallel to the next, and the constructions
+#: through P lose accuracy (Pöschl §36 names this limitation of Euler–Savary and Bobillier)
+POLE_FAR = 30.0
+
+
+def far_pole(b: Builder, P: Point, L: float, origin: np.ndarray) -> np.ndarray:
+    """Record the positions where the pole is off the sheet (see :data:`POLE_FAR`)."""
+    with np.errstate(invalid="ignore"):
+        rho = np.linalg.norm(P.xy - origin, axis=-1) / L
+    far = P.is_finite & (rho > POLE_FAR)
+    return b.degenerate(far & ~b.bad,
+                        f"the pole lies more than {POLE_FAR:g} times the mechanism's size away (the link "
+                        "nearly translates): the lines through P are nearly parallel and the ruler "
+                        "construction loses its accuracy here (Pöschl \u00a736: the pole is off the sheet)")
+
 
 @dataclass
 class CouplerData:
@@ -109,6 +125,7 @@ def draw_pole(b: Builder, cd: CouplerData) -> tuple[Point, Line, Line]:
     P = b.meet("P", r1, r2, Role.RESULT, "P", k1="ray1", k2="ray2",
                why="the path normals are parallel: the pole lies at infinity (the link translates "
                    "instantaneously), so its curvature constructions degenerate")
+    far_pole(b, P, cd.L, cd.origin)
     return P, r1, r2
 
 
@@ -176,8 +193,14 @@ def task_III(b: Builder, key: str, P: Point, W: Point, Cx: Point, ray: Line, *, 
     b.step(f"Euler\u2013Savary, Task III on the same ray: take any K off the ray; the parallel to {nW}K "
            f"through P and the parallel to PK through {nC} meet in S; KS meets the ray in the point "
            f"{nA} whose centre of curvature is {nC}.")
-    base = np.where(Cx.is_finite[:, None], Cx.coords[:, :2], W.xy)
-    d = base - P.xy
+    L = getattr(b, "length", None) or 1.0
+    with np.errstate(invalid="ignore"):
+        near = Cx.is_finite & (norm(np.nan_to_num(Cx.coords[:, :2]) - P.xy) <= 1e-3 * L)
+    b.degenerate(near & ~b.bad, f"the centre {nC} lies (almost) at the pole: then P, {nW} and {nC} "
+                 "coincide and Task III leaves the point undetermined")
+    dc = np.where(Cx.is_finite[:, None], Cx.coords[:, :2], W.xy) - P.xy
+    dw = W.xy - P.xy
+    d = np.where((norm(dc) >= norm(np.nan_to_num(dw)))[:, None], dc, dw)
     K = b.point(key + ".K", pt(P.xy + rotate(np.full(len(d), -ANGLE_A), d) * 0.7), Role.AUXILIARY,
                 f"K_{tag}")
     KW = b.join(key + ".KW", K, W)

@@ -17,7 +17,7 @@ import numpy as np
 
 from ..drawing.construction import Builder, Construction, Role, pt
 from ..model import Mechanism
-from ._common import as_solution, norm
+from ._common import as_solution, singular_positions, norm
 from ._plan import AccelerationConstruction, VelocityConstruction
 from .velocity_plan import compare_velocities, draw_images
 
@@ -29,6 +29,7 @@ def acceleration_plan(mech: Mechanism, inputs) -> Construction:
     sol = as_solution(mech, inputs)
     b = Builder("acceleration-plan", "Polar velocity and acceleration plans", SOURCE, len(sol),
                 spaces={"mechanism": "length", "velocity": "velocity", "acceleration": "acceleration"})
+    singular_positions(b, sol)
     b.step("Given: the mechanism in its position, the input's angular velocity and acceleration.")
     vc = VelocityConstruction(b, mech, sol, "plan")
     vc.run()

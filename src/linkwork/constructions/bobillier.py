@@ -31,7 +31,7 @@ from ..drawing.construction import Builder, Construction, Role, pt
 from ..geometry import Point
 from ..instant import collineation_axis, curvature_centre, instant
 from ..model import Mechanism
-from ._common import as_solution
+from ._common import singular_positions, as_solution
 from ._coupler import coupler_data, draw_given, draw_pole, inflection_from_two_rays
 from ._plan import upper
 
@@ -53,6 +53,7 @@ def bobillier(mech: Mechanism, inputs, *, link: str | None = None,
     cd = coupler_data(mech, sol, link, point)
     b = Builder("bobillier", "Bobillier's construction, collineation axis, Aronhold's transfer",
                 SOURCE, len(sol))
+    singular_positions(b, sol)
     b.own_labels = True
     draw_given(b, cd)
     P, r1, r2 = draw_pole(b, cd)
@@ -73,13 +74,22 @@ def bobillier(mech: Mechanism, inputs, *, link: str | None = None,
            f"to the collineation axis; it meets ray I in W_{nA.replace('_', '')} and ray II in "
            f"W_{nB.replace('_', '')}.")
     PS = b.parallel("PS", P, CC)
-    S = b.meet("S", PS, AB, Role.AUXILIARY, "S", k1="PS", k2="lAB",
+    S = b.meet("S", PS, AB, Role.AUXILIARY, "S", k1="PS", k2="lAB", finite=not np.all(cd.Ca.is_infinite & cd.Cb.is_infinite),
                why=f"{nA}{nB} is parallel to {la}{lb} (Q at infinity), so S falls to infinity and "
                    "Bobillier's construction gives no inflection points; use Euler\u2013Savary Task I "
                    "(construction euler-savary) at this position")
     SW = b.parallel("SW", S, axis)
     Wa = b.meet("Wa", SW, r1, Role.RESULT, f"W_{nA.replace('_', '')}", k1="SW", k2="ray1", finite=False)
     Wb = b.meet("Wb", SW, r2, Role.RESULT, f"W_{nB.replace('_', '')}", k1="SW", k2="ray2", finite=False)
+    # a point on a straight guide is its own inflection point (centre at infinity, Rosenauer §26)
+    inf_a, inf_b = cd.Ca.is_infinite, cd.Cb.is_infinite
+    if np.any(inf_a | inf_b):
+        b.step("A point guided on a straight line has its centre of curvature at infinity: it is its "
+               "own inflection point (Rosenauer \u00a726, W = A).")
+        Wa = Point(np.where(inf_a[:, None], cd.A.coords, Wa.coords))
+        Wb = Point(np.where(inf_b[:, None], cd.B.coords, Wb.coords))
+        b.point("Wa*", Wa, Role.RESULT, None)
+        b.point("Wb*", Wb, Role.RESULT, None)
     W0 = inflection_from_two_rays(b, P, r1, r2, Wa, Wb)
     tangent = b.elements["tangent"].obj
     ins = instant(sol, cd.link)

@@ -25,7 +25,7 @@ from ..drawing.construction import Builder, Construction, Role, pt
 from ..geometry import Point
 from ..instant import curvature_centre, instant
 from ..model import Mechanism
-from ._common import as_solution, dot, norm
+from ._common import singular_positions, as_solution, dot, norm
 from ._coupler import coupler_data, draw_given, draw_pole, inflection_from_two_rays, task_I, task_II, task_III
 from ._plan import upper
 
@@ -46,6 +46,7 @@ def euler_savary(mech: Mechanism, inputs, *, link: str | None = None,
     cd = coupler_data(mech, sol, link, point)
     b = Builder("euler-savary", "Euler\u2013Savary by ruler (Rosenauer \u00a719, Tasks I\u2013III)", SOURCE,
                 len(sol))
+    singular_positions(b, sol)
     b.own_labels = True
     draw_given(b, cd)
     P, r1, r2 = draw_pole(b, cd)

@@ -33,7 +33,7 @@ from ..errors import InputError
 from ..geometry import Point, Vector
 from ..instant import curvature_centre, instant
 from ..model import Mechanism, Revolute
-from ._common import as_solution, cross, dot, norm, perp
+from ._common import singular_positions, as_solution, cross, dot, norm, perp
 from ._coupler import coupler_data, draw_given, draw_pole
 from ._plan import upper
 
@@ -58,6 +58,7 @@ def hartmann(mech: Mechanism, inputs, *, link: str | None = None, point: str | N
             kv = 1.0
     b = Builder("hartmann", "Hartmann's construction (pole-transfer velocity, centres of curvature)",
                 SOURCE, n)
+    singular_positions(b, sol)
     b.own_labels = True
     draw_given(b, cd)
     P, r1, r2 = draw_pole(b, cd)

@@ -26,7 +26,7 @@ from ..geometry import Point
 from ..instant import pole_schedule, poles
 from ..instant.poles import gear_pitch_point, pole_label
 from ..model import CircularSlot, Mechanism, Prismatic, Slot
-from ._common import as_solution, perp, rotate
+from ._common import singular_positions, as_solution, perp, rotate
 
 SOURCE = "Rosenauer §62, §75, §91–92; Pöschl §51 (Aronhold–Kennedy three-pole theorem)"
 
@@ -43,6 +43,7 @@ def kennedy(mech: Mechanism, inputs) -> Construction:
     sch = pole_schedule(mech)
     links = sch.links
     b = Builder("kennedy", "Aronhold\u2013Kennedy construction of the poles", SOURCE, n)
+    singular_positions(b, sol)
     b.own_labels = False
     legend = ", ".join(f"{i + 1} = {ln}" for i, ln in enumerate(links))
     b.step(f"Number the links ({legend}); the mechanism has {len(links) * (len(links) - 1) // 2} poles.")

@@ -41,7 +41,7 @@ from ..errors import InputError
 from ..geometry import Point
 from ..geometry.constructions import midpoint
 from ..model import Mechanism
-from ._common import as_solution, cross, dot, norm, perp, rotate, slider_crank
+from ._common import singular_positions, as_solution, cross, dot, norm, perp, rotate, slider_crank
 
 SOURCE = "seed 004 (steam-engine text), §175: Klein's construction"
 
@@ -67,6 +67,7 @@ def klein(mech: Mechanism, inputs, *, omega: float | None = None) -> Constructio
     axis = rotate(sol.pose_derivatives(mech.frame)[0, :, 2], np.broadcast_to(sc.axis, (n, 2)))
 
     b = Builder("klein", "Klein's construction of the piston acceleration", SOURCE, n)
+    singular_positions(b, sol)
     b.own_labels = True
     b.step("Given: crank centre C, crank pin P and crosshead A on the line of stroke; the crank "
            "turns uniformly at \u03c9, so CP represents the crank pin's acceleration \u03c9\u00b2\u00b7CP.")

@@ -22,7 +22,7 @@ import numpy as np
 from ..drawing.construction import Builder, Construction, Role, pt
 from ..drawing.scales import Scale, Scales, nice_ceil
 from ..model import Mechanism, Revolute
-from ._common import as_solution
+from ._common import singular_positions, as_solution
 from ._plan import VelocityConstruction
 from .velocity_plan import compare_velocities, draw_images
 
@@ -59,6 +59,7 @@ def rotated_velocities(mech: Mechanism, inputs, *, scales: Scales | None = None,
         scales = Scales(ls, Scale("velocity", f"{mech.length_unit}/s", ls.per_mm / kv))
     b = Builder("rotated-velocities", "Rotated (orthogonal) velocities", SOURCE, len(sol),
                 scales=scales)
+    singular_positions(b, sol)
     turn = "counter-clockwise" if sense > 0 else "clockwise"
     b.step(f"Given: the mechanism in its position; velocities are turned by 90\u00b0 {turn} and "
            f"laid off at their points ({scales.velocity.text()}).")

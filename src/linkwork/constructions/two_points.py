@@ -34,7 +34,7 @@ from ..geometry import Circle, Point, Vector
 from ..geometry.constructions import perpendicular_bisector
 from ..instant import instant
 from ..model import Mechanism
-from ._common import as_solution, conjugate_pairs, coupler_link, cross, norm
+from ._common import singular_positions, as_solution, conjugate_pairs, coupler_link, cross, norm
 from ._plan import AccelerationConstruction, VelocityConstruction, upper
 
 SOURCE = "Rosenauer ch. XIV (Fig. 327), §53–54, §57 (four-circle construction of \u0393)"
@@ -67,12 +67,15 @@ def inflection_from_two_points(mech: Mechanism, inputs, *, link: str | None = No
     vA, vB = (vc.velocity(X, vc.image(link, p, X, draw=False)) for X, p in ((A, nA), (B, nB)))
     aA, aB = (ac.image(link, p, X, draw=False) for X, p in ((A, nA), (B, nB)))
     L = mech.length_scale
+    # drawing scales per position (the vectors about a third of the mechanism), so that every
+    # position is drawn, and constructed, as it would be on its own sheet
     if kv is None:
-        kv = 0.35 * L / max(np.nanmax(norm(vA)), np.nanmax(norm(vB)), 1e-300)
+        kv = (0.35 * L / np.maximum(np.maximum(norm(vA), norm(vB)), 1e-300))[:, None]
     if ka is None:
-        ka = 0.35 * L / max(np.nanmax(norm(aA)), np.nanmax(norm(aB)), 1e-300)
+        ka = (0.35 * L / np.maximum(np.maximum(norm(aA), norm(aB)), 1e-300))[:, None]
     b = Builder("two-points", "Inflection and Bresse circles from the velocities and accelerations "
                 "of two points", SOURCE, n)
+    singular_positions(b, sol)
     b.own_labels = True
     uA, uB = upper(nA), upper(nB)
     Ap, Bp = pt(A), pt(B)
@@ -92,13 +95,17 @@ def inflection_from_two_points(mech: Mechanism, inputs, *, link: str | None = No
     nB_ = b.perpendicular("nB", Bp, b.join("lvB", Bp, pt(B + kv * vB), Role.AUXILIARY))
     P = b.meet("P", nA_, nB_, Role.RESULT, "P", k1="nA", k2="nB",
                why="the velocities are parallel: the link translates instantaneously (pole at infinity)")
+    from ._coupler import far_pole
+    far_pole(b, P, L, np.mean(np.array(list(mech.points.values())), axis=0))
 
-    b.step(f"The lines of a_{uA} and a_{uB} meet in K; the circle through {uA}, {uB}, K and the circle "
-           f"through the tips a, b and K meet again in the acceleration centre \u0393 (Rosenauer \u00a757).")
-    la = b.join("la", Ap, ta)
-    lb = b.join("lb", Bp, tb)
-    K = b.meet("K", la, lb, Role.AUXILIARY, "K", k1="la", k2="lb", finite=False)
-    G = _gamma(b, Ap, Bp, ta, tb, K)
+    b.step(f"Draw a_{uA} \u2212 a_{uB} at {uA} (to D): \u03b3 = \u2220D{uA}{uB}. Lay off \u03b3 from a_{uA} at "
+           f"{uA} and from a_{uB} at {uB}, in the same sense as from {uA}D to {uA}{uB}: the two lines meet in "
+           "the acceleration centre \u0393 (Zhukovsky's theorem, Rosenauer \u00a754, \u00a757).")
+    D = pt(A + ka * (aA - aB))
+    b.arrow("AD", Ap, D, Role.AUXILIARY, "D", kind="acceleration")
+    gA = b.copy_angle("gA", Ap, D, Bp, Ap, ta, radius=0.2 * L)
+    gB = b.copy_angle("gB", Ap, D, Bp, Bp, tb, radius=0.2 * L)
+    G = _gamma(b, Ap, Bp, ta, tb, gA, gB)
 
     b.step("\u03b3 = \u2220(a_A, A\u0393) is the angle of every acceleration with its line to \u0393; lay it "
            "off at P from P\u0393 in the opposite sense: the pole normal n. The pole tangent t is "
@@ -176,35 +183,58 @@ def _bisector(P: Point, G: Point):
     return line
 
 
-def _gamma(b: Builder, A: Point, B: Point, ta: Point, tb: Point, K: Point) -> Point:
-    """Γ: second intersection of the circles (A, B, K) and (a, b, K); lines AB, ab when K = ∞."""
+def _gamma(b: Builder, A: Point, B: Point, ta: Point, tb: Point, gA, gB) -> Point:
+    """Γ = intersection of the two γ-lines; where they (nearly) coincide (Γ on the line AB) the
+    four-circle construction (Rosenauer §57, Fig. 170) is used instead: the circles (A, B, K) and
+    (a, b, K), K the meet of the acceleration lines, or by Miquel's theorem (A, a, M) and (B, b, M),
+    M = AB ∩ ab — whichever pair is better shaped."""
     n = b.n
-    Kf = K.is_finite
-    Kxy = np.where(Kf[:, None], K.coords[:, :2], 0.0)
-    # circles through three points (only where K is finite)
-    c1 = _circumcircle(A.xy, B.xy, Kxy)
-    c2 = _circumcircle(ta.xy, tb.xy, Kxy)
-    # radical axis of the two circles passes through K and Γ: Γ = reflection of K in the line of centres
-    o1, o2 = c1, c2
-    d = o2 - o1
+    u1, u2 = (np.array(l.coords, float) for l in (gA, gB))
+    L = b.length or 1.0
+    u1[:, 2] /= L
+    u2[:, 2] /= L
     with np.errstate(invalid="ignore", divide="ignore"):
-        t = np.sum((Kxy - o1) * d, -1) / np.sum(d * d, -1)
-    foot = o1 + t[:, None] * d
-    G_circ = 2 * foot - Kxy
-    # limiting: K at infinity, Γ = AB ∩ ab
-    ab = np.cross(A.coords, B.coords)
-    tt = np.cross(ta.coords, tb.coords)
-    x = np.cross(ab, tt)
+        u1 /= np.linalg.norm(u1, axis=1, keepdims=True)
+        u2 /= np.linalg.norm(u2, axis=1, keepdims=True)
+    x = np.cross(u1, u2)
+    sine = abs(x[:, 2]) / np.maximum(np.linalg.norm(u1[:, :2], axis=1) * np.linalg.norm(u2[:, :2], axis=1), 1e-300)
     with np.errstate(invalid="ignore", divide="ignore"):
-        G_lin = x[:, :2] / x[:, 2:]
-    G = np.where(Kf[:, None], G_circ, G_lin)
-    b.limiting(~Kf & ~b.bad, "the accelerations of the two points are parallel (K at infinity): the "
-               "circles become the lines AB and ab, and \u0393 is their intersection")
-    r1 = np.linalg.norm(A.xy - c1, axis=-1)
-    r2 = np.linalg.norm(ta.xy - c2, axis=-1)
-    b.circle("kAB", pt(np.where(Kf[:, None], c1, np.nan)), np.where(Kf, r1, np.nan), Role.AUXILIARY)
-    b.circle("kab", pt(np.where(Kf[:, None], c2, np.nan)), np.where(Kf, r2, np.nan), Role.AUXILIARY)
+        Gz = x[:, :2] * L / x[:, 2:]
+    poor = ~(sine > 1e-4)
+    Axy, Bxy, axy, bxy = A.xy, B.xy, ta.xy, tb.xy
+    Kh = np.cross(np.cross(A.coords, ta.coords), np.cross(B.coords, tb.coords))
+    Mh = np.cross(np.cross(A.coords, B.coords), np.cross(ta.coords, tb.coords))
+    with np.errstate(invalid="ignore", divide="ignore"):
+        Kxy, Mxy = Kh[:, :2] / Kh[:, 2:], Mh[:, :2] / Mh[:, 2:]
+
+    def second(p1, q1, p2, q2, X):
+        c1, c2 = _circumcircle(p1, q1, X), _circumcircle(p2, q2, X)
+        d = c2 - c1
+        with np.errstate(invalid="ignore", divide="ignore"):
+            t = np.sum((X - c1) * d, -1) / np.sum(d * d, -1)
+        return 2 * (c1 + t[:, None] * d) - X, np.minimum(_fatness(p1, q1, X), _fatness(p2, q2, X))
+    G1, f1 = second(Axy, Bxy, axy, bxy, Kxy)
+    G2, f2 = second(Axy, axy, Bxy, bxy, Mxy)
+    f1, f2 = np.nan_to_num(f1, nan=-1.0), np.nan_to_num(f2, nan=-1.0)
+    Gc = np.where((f2 > f1)[:, None], G2, G1)
+    usable = np.maximum(f1, f2) > 1e-3
+    G = np.where(poor[:, None], Gc, Gz)
+    b.limiting(poor & usable & ~b.bad, "the two \u03b3-lines nearly coincide (\u0393 near the line AB); "
+               "\u0393 was found by the four-circle construction (Rosenauer \u00a757) instead")
+    b.degenerate(poor & ~usable & ~b.bad, "\u0393 lies on the line of the two points and the four-circle "
+                 "construction is degenerate too: \u0393 is undetermined by these two points")
+    G = np.where((poor & ~usable)[:, None], np.nan, G)
+    for k in ("gA", "gB"):
+        b.extend(k, pt(G))
     return b.point("G", pt(G), Role.RESULT, "\u0393")
+
+
+def _fatness(p: np.ndarray, q: np.ndarray, r: np.ndarray) -> np.ndarray:
+    """2·area / (longest side)² of the triangle pqr: 0 for degenerate, ~0.87 for equilateral."""
+    sides = np.stack([np.linalg.norm(q - p, axis=-1), np.linalg.norm(r - q, axis=-1),
+                      np.linalg.norm(p - r, axis=-1)], -1)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        return abs(cross(q - p, r - p)) / np.max(sides, -1) ** 2
 
 
 def _circumcircle(p: np.ndarray, q: np.ndarray, r: np.ndarray) -> np.ndarray:

@@ -13,7 +13,7 @@ import numpy as np
 
 from ..drawing.construction import Builder, Construction, Role, pt
 from ..model import Mechanism
-from ._common import as_solution, norm
+from ._common import as_solution, singular_positions, norm
 from ._plan import VelocityConstruction, lower
 
 SOURCE = "Rosenauer §40–42, Pöschl §47 (velocity plan, velocity image)"
@@ -54,6 +54,7 @@ def velocity_plan(mech: Mechanism, inputs) -> Construction:
     sol = as_solution(mech, inputs)
     b = Builder("velocity-plan", "Polar velocity plan", SOURCE, len(sol),
                 spaces={"mechanism": "length", "velocity": "velocity"})
+    singular_positions(b, sol)
     b.step("Given: the mechanism in its position.")
     vc = VelocityConstruction(b, mech, sol, "plan")
     vc.run()

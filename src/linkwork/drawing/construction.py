@@ -345,6 +345,7 @@ class Builder:
         self.spaces = spaces or {"mechanism": "length"}
         self.scales = scales
         self.own_labels = False
+        self.length: float | None = None  # the drawing's size, for tolerances (set by constructions)
         self._spans: dict[str, list[Point]] = {}
 
     # ------------------------------------------------------------------ bookkeeping
@@ -409,9 +410,9 @@ class Builder:
     def perpendicular(self, key: str, through: Point, to: Line, role: Role = Role.AUXILIARY,
                       label: str | None = None, **kw) -> Line:
         """The perpendicular to ``to`` through ``through``."""
-        n = to.coords[..., :2]
-        direction = Point(np.concatenate([n, np.zeros(n.shape[:-1] + (1,))], axis=-1)
-                          if not np.isnan(n).all() else np.full(n.shape[:-1] + (3,), np.nan))
+        n = np.array(to.coords[..., :2], float)
+        n[(n == 0).all(axis=-1)] = np.nan  # the line at infinity has no direction
+        direction = Point(np.concatenate([n, np.zeros(n.shape[:-1] + (1,))], axis=-1))
         line, _ = safe_join(through, direction)
         return self.add(key, line, role, label, kind=kw.pop("kind", "line"), span=[through], **kw)
 
@@ -419,9 +420,10 @@ class Builder:
                  label: str | None = None, **kw) -> Line:
         """The parallel to ``to`` (a line, or a direction vector) through ``through``."""
         if isinstance(to, Vector):
-            d = to.xy
+            d = np.array(to.xy, float)
         else:
             d = np.stack([to.coords[..., 1], -to.coords[..., 0]], axis=-1)
+        d[(d == 0).all(axis=-1)] = np.nan  # no direction: the zero vector, the line at infinity
         direction = Point(np.concatenate([d, np.zeros(d.shape[:-1] + (1,))], axis=-1))
         line, _ = safe_join(through, direction)
         return self.add(key, line, role, label, kind=kw.pop("kind", "line"), span=[through], **kw)
@@ -440,6 +442,16 @@ class Builder:
         x[..., 2] = np.where(par, 0.0, x[..., 2])
         inputs_nan = np.isnan(x).any(axis=-1)
         coincide = (x == 0).all(axis=-1) & ~inputs_nan
+        if self.length is not None:
+            # (nearly) coincident lines: in coordinates scaled by the drawing's size the two
+            # homogeneous lines are (nearly) the same vector
+            u1, u2 = (np.concatenate([c[..., :2], c[..., 2:] / self.length], axis=-1)
+                      for c in np.broadcast_arrays(l1.coords, l2.coords))
+            with np.errstate(invalid="ignore", divide="ignore"):
+                u1 = u1 / np.linalg.norm(u1, axis=-1, keepdims=True)
+                u2 = u2 / np.linalg.norm(u2, axis=-1, keepdims=True)
+                q = np.linalg.norm(np.cross(u1, u2), axis=-1)
+            coincide |= (q <= 1e-9) & ~inputs_nan
         undefined = inputs_nan | coincide
         x = np.where(undefined[..., None], np.nan, x)
         self.degenerate(coincide & ~self.bad, f"the two lines through {label or key} coincide, so "
