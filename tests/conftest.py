@@ -4,7 +4,10 @@ from pathlib import Path
 
 import pytest
 
-SHARED = Path(__file__).resolve().parents[1].parent / "shared"
+import os
+
+# ../shared beside the checkout (as on developer machines and in CI), or LINKWORK_SHARED
+SHARED = Path(os.environ.get("LINKWORK_SHARED", Path(__file__).resolve().parents[1].parent / "shared"))
 REFERENCE = SHARED / "reference" / "pmks-verification-v1" / "cases"
 
 
