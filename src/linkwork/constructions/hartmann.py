@@ -111,7 +111,7 @@ def hartmann(mech: Mechanism, inputs, *, link: str | None = None, point: str | N
     d_n = -perp(tu.xy - P.xy) * w_sense[:, None]
     d_n = d_n / norm(d_n)[:, None]
     W0 = b.point("W0", pt(P.xy + D[:, None] * d_n), Role.RESULT, "W_0")
-    b.add("W0.arc", b.elements["W0"].obj, Role.AUXILIARY)  # (marker for the compass transfer)
+    b.circle("W0.arc", P, D, Role.AUXILIARY, arcs=(Xf, W0))  # the compass carries D over
     b.extend("normal", W0)
     ins = instant(sol, cd.link)
     L, o = cd.L, cd.origin

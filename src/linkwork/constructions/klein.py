@@ -69,6 +69,8 @@ def klein(mech: Mechanism, inputs, *, omega: float | None = None) -> Constructio
     b = Builder("klein", "Klein's construction of the piston acceleration", SOURCE, n)
     singular_positions(b, sol)
     b.own_labels = True
+    b.legend.append("Klein: CP represents the crank pin's acceleration \u03c9\u00b2\u00b7CP, so HC represents "
+                    "a_A at M_a = \u03c9\u00b2\u00b7M_l")
     b.step("Given: crank centre C, crank pin P and crosshead A on the line of stroke; the crank "
            "turns uniformly at \u03c9, so CP represents the crank pin's acceleration \u03c9\u00b2\u00b7CP.")
     b.point("C", C, Role.GIVEN, "C")

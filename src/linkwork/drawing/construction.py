@@ -193,6 +193,7 @@ class Construction:
     scales: Any = None  # drawing scales used for vectors drawn on the mechanism (or None)
     sampled: int | None = None  # the sample index when this is one position of a batch
     own_labels: bool = False  # the construction names the mechanism's points in its own notation
+    legend: tuple[str, ...] = ()  # lines for the drawing's legend (e.g. an implied scale)
 
     # ------------------------------------------------------------------ degenerate cases
     @property
@@ -345,6 +346,7 @@ class Builder:
         self.spaces = spaces or {"mechanism": "length"}
         self.scales = scales
         self.own_labels = False
+        self.legend: list[str] = []
         self.length: float | None = None  # the drawing's size, for tolerances (set by constructions)
         self._spans: dict[str, list[Point]] = {}
 
@@ -624,7 +626,7 @@ class Builder:
         return Construction(self.name, self.title, self.source, self.n, els,
                             tuple(Step(t, tuple(k)) for t, k in self.steps), dict(self.results),
                             tuple(self.notes), dict(self.spaces), self.scales,
-                            own_labels=self.own_labels)
+                            own_labels=self.own_labels, legend=tuple(self.legend))
 
 
 def _nan_circle(c: Circle, bad: np.ndarray) -> Circle:

@@ -304,6 +304,8 @@ def draw_construction(fig: Figure, con: Construction, *, upto: int | None = None
                 continue
             _draw_element(fig, el, k, highlight == k, layer)
     fig.captions = [f"{k + 1}. {s.text}" for k, s in enumerate(con.steps)]
+    for line in con.legend:
+        fig.note(line)
     for m in con.messages(0):
         fig.note(f"Note: {m}")
 
@@ -348,7 +350,7 @@ def _draw_element(fig: Figure, el: Element, step: int, hi: bool, layer: str) -> 
     elif isinstance(obj, Arrow):
         a, b = obj.tail.xy, obj.head.xy
         fig.arrow(a, b, **kw)
-        if el.space == "mechanism" and el.kind in ("velocity", "acceleration"):
+        if el.space == "mechanism" and el.kind in ("velocity", "acceleration") and fig.scales_declared:
             fig.used_scales.add(el.kind)
         if el.label:
             d = b - a
@@ -447,6 +449,8 @@ def scene_figure(sc: Scene, show: Iterable[str] = ("mechanism",), *,
         titles = {n: {"velocity": "velocity plan", "acceleration": "acceleration plan"}.get(q, "")
                   for n, q in construction.spaces.items() if n != "mechanism"}
     fig = Figure(sc.scales, title=title or sc.mech.name, spaces=spaces, titles=titles)
+    # vectors drawn on the mechanism by a construction are at the construction's own scales
+    fig.scales_declared = construction is None or construction.scales is not None
     # the mechanism panel shows the mechanism, its paths and the construction; far-off circles,
     # centrodes and poles are cut at this box
     box = sc.box()

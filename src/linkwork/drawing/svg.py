@@ -165,6 +165,7 @@ class Figure:
         self._ids: set[str] = set()
         self.used_scales: set[str] = {s.quantity for s in self.spaces.values()}
         self.clip: dict[str, tuple[np.ndarray, np.ndarray]] = {}  # space -> world box shown
+        self.scales_declared = True  # vectors on the mechanism are at self.scales
 
     # ------------------------------------------------------------------ adding
     def space(self, name: str, scale: Scale, title: str = "") -> None:
@@ -222,8 +223,8 @@ class Figure:
         xy = np.asarray(xy, float)
         if not np.isfinite(xy).all() or not text:
             return
-        if "ident" in kw:
-            kw["ident"] = self._id(kw["ident"])
+        if kw.get("ident"):
+            kw["ident"] = self._id("label-" + kw["ident"])
         self.labels.append(Label(space, xy, text, **kw))
 
     def note(self, text: str) -> None:
@@ -543,7 +544,7 @@ class Figure:
                         best, best_score = box, score
             placed.append(best)
             x0, y0, x1, y1 = best
-            ident = f' id="label-{lab.ident}"' if lab.ident else ""
+            ident = f' id="{lab.ident}"' if lab.ident else ""
             style = ' font-style="italic"' if lab.italic else ""
             el = (f'<text{ident} x="{sym._f(x0 + 0.2)}" y="{sym._f(y1 - 0.22 * lab.size)}" '
                   f'font-size="{sym._f(lab.size)}"{style} fill="{lab.colour}">{label_markup(lab.text, lab.size)}</text>')
