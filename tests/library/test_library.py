@@ -136,6 +136,23 @@ def test_loop_closure_at_every_sample(name):
             np.testing.assert_allclose(np.hypot(*(loc + P - c).T), R, atol=1e-9 * L, err_msg=j.name)
 
 
+@pytest.mark.parametrize("name", NAMES)
+def test_whole_motion_is_continuous(name):
+    """No jump between consecutive samples (a change of assembly branch between regular samples
+    would be one): every point moves at most what its velocity and acceleration allow."""
+    m, sol = mech(name), motion(name)
+    L = m.length_scale
+    dt = np.abs(np.diff(sol.input)) / abs(m.drivers[0].law.speed)
+    ok = (sol.status[:-1] == Status.OK) & (sol.status[1:] == Status.OK)
+    for p in m.points:
+        pm = sol.point(p)
+        step = np.hypot(*np.diff(pm.position, axis=0).T)
+        v = np.hypot(*pm.velocity.T)
+        a = np.hypot(*pm.acceleration.T)
+        bound = 2 * (np.maximum(v[:-1], v[1:]) * dt + np.maximum(a[:-1], a[1:]) * dt * dt) + 1e-9 * L
+        assert (step[ok] <= bound[ok]).all(), p
+
+
 # ---------------------------------------------------------------------------- Grashof
 def _four_bar_loops(m):
     """Four-bars (pivot, input pin, output pin, output pivot) made of the driven link, a coupler
