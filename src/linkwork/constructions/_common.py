@@ -34,7 +34,8 @@ def perp(v: np.ndarray) -> np.ndarray:
 
 
 def cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    return a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0]
+    with np.errstate(invalid="ignore", over="ignore"):
+        return a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0]
 
 
 def dot(a: np.ndarray, b: np.ndarray) -> np.ndarray:

@@ -37,10 +37,10 @@ import numpy as np
 
 from ..drawing.construction import Builder, Role, pt
 from ..errors import InputError
-from ..geometry import Line, Point
+from ..geometry import Point
 from ..kinematics import Solution
 from ..kinematics.solver import plan as group_plan
-from ..model import Mechanism, Prismatic, Revolute
+from ..model import Mechanism, Revolute
 from ._common import cross, dot, norm, perp, rotate
 
 
@@ -170,8 +170,8 @@ class VelocityConstruction:
                         f"{self.rel_words()} to {upper(n1)}{upper(name)}, through {self.lbl(n2)} the "
                         f"{self.rel_words()} to {upper(n2)}{upper(name)}; they meet in {lab} "
                         "(the image of a link is similar to the link).")
-            la = self._line(key + ".1", x1, self.M(perp(d1)))
-            lb = self._line(key + ".2", x2, self.M(perp(d2)))
+            self._line(key + ".1", x1, self.M(perp(d1)))
+            self._line(key + ".2", x2, self.M(perp(d2)))
         img, par = _meet((x1, self.M(perp(d1))), (x2, self.M(perp(d2))))
         img = np.where(par[:, None], along, img)
         # a point at the place of a known one has its image
@@ -209,7 +209,6 @@ class VelocityConstruction:
         j = mech.joint(d.joint)
         if d.base != mech.frame:
             raise InputError("the velocity construction needs the driver to act against the frame")
-        inp = sol.inputs[:, [dd.joint for dd in mech.drivers].index(d.joint)]
         rate = sol.link(ln).omega if isinstance(j, Revolute) else None
         if isinstance(j, Revolute):
             O = self.pos[j.point]
@@ -505,7 +504,7 @@ class AccelerationConstruction:
             acc = dot(sol.point(j.point).acceleration, axis)
             X = self.pos[j.point]
             img = self.o + acc[:, None] * axis
-            self.b.step(f"Given: the block's acceleration along its guide.")
+            self.b.step("Given: the block's acceleration along its guide.")
             self.b.arrow(f"a.given.{j.point}", pt(self.o), pt(img), Role.GIVEN, f"a_{upper(j.point)}",
                          kind="acceleration", space=self.space)
             self.set_known(ln, X, img, j.point)

@@ -22,10 +22,9 @@ from __future__ import annotations
 import numpy as np
 
 from ..drawing.construction import Builder, Construction, Role, pt
-from ..geometry import Point
 from ..instant import curvature_centre, instant
 from ..model import Mechanism
-from ._common import singular_positions, as_solution, dot, norm
+from ._common import as_solution, dot, singular_positions
 from ._coupler import coupler_data, draw_given, draw_pole, inflection_from_two_rays, task_I, task_II, task_III
 from ._plan import upper
 

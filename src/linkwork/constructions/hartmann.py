@@ -29,11 +29,9 @@ from __future__ import annotations
 import numpy as np
 
 from ..drawing.construction import Builder, Construction, Role, pt
-from ..errors import InputError
-from ..geometry import Point, Vector
 from ..instant import curvature_centre, instant
 from ..model import Mechanism, Revolute
-from ._common import singular_positions, as_solution, cross, dot, norm, perp
+from ._common import as_solution, cross, norm, perp, singular_positions
 from ._coupler import coupler_data, draw_given, draw_pole
 from ._plan import upper
 
@@ -107,7 +105,7 @@ def hartmann(mech: Mechanism, inputs, *, link: str | None = None, point: str | N
     D = norm(Xf.xy - P.xy)
     # the pole normal: perpendicular to u at P, W₀ on the side J⁻¹u·sign(ω) (ω's sense from v_A)
     w_sense = np.sign(cross(A.xy - P.xy, vA))
-    normal = b.perpendicular("normal", P, b.join("tline", P, tu, Role.RESULT, "t"), Role.AUXILIARY, "n")
+    b.perpendicular("normal", P, b.join("tline", P, tu, Role.RESULT, "t"), Role.AUXILIARY, "n")
     d_n = -perp(tu.xy - P.xy) * w_sense[:, None]
     d_n = d_n / norm(d_n)[:, None]
     W0 = b.point("W0", pt(P.xy + D[:, None] * d_n), Role.RESULT, "W_0")

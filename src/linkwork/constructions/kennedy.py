@@ -21,11 +21,11 @@ from itertools import combinations
 
 import numpy as np
 
-from ..drawing.construction import Builder, Construction, Role, pt, safe_join
+from ..drawing.construction import Builder, Construction, Role, safe_join
 from ..geometry import Point
 from ..instant import pole_schedule, poles
 from ..instant.poles import gear_pitch_point, pole_label
-from ..model import CircularSlot, Mechanism, Prismatic, Slot
+from ..model import CircularSlot, Mechanism
 from ._common import singular_positions, as_solution, perp, rotate
 
 SOURCE = "Rosenauer §62, §75, §91–92; Pöschl §51 (Aronhold–Kennedy three-pole theorem)"

@@ -30,11 +30,10 @@ from __future__ import annotations
 import numpy as np
 
 from ..drawing.construction import Builder, Construction, Role, pt
-from ..geometry import Circle, Point, Vector
-from ..geometry.constructions import perpendicular_bisector
+from ..geometry import Point
 from ..instant import instant
 from ..model import Mechanism
-from ._common import singular_positions, as_solution, conjugate_pairs, coupler_link, cross, norm
+from ._common import as_solution, coupler_link, cross, norm, singular_positions
 from ._plan import AccelerationConstruction, VelocityConstruction, upper
 
 SOURCE = "Rosenauer ch. XIV (Fig. 327), §53–54, §57 (four-circle construction of \u0393)"
@@ -188,8 +187,7 @@ def _gamma(b: Builder, A: Point, B: Point, ta: Point, tb: Point, gA, gB) -> Poin
     four-circle construction (Rosenauer §57, Fig. 170) is used instead: the circles (A, B, K) and
     (a, b, K), K the meet of the acceleration lines, or by Miquel's theorem (A, a, M) and (B, b, M),
     M = AB ∩ ab — whichever pair is better shaped."""
-    n = b.n
-    u1, u2 = (np.array(l.coords, float) for l in (gA, gB))
+    u1, u2 = (np.array(ln.coords, float) for ln in (gA, gB))
     L = b.length or 1.0
     u1[:, 2] /= L
     u2[:, 2] /= L

@@ -14,7 +14,7 @@ import numpy as np
 from ..drawing.construction import Builder, Construction, Role, pt
 from ..model import Mechanism
 from ._common import as_solution, singular_positions, norm
-from ._plan import VelocityConstruction, lower
+from ._plan import VelocityConstruction
 
 SOURCE = "Rosenauer §40–42, Pöschl §47 (velocity plan, velocity image)"
 

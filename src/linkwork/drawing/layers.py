@@ -19,9 +19,9 @@ adds its primitives to a :class:`~.svg.Figure`:
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from functools import cached_property
-from typing import Any, Iterable, Sequence
+from typing import Iterable, Sequence
 
 import numpy as np
 
@@ -29,7 +29,7 @@ from ..errors import InputError, LinkworkError
 from ..geometry import Circle, Line, Point
 from ..kinematics import Solution, solve, whole_motion
 from ..model import CircularSlot, Gear, Mechanism, Prismatic, Revolute, Slot
-from .construction import Arrow, Construction, Element, Polygon, Role, Segment
+from .construction import Arrow, Construction, Element, Polygon, Segment
 from .scales import SHEET_MM, Scale, Scales, nice_ceil
 from .svg import COLOURS, Figure, Style, plain, style_for
 

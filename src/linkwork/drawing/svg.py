@@ -352,7 +352,7 @@ class Figure:
         leg, y = self._legend(y, width, legend)
         out.append(leg)
         height = y + 3.0
-        head = [f'<?xml version="1.0" encoding="UTF-8"?>',
+        head = ['<?xml version="1.0" encoding="UTF-8"?>',
                 f'<svg xmlns="http://www.w3.org/2000/svg" version="1.1" width="{sym._f(width)}mm" '
                 f'height="{sym._f(height)}mm" viewBox="0 0 {sym._f(width)} {sym._f(height)}" '
                 f'font-family="{FONT}">',
@@ -366,7 +366,7 @@ class Figure:
         return "\n".join(head + out + ["</svg>"]) + "\n"
 
     def _legend(self, y: float, width: float, extra: list[str]) -> tuple[str, float]:
-        parts = [f'<g id="legend" font-size="3">',
+        parts = ['<g id="legend" font-size="3">',
                  f'<line x1="{MARGIN}" y1="{sym._f(y + 1)}" x2="{sym._f(width - MARGIN)}" '
                  f'y2="{sym._f(y + 1)}" stroke="#999" stroke-width="0.2"/>']
         scales = [self.scales.length] + [s for s in (self.scales.velocity, self.scales.acceleration)
