@@ -1,7 +1,6 @@
 """SVG output is valid XML and holds the labelled objects; scales; layers; label placement;
 PNG/PDF from the same SVG; the CLI commands draw and plot."""
 
-import re
 import xml.etree.ElementTree as ET
 
 import numpy as np
