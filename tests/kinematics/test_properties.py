@@ -215,7 +215,7 @@ def test_stephenson_iii_six_bar(text, du, w):
     _check(text, du, w)
 
 
-@settings(max_examples=25, deadline=None,
+@settings(max_examples=15, deadline=None,
           suppress_health_check=[HealthCheck.filter_too_much, HealthCheck.too_slow])
 @given(stephenson_triad(), input_offset.map(lambda x: 0.5 * x), omega)
 def test_stephenson_six_bar_with_a_triad(text, du, w):
