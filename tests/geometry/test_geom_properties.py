@@ -92,7 +92,9 @@ def test_foot_of_perpendicular_minimises_distance(a, b, p, t):
     f = foot_of_perpendicular(P(p), line)
     assert line.contains(f, 1e-9)
     other = f + line.direction * t
-    assert P(p).distance(other) >= P(p).distance(f) * (1 - 1e-12)
+    # rounding of coordinates of size `scale` allows an absolute slack of a few ulps
+    scale = max(1.0, *map(abs, (*a, *b, *p)))
+    assert P(p).distance(other) >= P(p).distance(f) * (1 - 1e-12) - 1e-12 * scale
     assert abs((P(p) - f).dot(line.direction)) <= 1e-9 * max(1.0, P(p).distance(f))
 
 
