@@ -8,13 +8,15 @@ Derivatives: for every group, by linear solves on the group's constraint Jacobia
 Taylor coefficient of the unknown poses enters the k-th coefficient of the constraint residuals
 linearly, J·q⁽ᵏ⁾/k! = −r_k, where r_k comes from evaluating the constraints on jets with the
 unknown coefficient set to zero; so one code path gives velocities, accelerations and jerks.
-The RRR dyad has a hand-written fast path for velocities and accelerations (the hot path of
-four-bars, six-bars and Jansen's linkage).
+The RRR dyad and the revolute driver have hand-written fast paths for velocities and
+accelerations (the hot path of four-bars, six-bars and Jansen's linkage); they work on x and y
+arrays and evaluate each link's cos θ, sin θ and rotated design vectors once (`State.trig`).
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
+from functools import cached_property
 
 import numpy as np
 
@@ -46,11 +48,19 @@ def _angle(v: np.ndarray) -> np.ndarray:
 
 @dataclass
 class State:
-    """Work arrays of a solve: Q[k, n, link, (x, y, θ)] = k-th Taylor coefficient of link poses."""
+    """Work arrays of a solve: Q[k, n, link, (x, y, θ)] = k-th Taylor coefficient of link poses.
+
+    `trig` caches, per link index i, (cos θ, sin θ) under the key i and rotated design vectors
+    R(θ)·s under (i, sx, sy), so that the closed-form groups evaluate each cosine, sine and
+    rotation once (the same operations as before, so the same bits); `set_pose` and
+    `set_pose_xy` keep it up to date, and whoever writes angles into Q by other means must drop
+    the link's entries (`forget_trig`).
+    """
 
     mech: Mechanism
     Q: np.ndarray
     inputs: dict[str, np.ndarray]  # driver joint -> (K+1, N) Taylor coefficients of its input
+    trig: dict = field(default_factory=dict)
 
     @property
     def order(self) -> int:
@@ -59,16 +69,47 @@ class State:
     def li(self, link: str) -> int:
         return self.mech.link_index[link]
 
+    def cs(self, i: int) -> tuple[np.ndarray, np.ndarray]:
+        """(cos θ, sin θ), each (N,), of link index i's angle (cached)."""
+        t = self.trig.get(i)
+        if t is None:
+            th = self.Q[0, :, i, 2]
+            t = self.trig[i] = (np.cos(th), np.sin(th))
+        return t
+
+    def rot(self, i: int, s: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """R(θ)·s for link index i and design vector s, as (x, y) arrays (cached with cs)."""
+        key = (i, float(s[0]), float(s[1]))
+        r = self.trig.get(key)
+        if r is None:
+            c, sn = self.cs(i)
+            r = self.trig[key] = (c * s[0] - sn * s[1], sn * s[0] + c * s[1])
+        return r
+
+    def forget_trig(self, indices=None) -> None:
+        """Drop cached cos/sin and rotated vectors (of the given link indices, or all) after
+        Q[0] changed."""
+        if indices is None:
+            self.trig.clear()
+            return
+        gone = set(indices)
+        for k in [k for k in self.trig if (k[0] if isinstance(k, tuple) else k) in gone]:
+            del self.trig[k]
+
     def world(self, link: str, s: np.ndarray) -> np.ndarray:
         """(N, 2) positions of the point with design coordinates s on `link`."""
-        q = self.Q[0, :, self.li(link)]
-        return q[:, :2] + _rot(q[:, 2], s)
+        i = self.li(link)
+        q = self.Q[0, :, i]
+        c, sn = self.cs(i)
+        return q[:, :2] + np.stack([c * s[0] - sn * s[1], sn * s[0] + c * s[1]], axis=-1)
 
     def point_derivatives(self, link: str, s: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Position, velocity, acceleration (N, 2) of a point fixed in `link`."""
-        q = self.Q[:, :, self.li(link)]
-        th, w, a = q[0, :, 2], q[1, :, 2], 2 * q[2, :, 2]
-        rs = _rot(th, s)
+        i = self.li(link)
+        q = self.Q[:, :, i]
+        w, a = q[1, :, 2], 2 * q[2, :, 2]
+        c, sn = self.cs(i)
+        rs = np.stack([c * s[0] - sn * s[1], sn * s[0] + c * s[1]], axis=-1)
         pos = q[0, :, :2] + rs
         vel = q[1, :, :2] + w[:, None] * _perp(rs)
         acc = 2 * q[2, :, :2] + a[:, None] * _perp(rs) - (w * w)[:, None] * rs
@@ -77,8 +118,75 @@ class State:
     def set_pose(self, link: str, point_w: np.ndarray, s: np.ndarray, theta: np.ndarray) -> None:
         """Place `link` so that its design point s is at point_w and its angle is θ."""
         i = self.li(link)
-        self.Q[0, :, i, :2] = point_w - _rot(theta, s)
+        c, sn = np.cos(theta), np.sin(theta)
+        self.Q[0, :, i, :2] = point_w - np.stack([c * s[0] - sn * s[1], sn * s[0] + c * s[1]],
+                                                 axis=-1)
         self.Q[0, :, i, 2] = theta
+        self.forget_trig([i])
+        self.trig[i] = (c, sn)
+
+    # -------------------------------------------------- component-wise helpers (hot paths)
+    def _frame_still(self, i: int, ok: np.ndarray | None) -> bool:
+        """True when link i is the frame and every sample is assembled: its pose and all its
+        derivatives are then exactly zero (unassembled samples carry NaN instead)."""
+        return i == self.mech.link_index[self.mech.frame] and ok is not None and bool(ok.all())
+
+    def point_xy(self, i: int, s: np.ndarray) -> tuple:
+        """World (x, y) of design point s on link index i, as two (N,) arrays (or the exact
+        scalars s when i is the frame, which positions never move)."""
+        if i == self.mech.link_index[self.mech.frame]:
+            return s[0], s[1]  # Q[0] of the frame is zero until `solve` marks failures
+        rx, ry = self.rot(i, s)
+        q = self.Q[0, :, i]
+        return q[:, 0] + rx, q[:, 1] + ry
+
+    def point_va(self, i: int, s: np.ndarray, ok: np.ndarray | None = None) -> tuple:
+        """Velocity and acceleration (vx, vy, ax, ay) of design point s on link index i."""
+        if self._frame_still(i, ok):
+            return 0.0, 0.0, 0.0, 0.0
+        rx, ry = self.rot(i, s)
+        Q1, Q2 = self.Q[1, :, i], self.Q[2, :, i]
+        w, a = Q1[:, 2], 2 * Q2[:, 2]
+        ww = w * w
+        return (Q1[:, 0] - w * ry, Q1[:, 1] + w * rx,
+                2 * Q2[:, 0] - a * ry - ww * rx, 2 * Q2[:, 1] + a * rx - ww * ry)
+
+    def set_pose_xy(self, i: int, px, py, s: np.ndarray, theta: np.ndarray, c: np.ndarray,
+                    sn: np.ndarray) -> None:
+        """`set_pose` on link index i from components, with cos θ and sin θ already known."""
+        self.forget_trig([i])
+        self.trig[i] = (c, sn)
+        rx, ry = self.rot(i, s)
+        q = self.Q[0, :, i]
+        np.subtract(px, rx, out=q[:, 0])
+        np.subtract(py, ry, out=q[:, 1])
+        q[:, 2] = theta
+
+    def set_rates(self, i: int, s: np.ndarray, vx, vy, ax, ay, om: np.ndarray,
+                  al: np.ndarray) -> None:
+        """Velocity and acceleration coefficients of link index i from the motion (v, a) of its
+        design point s and its angular velocity ω and acceleration α."""
+        rx, ry = self.rot(i, s)
+        Q1, Q2 = self.Q[1, :, i], self.Q[2, :, i]
+        # v_origin = v − ω ⊥r,  a_origin = a − α ⊥r + ω² r  (⊥(x, y) = (−y, x)), written
+        # straight into Q with the operations of the (N, 2) formulation
+        x, y = Q1[:, 0], Q1[:, 1]
+        np.multiply(om, ry, out=x)
+        x += vx
+        np.multiply(om, rx, out=y)
+        np.subtract(vy, y, out=y)
+        Q1[:, 2] = om
+        oo = om * om
+        x, y = Q2[:, 0], Q2[:, 1]
+        np.multiply(al, ry, out=x)
+        x += ax
+        x += oo * rx
+        x *= 0.5
+        np.multiply(al, rx, out=y)
+        np.subtract(ay, y, out=y)
+        y += oo * ry
+        y *= 0.5
+        np.multiply(al, 0.5, out=Q2[:, 2])
 
 
 # ---------------------------------------------------------------------------- jets of poses
@@ -237,6 +345,45 @@ class GroupSolver:
     def __init__(self, mech: Mechanism, group: Group) -> None:
         self.mech, self.group = mech, group
         self.kind, self.parts = _classify(mech, group)
+        self.fast  # noqa: B018  (computed once here; `plan` keeps the solver per mechanism)
+
+    @cached_property
+    def fast(self) -> dict | None:
+        """Per-group constants of the closed-form hot paths (None: the generic path)."""
+        if self.kind == "RRR":
+            return self._rrr_constants()
+        if self.kind == "driver":
+            return self._driver_constants()
+        return None
+
+    def _rrr_constants(self) -> dict:
+        p, P, li = self.parts, self.mech.points, self.mech.link_index
+        A, B, C = P[p["a"].point], P[p["b"].point], P[p["c"].point]
+        L1, L2 = np.hypot(*(B - A)), np.hypot(*(B - C))
+        phi1, phi2 = _angle(B - A), _angle(B - C)
+        return dict(
+            A=A, C=C, BA=B - A, BC=B - C, L1sq=L1 * L1, diff=L1 * L1 - L2 * L2, tol=-1e-12 * L1 * L1,
+            branch=_design_branch(_cross(C - A, B - A)), phi1=phi1, phi2=phi2,
+            i1=li[p["l1"]], i2=li[p["l2"]],
+            iA=li[_other(p["a"], p["l1"])], iC=li[_other(p["c"], p["l2"])])
+
+    def _driver_constants(self) -> dict | None:
+        mech = self.mech
+        (ln,) = self.group.links
+        d: Driver = next(d for d in mech.drivers if d.joint in self.group.drivers)
+        j = mech.joint(d.joint)
+        if isinstance(j, Prismatic):
+            return None
+        H = mech.points[j.point]
+        # The group's Jacobian (hinge rows, driver row) scaled as in `derivatives_generic`:
+        # its singular values depend on |H| only, not on the pose, so the condition number
+        # is the same at every sample: the one at the design position.
+        state = State(mech, np.zeros((2, 1, len(mech.links), 3)),
+                      {dd.joint: np.zeros((2, 1)) for dd in mech.drivers})
+        J = group_jacobian(state, self.group)
+        cond = float(np.linalg.cond(_scaled(J, mech.length_scale))[0])
+        return dict(H=H, joint=d.joint, u0=mech.driver_input_at_design(d),
+                    i=mech.link_index[ln], b=mech.link_index[d.base], cond=cond)
 
     # ------------------------------------------------------------------ positions
     def positions(self, state: State, guess: np.ndarray | None = None) -> np.ndarray:
@@ -256,33 +403,36 @@ class GroupSolver:
             shift = u[:, None] * _rot(theta, j.axis)
             state.Q[0, :, state.li(ln), :2] = base[:, :2] + shift
             state.Q[0, :, state.li(ln), 2] = theta
+            state.forget_trig([state.li(ln)])
         else:
-            theta = base[:, 2] + (u - mech.driver_input_at_design(d))
-            H = mech.points[j.point]
-            state.set_pose(ln, state.world(d.base, H), H, theta)
+            f = self.fast
+            theta = base[:, 2] + (u - f["u0"])
+            H = f["H"]
+            hx, hy = state.point_xy(f["b"], H)
+            state.set_pose_xy(f["i"], hx, hy, H, theta, np.cos(theta), np.sin(theta))
         return np.isfinite(u) & np.isfinite(base).all(axis=1)
 
     def _pos_RRR(self, state: State) -> np.ndarray:
-        p = self.parts
-        P = self.mech.points
-        A, B, C = P[p["a"].point], P[p["b"].point], P[p["c"].point]
-        Aw = state.world(_other(p["a"], p["l1"]), A)
-        Cw = state.world(_other(p["c"], p["l2"]), C)
-        L1, L2 = np.hypot(*(B - A)), np.hypot(*(B - C))
-        branch = _design_branch(_cross(C - A, B - A))
-        d = Cw - Aw
-        D = np.hypot(d[:, 0], d[:, 1])
+        """Circle–circle intersection: the same operations, in the same order, as the (N, 2)
+        formulation, on x and y arrays, with each link's cos θ, sin θ kept for later use."""
+        f = self.fast
+        A, C = f["A"], f["C"]
+        ax, ay = state.point_xy(f["iA"], A)
+        cx, cy = state.point_xy(f["iC"], C)
+        dx, dy = cx - ax, cy - ay
+        D = np.hypot(dx, dy)
         with np.errstate(invalid="ignore", divide="ignore"):
-            a = (L1 * L1 - L2 * L2 + D * D) / (2 * D)
-            h2 = L1 * L1 - a * a
-            h2 = np.where((h2 < 0) & (h2 > -1e-12 * L1 * L1), 0.0, h2)
-            ex = d / D[:, None]
-            Bw = Aw + a[:, None] * ex + (branch * np.sqrt(h2))[:, None] * _perp(ex)
-        th1 = _angle(Bw - Aw) - _angle(B - A)
-        th2 = _angle(Bw - Cw) - _angle(B - C)
-        state.set_pose(p["l1"], Aw, A, th1)
-        state.set_pose(p["l2"], Cw, C, th2)
-        return np.isfinite(Bw).all(axis=1)
+            a = (f["diff"] + D * D) / (2 * D)
+            h2 = f["L1sq"] - a * a
+            h2 = np.where((h2 < 0) & (h2 > f["tol"]), 0.0, h2)
+            ex, ey = dx / D, dy / D
+            h = f["branch"] * np.sqrt(h2)
+            bx, by = (ax + a * ex) - h * ey, (ay + a * ey) + h * ex
+        th1 = np.arctan2(by - ay, bx - ax) - f["phi1"]
+        th2 = np.arctan2(by - cy, bx - cx) - f["phi2"]
+        state.set_pose_xy(f["i1"], ax, ay, A, th1, np.cos(th1), np.sin(th1))
+        state.set_pose_xy(f["i2"], cx, cy, C, th2, np.cos(th2), np.sin(th2))
+        return np.isfinite(bx) & np.isfinite(by)
 
     def _pos_rod_in_slot(self, state: State) -> np.ndarray:
         p = self.parts
@@ -381,42 +531,58 @@ class GroupSolver:
             q[todo] += step.reshape(-1, self.group.size, 3)
         q[~converged] = np.nan
         state.Q[0][:, idx, :] = q
+        state.forget_trig(idx)
         return converged
 
     # ------------------------------------------------------------------ derivatives
     def derivatives(self, state: State, ok: np.ndarray) -> np.ndarray:
         """Fill velocity and acceleration (and jerk) coefficients; return condition numbers."""
-        if self.kind == "RRR" and state.order == 2:
-            return self._der_RRR(state)
+        if state.order == 2 and self.fast is not None:
+            if self.kind == "RRR":
+                return self._der_RRR(state, ok)
+            return self._der_driver(state, ok)
         return derivatives_generic(state, self.group, ok)
 
-    def _der_RRR(self, state: State) -> np.ndarray:
-        p = self.parts
-        P = self.mech.points
-        A, B, C = P[p["a"].point], P[p["b"].point], P[p["c"].point]
-        pA, vA, aA = state.point_derivatives(_other(p["a"], p["l1"]), A)
-        pC, vC, aC = state.point_derivatives(_other(p["c"], p["l2"]), C)
-        i1, i2 = state.li(p["l1"]), state.li(p["l2"])
-        q1, q2 = state.Q[0, :, i1], state.Q[0, :, i2]
-        rA = _rot(q1[:, 2], A)  # A relative to link 1's origin, in world directions
-        rC = _rot(q2[:, 2], C)
-        r1 = _rot(q1[:, 2], B - A)
-        r2 = _rot(q2[:, 2], B - C)
-        c1, c2 = _perp(r1), -_perp(r2)
+    def _der_driver(self, state: State, ok: np.ndarray) -> np.ndarray:
+        """Revolute driver: θ follows the base's angle plus the input; the driven link turns
+        about the hinge H, whose motion is that of H on the base."""
+        f = self.fast
+        i, b = f["i"], f["b"]
+        u = state.inputs[f["joint"]]
+        vx, vy, ax, ay = state.point_va(b, f["H"], ok)
+        om = state.Q[1, :, b, 2] + u[1]
+        al = 2 * (state.Q[2, :, b, 2] + u[2])
+        state.set_rates(i, f["H"], vx, vy, ax, ay, om, al)
+        return np.full(state.Q.shape[1], f["cond"])
+
+    def _der_RRR(self, state: State, ok: np.ndarray) -> np.ndarray:
+        """Velocities and accelerations of an RRR dyad in closed form (Cramer's rule)."""
+        f = self.fast
+        A, C, BA, BC = f["A"], f["C"], f["BA"], f["BC"]
+        i1, i2 = f["i1"], f["i2"]
+        vAx, vAy, aAx, aAy = state.point_va(f["iA"], A, ok)
+        vCx, vCy, aCx, aCy = state.point_va(f["iC"], C, ok)
+        r1x, r1y = state.rot(i1, BA)  # B − A, in world directions
+        r2x, r2y = state.rot(i2, BC)  # B − C
+        # columns of the hinge closure ω1 ⊥r1 − ω2 ⊥r2 = vC − vA:  c1 = ⊥r1, c2 = −⊥r2
+        c1x, c1y, c2x, c2y = -r1y, r1x, r2y, -r2x
         with np.errstate(invalid="ignore", divide="ignore"):
-            det = _cross(c1, c2)
-            # ω1 ⊥r1 − ω2 ⊥r2 = vC − vA  (closure of the hinge B), Cramer's rule
-            w = vC - vA
-            om1, om2 = _cross(w, c2) / det, _cross(c1, w) / det
-            w2 = aC - aA + (om1 * om1)[:, None] * r1 - (om2 * om2)[:, None] * r2
-            al1, al2 = _cross(w2, c2) / det, _cross(c1, w2) / det
-            a_, b_, cc = (c1 * c1).sum(1), (c1 * c2).sum(1), (c2 * c2).sum(1)
-            mid, rad = 0.5 * (a_ + cc), np.sqrt((0.5 * (a_ - cc)) ** 2 + b_ * b_)
+            det = c1x * c2y - c1y * c2x
+            wx, wy = vCx - vAx, vCy - vAy
+            om1 = (wx * c2y - wy * c2x) / det
+            om2 = (c1x * wy - c1y * wx) / det
+            o1, o2 = om1 * om1, om2 * om2
+            w2x = aCx - aAx + o1 * r1x - o2 * r2x
+            w2y = aCy - aAy + o1 * r1y - o2 * r2y
+            al1 = (w2x * c2y - w2y * c2x) / det
+            al2 = (c1x * w2y - c1y * w2x) / det
+            a_ = c1x * c1x + c1y * c1y
+            b_ = c1x * c2x + c1y * c2y
+            cc = c2x * c2x + c2y * c2y
+            mid = 0.5 * (a_ + cc)
+            hd = 0.5 * (a_ - cc)
+            rad = np.sqrt(hd * hd + b_ * b_)
             cond = np.sqrt((mid + rad) / (mid - rad))
-        for i, rs, v, a, om, al in ((i1, rA, vA, aA, om1, al1), (i2, rC, vC, aC, om2, al2)):
-            Q1, Q2 = state.Q[1, :, i], state.Q[2, :, i]
-            Q1[:, :2] = v - om[:, None] * _perp(rs)
-            Q1[:, 2] = om
-            Q2[:, :2] = 0.5 * (a - al[:, None] * _perp(rs) + (om * om)[:, None] * rs)
-            Q2[:, 2] = 0.5 * al
+        state.set_rates(i1, A, vAx, vAy, aAx, aAy, om1, al1)
+        state.set_rates(i2, C, vCx, vCy, aCx, aCy, om2, al2)
         return np.where(np.isfinite(cond), cond, np.inf)

@@ -20,12 +20,20 @@ from .groups import SINGULAR_CONDITION, GroupSolver, State
 from .solution import Solution, Status
 
 CONTINUATION_STEP = np.radians(2.0)
+BLOCK = 8192  # samples per block when every group has a closed form
 
 
 @lru_cache(maxsize=64)
 def plan(mech: Mechanism) -> tuple[GroupSolver, ...]:
     """The group solvers of `mech` in solution order (computed once per mechanism)."""
     return tuple(GroupSolver(mech, g) for g in solution_order(mech))
+
+
+def _pose_array(order: int, N: int, n_links: int) -> np.ndarray:
+    """Zeroed Q[k, n, link, (x, y, θ)], stored with the sample axis last in memory, so that
+    every Q[k, :, link, c] the group solvers and `Solution` work on is contiguous (a C-ordered
+    array would make each of them a strided walk over all of Q[k]). Same shape and values."""
+    return np.zeros((order + 1, n_links, 3, N)).transpose(0, 3, 1, 2)
 
 
 def _input_coefficients(mech: Mechanism, values: np.ndarray, rates: np.ndarray | None,
@@ -92,21 +100,33 @@ def solve(mech: Mechanism, inputs=None, *, times=None, velocities=None, accelera
         jerks = _as_2d(jerks, nd, "jerks")
     N = values.shape[0]
     solvers = plan(mech)
-    state = State(mech, np.zeros((order + 1, N, len(mech.links), 3)),
-                  _input_coefficients(mech, values, velocities, accelerations, jerks, order))
-    guesses = _continuation_guesses(mech, solvers, values) \
-        if any(s.kind == "generic" for s in solvers) else {}
+    Q = _pose_array(order, N, len(mech.links))
+    inputs = _input_coefficients(mech, values, velocities, accelerations, jerks, order)
+    generic = any(s.kind == "generic" for s in solvers)
+    guesses = _continuation_guesses(mech, solvers, values) if generic else {}
     assembled = np.ones(N, dtype=bool)
-    for s in solvers:
-        assembled &= s.positions(state, guesses.get(s.group))
-    state.Q[:, ~assembled] = np.nan
     condition = np.ones(N)
-    for s in solvers:
-        condition = np.maximum(condition, s.derivatives(state, assembled))
+    # Closed-form groups work sample by sample, so the samples are solved in blocks whose
+    # temporaries stay in the CPU cache (same operations per sample, same results); the
+    # Newton path keeps one batch.
+    block = max(N, 1) if generic else BLOCK
+    for lo in range(0, N, block):
+        sl = slice(lo, lo + block)
+        state = State(mech, Q[:, sl], {j: c[:, sl] for j, c in inputs.items()})
+        ok = assembled[sl]  # a view: updated in place
+        for s in solvers:
+            g = guesses.get(s.group)
+            ok &= s.positions(state, None if g is None else g[sl])
+        if not ok.all():
+            state.Q[:, ~ok] = np.nan
+            state.forget_trig()
+        cond = condition[sl]
+        for s in solvers:
+            np.maximum(cond, s.derivatives(state, ok), out=cond)
     status = np.where(assembled, np.where(condition > SINGULAR_CONDITION, Status.SINGULAR, Status.OK),
                       Status.UNREACHABLE).astype(np.int8)
     condition = np.where(assembled, condition, np.nan)
-    return Solution(mech, values, t, state.Q, status, condition)
+    return Solution(mech, values, t, Q, status, condition)
 
 
 def _continuation_guesses(mech: Mechanism, solvers, values: np.ndarray) -> dict:
