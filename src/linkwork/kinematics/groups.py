@@ -509,6 +509,7 @@ class GroupSolver:
         scale = self.mech.length_scale
         active = np.isfinite(q).all(axis=(1, 2)) & np.isfinite(state.Q[0]).all(axis=(1, 2))
         converged = np.zeros(N, dtype=bool)
+        polished = np.zeros(N, dtype=bool)
         q[~active] = 0.0
         for _ in range(50):
             state.Q[0][:, idx, :] = q
@@ -517,14 +518,17 @@ class GroupSolver:
             r = np.stack([x.c[0][:, 0] for x in res], axis=1)
             err = np.abs(r).max(axis=1)
             converged = active & (err <= NEWTON_TOL * scale)
-            todo = active & ~converged
+            todo = active & ~(converged & polished)
             if not todo.any():
                 break
+            # a converged sample takes one more step: Newton's quadratic convergence then leaves
+            # only rounding, which the acceleration solve needs (its error scales with it)
+            polished |= converged
             J = group_jacobian(state, self.group)
             try:
                 step = np.linalg.solve(J[todo], -r[todo][..., None])[..., 0]
-            except np.linalg.LinAlgError:
-                step = np.linalg.lstsq(J[todo][0], -r[todo][0], rcond=None)[0][None]
+            except np.linalg.LinAlgError:  # a singular sample in the batch: least squares
+                step = (np.linalg.pinv(J[todo]) @ -r[todo][..., None])[..., 0]
             # damp steps that would turn a link by more than a radian: keeps the branch
             big = np.abs(step[:, 2::3]).max(axis=1, initial=0.0)
             step *= np.minimum(1.0, 1.0 / np.maximum(big, 1e-300))[:, None]
