@@ -101,24 +101,40 @@ class Solution:
             raise ModelError(f"mechanism '{self.mechanism.name}' has no link '{link}'") from None
 
     # ------------------------------------------------------------------ points
+    def _trig(self, link: str) -> tuple[np.ndarray, np.ndarray]:
+        """cos θ, sin θ of `link` at every sample, computed once per link."""
+        cache = self.__dict__.setdefault("_trig_cache", {})
+        if link not in cache:
+            th = self.pose_derivatives(link)[0, :, 2]
+            cache[link] = (np.cos(th), np.sin(th))
+        return cache[link]
+
     def point_on(self, link: str, s) -> PointMotion:
         """Motion of the point with design coordinates `s` carried by `link` (s may be (2,) or
         (N, 2) to follow a moving material point of the link, e.g. a coincident point)."""
         s = np.asarray(s, dtype=float)
         D = self.pose_derivatives(link)
-        th, w = D[0, :, 2], D[1, :, 2]
-        r = _rot(th, s)
-        pos = D[0, :, :2] + r
-        vel = D[1, :, :2] + w[:, None] * _perp(r)
+        c, sn = self._trig(link)
+        sx, sy = s[..., 0], s[..., 1]
+        rx, ry = c * sx - sn * sy, sn * sx + c * sy  # R(θ)s, and ⊥R(θ)s = (−ry, rx)
+        w = D[1, :, 2]
+
+        def combine(k: int, along: np.ndarray, across: np.ndarray) -> np.ndarray:
+            # D_k(t) + across·⊥r + along·r, written column by column (no stacked temporaries)
+            out = np.empty((len(c), 2))
+            out[:, 0] = D[k, :, 0] + along * rx - across * ry
+            out[:, 1] = D[k, :, 1] + along * ry + across * rx
+            return out
+
+        pos = combine(0, 1.0, 0.0)
+        vel = combine(1, 0.0, w)
         acc = jerk = None
         if self.order >= 2:
             a = D[2, :, 2]
-            acc = D[2, :, :2] + a[:, None] * _perp(r) - (w * w)[:, None] * r
+            acc = combine(2, -w * w, a)
             if self.order >= 3:
-                j = D[3, :, 2]
                 # d/dt of a: ẗ' + j ⊥r + α ⊥(ω ⊥r) − 2ωα r − ω² ω ⊥r
-                jerk = (D[3, :, :2] + j[:, None] * _perp(r) - (3 * w * a)[:, None] * r
-                        - (w ** 3)[:, None] * _perp(r))
+                jerk = combine(3, -3 * w * a, D[3, :, 2] - w ** 3)
         return PointMotion(pos, vel, acc, jerk)
 
     def point(self, name: str) -> PointMotion:
