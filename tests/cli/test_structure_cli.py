@@ -7,6 +7,7 @@ import pytest
 from typer.testing import CliRunner
 
 from linkwork.cli import app
+from mechanism_texts import TRIPLE_PARALLEL_CRANKS
 
 runner = CliRunner()
 
@@ -41,32 +42,6 @@ def test_inversion_name_in_the_json():
     assert lp["inversion"] == "II" and "schwingende Kurbelschleife" in lp["name"]
 
 
-OVERCLOSED = """
-name = "triple parallel cranks"
-[points]
-O1 = [0, 0]
-O2 = [20, 0]
-O3 = [40, 0]
-A1 = [5, 10]
-A2 = [25, 10]
-A3 = [45, 10]
-[links]
-frame = ["O1", "O2", "O3"]
-c1 = ["O1", "A1"]
-c2 = ["O2", "A2"]
-c3 = ["O3", "A3"]
-coupler = ["A1", "A2", "A3"]
-[joints]
-O1 = { type = "revolute", links = ["frame", "c1"] }
-O2 = { type = "revolute", links = ["frame", "c2"] }
-O3 = { type = "revolute", links = ["frame", "c3"] }
-A1 = { type = "revolute", links = ["c1", "coupler"] }
-A2 = { type = "revolute", links = ["c2", "coupler"] }
-A3 = { type = "revolute", links = ["c3", "coupler"] }
-[driver]
-joint = "O1"
-"""
-
 FIVE_BAR = """
 name = "five-bar"
 [points]
@@ -94,7 +69,7 @@ joint = "O1"
 
 def test_over_closed_mechanism_is_reported_not_refused(tmp_path):
     f = tmp_path / "triple.toml"
-    f.write_text(OVERCLOSED)
+    f.write_text(TRIPLE_PARALLEL_CRANKS)
     r = run("structure", str(f), "--format", "json")
     assert r.exit_code == 0, r.output
     doc = json.loads(r.output)

@@ -8,6 +8,7 @@ from linkwork.errors import StructureError
 from linkwork.io.files import resolve
 from linkwork.structure import assur_groups, mechanism_class, solution_order
 from linkwork.structure.assur import dyad_type
+from mechanism_texts import SCOTCH_YOKE, TRIPLE_PARALLEL_CRANKS
 
 
 def test_dyad_type_reads_either_way():
@@ -70,26 +71,6 @@ def test_roemer_mechanism_has_a_triad_and_a_gear_dyad():
     assert (triad.kind, triad.assur_class, triad.order) == ("triad", 3, 3)
     assert mechanism_class(groups) == 3
 
-
-SCOTCH_YOKE = """
-name = "Scotch yoke"
-[points]
-O = [0, 0]
-A = [10, 0]
-Y = [10, 20]
-[links]
-frame = ["O"]
-crank = ["O", "A"]
-block = ["A"]
-yoke  = ["Y"]
-[joints]
-O     = { type = "revolute", links = ["frame", "crank"] }
-A     = { type = "revolute", links = ["crank", "block"] }
-slot  = { type = "prismatic", links = ["yoke", "block"], axis = [0, 1], point = "A" }
-guide = { type = "prismatic", links = ["frame", "yoke"], axis = [1, 0], point = "Y" }
-[driver]
-joint = "O"
-"""
 
 TANGENT = """
 name = "tangent mechanism"
@@ -258,34 +239,7 @@ def test_driver_between_moving_links_gives_a_driven_group():
     assert mechanism_class(groups) is None
 
 
-TRIPLE = """
-name = "triple parallel cranks"
-[points]
-O1 = [0, 0]
-O2 = [20, 0]
-O3 = [40, 0]
-A1 = [5, 10]
-A2 = [25, 10]
-A3 = [45, 10]
-[links]
-frame = ["O1", "O2", "O3"]
-c1 = ["O1", "A1"]
-c2 = ["O2", "A2"]
-c3 = ["O3", "A3"]
-coupler = ["A1", "A2", "A3"]
-[joints]
-O1 = { type = "revolute", links = ["frame", "c1"] }
-O2 = { type = "revolute", links = ["frame", "c2"] }
-O3 = { type = "revolute", links = ["frame", "c3"] }
-A1 = { type = "revolute", links = ["c1", "coupler"] }
-A2 = { type = "revolute", links = ["c2", "coupler"] }
-A3 = { type = "revolute", links = ["c3", "coupler"] }
-[driver]
-joint = "O1"
-"""
-
-
 def test_over_constrained_mechanism_has_no_groups():
     # the third parallel crank repeats the others' constraint (001c §101): no solution order
     with pytest.raises(StructureError):
-        assur_groups(linkwork.load_text(TRIPLE))
+        assur_groups(linkwork.load_text(TRIPLE_PARALLEL_CRANKS))

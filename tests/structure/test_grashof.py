@@ -11,6 +11,7 @@ import linkwork
 from linkwork.errors import StructureError
 from linkwork.kinematics.motion import input_limits, whole_motion
 from linkwork.structure import classify_four_bar, classify_slider_crank, four_bar_transmission, loops
+from mechanism_texts import SCOTCH_YOKE
 
 # ---------------------------------------------------------------------------- four-bar classes
 # (frame, input, coupler, output) → (Grashof, type); s + l against p + q worked by hand
@@ -366,27 +367,6 @@ def test_piston_driven_engine_limits_are_the_dead_centres():
 
 
 # ---------------------------------------------------------------------------- two sliders
-SCOTCH_YOKE = """
-name = "Scotch yoke"
-[points]
-O = [0, 0]
-A = [10, 0]
-Y = [10, 20]
-[links]
-frame = ["O"]
-crank = ["O", "A"]
-block = ["A"]
-yoke  = ["Y"]
-[joints]
-O     = { type = "revolute", links = ["frame", "crank"] }
-A     = { type = "revolute", links = ["crank", "block"] }
-slot  = { type = "prismatic", links = ["yoke", "block"], axis = [0, 1], point = "A" }
-guide = { type = "prismatic", links = ["frame", "yoke"], axis = [1, 0], point = "Y" }
-[driver]
-joint = "O"
-"""
-
-
 def test_two_slider_chains_are_named():
     # both sliders on the frame: the elliptic trammel (Kreuzschieber); both on the yoke: the
     # Scotch yoke (Kreuzschleife) — Rosenauer's adjacent sliders, basic task V (001c §78)

@@ -15,6 +15,7 @@ from linkwork.io.files import library_names
 from linkwork.structure import chain_counts, counts, mobility
 from linkwork.structure.mobility import (grubler_constrained, kutzbach, link_types,
                                          structure_report)
+from mechanism_texts import TRIPLE_PARALLEL_CRANKS
 
 # ---------------------------------------------------------------------------- the seeds' counts
 # (name, counts, h + 2z − 3n + 4 − γ as the seed evaluates it, where it comes from)
@@ -231,33 +232,6 @@ def test_six_bars_have_four_binary_and_two_ternary_links():
 
 
 # ---------------------------------------------------------------------------- real mobility
-TRIPLE_PARALLEL_CRANKS = """
-name = "triple parallel cranks"
-description = "Rosenauer's trijparallēlkloķu ķēde (Fig. 287): three equal parallel cranks"
-[points]
-O1 = [0, 0]
-O2 = [20, 0]
-O3 = [40, 0]
-A1 = [5, 10]
-A2 = [25, 10]
-A3 = [45, 10]
-[links]
-frame = ["O1", "O2", "O3"]
-c1 = ["O1", "A1"]
-c2 = ["O2", "A2"]
-c3 = ["O3", "A3"]
-coupler = ["A1", "A2", "A3"]
-[joints]
-O1 = { type = "revolute", links = ["frame", "c1"] }
-O2 = { type = "revolute", links = ["frame", "c2"] }
-O3 = { type = "revolute", links = ["frame", "c3"] }
-A1 = { type = "revolute", links = ["c1", "coupler"] }
-A2 = { type = "revolute", links = ["c2", "coupler"] }
-A3 = { type = "revolute", links = ["c3", "coupler"] }
-[driver]
-joint = "O1"
-"""
-
 ROBERVAL = """
 name = "Roberval balance"
 description = "two beams pivoted one above the other on the post, pan posts hinged to their ends"
