@@ -17,10 +17,11 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from functools import cached_property
+from math import factorial
 
 import numpy as np
 
-from ..model import Driver, Mechanism, Prismatic, Revolute, Slot
+from ..model import ConstantSpeed, Driver, Mechanism, Prismatic, Revolute, Slot
 from ..structure import Group
 from .constraints import driver_residual, joint_residuals
 from .jet import Jet
@@ -187,6 +188,26 @@ class State:
         y += oo * ry
         y *= 0.5
         np.multiply(al, 0.5, out=Q2[:, 2])
+
+
+def input_coefficients(mech: Mechanism, values: np.ndarray, rates: np.ndarray | None,
+                        accels: np.ndarray | None, jerks: np.ndarray | None,
+                        order: int) -> dict[str, np.ndarray]:
+    """Per driver joint, the (order+1, N) Taylor coefficients of its input (values, rates,
+    accelerations and jerks given per sample; a constant-speed law supplies the rate)."""
+    out = {}
+    for i, d in enumerate(mech.drivers):
+        der = np.zeros((order + 1, values.shape[0]))
+        der[0] = values[:, i]
+        extra = [rates, accels, jerks]
+        for k in range(1, order + 1):
+            given = extra[k - 1]
+            if given is not None:
+                der[k] = given[:, i]
+            elif k == 1 and isinstance(d.law, ConstantSpeed):
+                der[k] = d.law.speed
+        out[d.joint] = der / np.array([factorial(k) for k in range(order + 1)])[:, None]
+    return out
 
 
 # ---------------------------------------------------------------------------- jets of poses

@@ -2,24 +2,23 @@
 
 The solution order comes from `linkwork.structure.solution_order`; each group is solved for the
 whole batch by `groups.GroupSolver`. Groups without a closed form get their Newton starting
-values by continuation from the design position along the inputs (a short sequential march on
-a coarse grid, then one batched Newton solve at the samples).
+values from `continuation` (a short sequential march on a coarse grid from the design position,
+then one batched Newton solve at the samples).
 """
 
 from __future__ import annotations
 
 from functools import lru_cache
-from math import factorial
 
 import numpy as np
 
 from ..errors import InputError
 from ..model import ConstantSpeed, Mechanism
 from ..structure import solution_order
-from .groups import SINGULAR_CONDITION, GroupSolver, State
+from .continuation import continuation_guesses
+from .groups import SINGULAR_CONDITION, GroupSolver, State, input_coefficients
 from .solution import Solution, Status
 
-CONTINUATION_STEP = np.radians(2.0)
 BLOCK = 8192  # samples per block when every group has a closed form
 
 
@@ -34,25 +33,6 @@ def _pose_array(order: int, N: int, n_links: int) -> np.ndarray:
     every Q[k, :, link, c] the group solvers and `Solution` work on is contiguous (a C-ordered
     array would make each of them a strided walk over all of Q[k]). Same shape and values."""
     return np.zeros((order + 1, n_links, 3, N)).transpose(0, 3, 1, 2)
-
-
-def _input_coefficients(mech: Mechanism, values: np.ndarray, rates: np.ndarray | None,
-                        accels: np.ndarray | None, jerks: np.ndarray | None,
-                        order: int) -> dict[str, np.ndarray]:
-    """Per driver, the (order+1, N) Taylor coefficients of its input."""
-    out = {}
-    for i, d in enumerate(mech.drivers):
-        der = np.zeros((order + 1, values.shape[0]))
-        der[0] = values[:, i]
-        extra = [rates, accels, jerks]
-        for k in range(1, order + 1):
-            given = extra[k - 1]
-            if given is not None:
-                der[k] = given[:, i]
-            elif k == 1 and isinstance(d.law, ConstantSpeed):
-                der[k] = d.law.speed
-        out[d.joint] = der / np.array([factorial(k) for k in range(order + 1)])[:, None]
-    return out
 
 
 def _as_2d(a, n_drivers: int, name: str) -> np.ndarray | None:
@@ -101,9 +81,9 @@ def solve(mech: Mechanism, inputs=None, *, times=None, velocities=None, accelera
     N = values.shape[0]
     solvers = plan(mech)
     Q = _pose_array(order, N, len(mech.links))
-    inputs = _input_coefficients(mech, values, velocities, accelerations, jerks, order)
+    inputs = input_coefficients(mech, values, velocities, accelerations, jerks, order)
     generic = any(s.kind == "generic" for s in solvers)
-    guesses = _continuation_guesses(mech, solvers, values) if generic else {}
+    guesses = continuation_guesses(mech, solvers, values) if generic else {}
     assembled = np.ones(N, dtype=bool)
     condition = np.ones(N)
     # Closed-form groups work sample by sample, so the samples are solved in blocks whose
@@ -127,59 +107,3 @@ def solve(mech: Mechanism, inputs=None, *, times=None, velocities=None, accelera
                       Status.UNREACHABLE).astype(np.int8)
     condition = np.where(assembled, condition, np.nan)
     return Solution(mech, values, t, Q, status, condition)
-
-
-def _continuation_guesses(mech: Mechanism, solvers, values: np.ndarray) -> dict:
-    """Newton starting poses of the generic groups at every sample, by continuation."""
-    design = np.array([mech.driver_input_at_design(d) for d in mech.drivers])
-    if values.shape[1] == 1:
-        lo, hi = min(values[:, 0].min(), design[0]), max(values[:, 0].max(), design[0])
-        step = CONTINUATION_STEP if not _prismatic(mech) else 0.01 * mech.length_scale
-        up = np.append(np.arange(design[0], hi, step), hi)
-        down = np.append(np.arange(design[0], lo, -step), lo)
-        branches = [_march(mech, solvers, up[:, None]), _march(mech, solvers, down[:, None])]
-        guesses = {}
-        for s in solvers:
-            if s.kind != "generic":
-                continue
-            g = np.full((values.shape[0], s.group.size, 3), np.nan)
-            for path, poses in zip((up, down), branches):
-                sel = (values[:, 0] >= path.min()) & (values[:, 0] <= path.max())
-                order = np.argsort(path)
-                P = poses[s.group][order]
-                for k in range(s.group.size):
-                    for c in range(3):
-                        g[sel, k, c] = np.interp(values[sel, 0], path[order], P[:, k, c])
-            guesses[s.group] = g
-        return guesses
-    # several drivers: march through the samples in their order
-    path = np.vstack([design[None], values])
-    poses = _march(mech, solvers, path)
-    return {s.group: poses[s.group][1:] for s in solvers if s.kind == "generic"}
-
-
-def _prismatic(mech: Mechanism) -> bool:
-    return mech.joint(mech.drivers[0].joint).kind == "prismatic"
-
-
-def _march(mech: Mechanism, solvers, path: np.ndarray) -> dict:
-    """Solve positions along `path` (M, drivers) one point after another, each Newton solve
-    starting from the previous point's poses; stops where the chain cannot assemble."""
-    M = path.shape[0]
-    out = {s.group: np.full((M, s.group.size, 3), np.nan) for s in solvers if s.kind == "generic"}
-    prev = {g: np.zeros((1, g.size, 3)) for g in out}
-    for m in range(M):
-        state = State(mech, np.zeros((2, 1, len(mech.links), 3)),
-                      _input_coefficients(mech, path[m:m + 1], None, None, None, 1))
-        ok = True
-        for s in solvers:
-            ok = ok and bool(s.positions(state, prev.get(s.group))[0])
-            if not ok:
-                break
-            if s.group in out:
-                q = state.Q[0][0, [state.li(ln) for ln in s.group.links]]
-                out[s.group][m] = q
-                prev[s.group] = q[None]
-        if not ok:
-            break
-    return out
