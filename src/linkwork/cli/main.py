@@ -20,8 +20,8 @@ from rich.table import Table
 from ..io.files import library_names, resolve
 from ..io.schema import MechanismFile
 from ..kinematics import Solution, Status, solve, whole_motion
-from ..units import parse_quantity
-from .common import input_values, load_mechanism, user_errors, write_output
+from ..errors import InputError
+from .common import input_speeds, input_values, load_mechanism, show_input, user_errors, write_output
 
 app = typer.Typer(add_completion=False, no_args_is_help=True, pretty_exceptions_enable=False,
                   help="Kinematics of planar mechanisms: exact solutions, poles and curvature, "
@@ -37,45 +37,41 @@ class Format(str, Enum):
     csv = "csv"
 
 
-def _solve_with_progress(mech, kind: str, values: np.ndarray, speed: float | None) -> Solution:
-    """Solve in chunks under a Rich progress bar when there are many samples."""
+def _solve_with_progress(mech, kind: str, values: np.ndarray, speeds: np.ndarray | None) -> Solution:
+    """Solve in chunks under a Rich progress bar when there are many samples. `values` are
+    times (N,) or inputs (N, drivers); `speeds` the input speed of each driver (None: the file's)."""
     def one(v):
         if kind == "time":
             return solve(mech, times=v)
-        vel = None if speed is None else np.full(v.shape, speed)
+        vel = None if speeds is None else np.broadcast_to(speeds, v.shape).copy()
         return solve(mech, v, velocities=vel)
 
-    if values.size <= CHUNK:
+    n = len(values)
+    if n <= CHUNK:
         return one(values)
     parts = []
     with Progress(console=Console(stderr=True), transient=True) as bar:
-        task = bar.add_task("solving", total=values.size)
-        for i in range(0, values.size, CHUNK):
+        task = bar.add_task("solving", total=n)
+        for i in range(0, n, CHUNK):
             parts.append(one(values[i:i + CHUNK]))
-            bar.advance(task, min(CHUNK, values.size - i))
-    return _concat(parts)
-
-
-def _concat(parts: list[Solution]) -> Solution:
-    first = parts[0]
-    from math import factorial
-    D = np.concatenate([p._D for p in parts], axis=1)
-    coeff = D / np.array([factorial(k) for k in range(D.shape[0])])[:, None, None, None]
-    time = None if first.time is None else np.concatenate([p.time for p in parts])
-    return Solution(first.mechanism, np.concatenate([p.inputs for p in parts]), time, coeff,
-                    np.concatenate([p.status for p in parts]),
-                    np.concatenate([p.condition for p in parts]))
+            bar.advance(task, min(CHUNK, n - i))
+    return Solution.concatenate(parts)
 
 
 def _table(sol: Solution) -> str:
     mech = sol.mechanism
     out = Console(record=True, width=160, file=open("/dev/null", "w"))
     unit = mech.length_unit
-    prismatic = mech.joint(mech.drivers[0].joint).kind == "prismatic"
-    show = (lambda v: f"{v:.4g} {unit}") if prismatic else (lambda v: f"{np.degrees(v):.3f}°")
+    single = len(mech.drivers) == 1
+
+    def inputs(n: int) -> str:
+        if single:
+            return show_input(mech, mech.drivers[0], sol.inputs[n, 0])
+        return ", ".join(f"{d.joint} {show_input(mech, d, v)}" for d, v in zip(mech.drivers, sol.inputs[n]))
+
     if len(sol) <= 4:
         for n in range(len(sol)):
-            inp = ", ".join(show(v) for v in sol.inputs[n])
+            inp = inputs(n)
             t = Table(title=f"{mech.name} — input {inp} — {Status(int(sol.status[n]))}, "
                             f"condition {sol.condition[n]:.3g}")
             for c in ("point", f"x [{unit}]", "y", f"vx [{unit}/s]", "vy", f"ax [{unit}/s²]", "ay"):
@@ -93,14 +89,16 @@ def _table(sol: Solution) -> str:
             out.print(t)
     else:
         t = Table(title=f"{mech.name}: {len(sol)} samples (ω in rad/s, α in rad/s²)")
-        t.add_column("input", justify="right")
+        for d in mech.drivers:
+            t.add_column("input" if single else f"input {d.joint}", justify="right")
         t.add_column("status")
         for ln in mech.moving_links:
             t.add_column(f"ω {ln}", justify="right")
             t.add_column(f"α {ln}", justify="right")
         links = {ln: sol.link(ln) for ln in mech.moving_links}
         for n in range(len(sol)):
-            row = [show(sol.inputs[n, 0]), str(Status(int(sol.status[n])))]
+            row = [show_input(mech, d, v) for d, v in zip(mech.drivers, sol.inputs[n])]
+            row.append(str(Status(int(sol.status[n]))))
             for m in links.values():
                 row += [f"{m.omega[n]:.5g}", f"{m.alpha[n]:.5g}"]
             t.add_row(*row)
@@ -111,9 +109,9 @@ def _table(sol: Solution) -> str:
 @app.command()
 def analyze(
     mechanism: str = typer.Argument(..., help="a mechanism file, or library:NAME"),
-    at: Optional[str] = typer.Option(None, "--at", help="input values V[,V…]: degrees (revolute) or the file's length unit (prismatic) unless a unit is written, e.g. 1.2rad or 0.5s"),
-    sweep: Optional[str] = typer.Option(None, "--sweep", help="START:STOP:STEP in the same units"),
-    speed: Optional[str] = typer.Option(None, "--speed", help="driver speed, e.g. '120 rpm' (overrides the file)"),
+    at: Optional[list[str]] = typer.Option(None, "--at", help="input values V[,V…]: degrees (revolute) or the file's length unit (prismatic) unless a unit is written, e.g. 1.2rad, or times (0.5s). Several drivers: NAME=V[,V…] for each driver (repeat --at or separate by commas), e.g. --at O2=30,60 --at O5=10,20; the drivers move in lock-step, a driver with one value is held at it"),
+    sweep: Optional[list[str]] = typer.Option(None, "--sweep", help="START:STOP:STEP in the same units. Several drivers: NAME=START:STOP:STEP per driver (repeat --sweep; may be combined with --at NAME=V to hold a driver), lock-step: equal numbers of samples"),
+    speed: Optional[list[str]] = typer.Option(None, "--speed", help="driver speed, e.g. '120 rpm' (overrides the file). Several drivers: NAME=Q per driver; the others keep the file's"),
     fmt: Format = typer.Option(Format.table, "--format", help="table, json or csv"),
     output: Optional[str] = typer.Option(None, "-o", "--output", help="write to this file instead of stdout"),
 ) -> None:
@@ -124,13 +122,18 @@ def analyze(
     """
     with user_errors():
         mech = load_mechanism(mechanism)
-        w = None
-        if speed is not None:
-            prism = mech.joint(mech.drivers[0].joint).kind == "prismatic"
-            w = parse_quantity(speed, default_unit=f"{mech.length_unit}/s" if prism else "rad/s",
-                               kind="speed")
+        w = input_speeds(mech, speed)
         asked = input_values(mech, at, sweep)
-        sol = whole_motion(mech, speed=w) if asked is None else _solve_with_progress(mech, *asked, w)
+        if w is not None and asked is not None and asked[0] == "time":
+            raise InputError("--speed sets the input speed at input values; at times each "
+                             "driver's law gives its speed (drop --speed or give input values)")
+        if asked is None:
+            if w is not None and len(mech.drivers) != 1:
+                raise InputError("--speed with several drivers needs --at or --sweep: the whole "
+                                 "motion follows the drivers' time laws")
+            sol = whole_motion(mech, speed=None if w is None else float(w[0]))
+        else:
+            sol = _solve_with_progress(mech, *asked, w)
         if fmt is Format.json:
             text = json.dumps(sol.to_document(), indent=1) + "\n"
         elif fmt is Format.csv:

@@ -36,6 +36,38 @@ def _rot(theta: np.ndarray, s: np.ndarray) -> np.ndarray:
     return np.stack([c * s[..., 0] - sn * s[..., 1], sn * s[..., 0] + c * s[..., 1]], axis=-1)
 
 
+BLOCK = 8192  # samples per block of point reads
+
+
+def _point_block(D: np.ndarray, c: np.ndarray, sn: np.ndarray, sx, sy, out: np.ndarray) -> None:
+    """Derivatives of the point s = (sx, sy) fixed in a link with pose derivatives D[k, n, (x,
+    y, θ)] into out[k, x|y, n]: r = R(θ)s, v = ṫ + ω ⊥r, a = ẗ + α ⊥r − ω² r, and the jerk."""
+    rx = c * sx
+    rx -= sn * sy
+    ry = sn * sx
+    ry += c * sy  # r = R(θ)s;  ⊥r = (−ry, rx)
+    np.add(D[0, :, 0], rx, out=out[0, 0])
+    np.add(D[0, :, 1], ry, out=out[0, 1])
+    w = D[1, :, 2]
+    np.subtract(D[1, :, 0], w * ry, out=out[1, 0])
+    np.add(D[1, :, 1], w * rx, out=out[1, 1])
+    if D.shape[0] > 2:
+        a, ww = D[2, :, 2], w * w
+        x, y = out[2]
+        np.subtract(D[2, :, 0], a * ry, out=x)
+        x -= ww * rx
+        np.add(D[2, :, 1], a * rx, out=y)
+        y -= ww * ry
+    if D.shape[0] > 3:
+        # d/dt of the acceleration: ⃛t + (j − ω³) ⊥r − 3ωα r
+        jt, wa = D[3, :, 2] - w ** 3, 3 * w * D[2, :, 2]
+        x, y = out[3]
+        np.subtract(D[3, :, 0], jt * ry, out=x)
+        x -= wa * rx
+        np.add(D[3, :, 1], jt * rx, out=y)
+        y -= wa * ry
+
+
 @dataclass(frozen=True)
 class PointMotion:
     """Position, velocity, acceleration (and jerk when solved to third order), each (N, 2)."""
@@ -60,16 +92,39 @@ class Solution:
     """Kinematics of `mechanism` at N samples. Index a point, link or pair by name."""
 
     def __init__(self, mechanism: Mechanism, inputs: np.ndarray, time: np.ndarray | None,
-                 coefficients: np.ndarray, status: np.ndarray, condition: np.ndarray) -> None:
+                 derivatives: np.ndarray, status: np.ndarray, condition: np.ndarray, *,
+                 trig: tuple[np.ndarray, np.ndarray] | None = None) -> None:
+        """`derivatives` D[k, n, link, (x, y, θ)]: the k-th time derivative (k = 0 … order) of
+        every link's pose; `trig`: (cos θ, sin θ) of every link, each (N, links), when the
+        solver has them already (else computed on first use)."""
         self.mechanism = mechanism
         self.inputs = inputs  # (N, drivers)
         self.time = time
-        order = coefficients.shape[0] - 1
-        # derivatives of link poses: D[k, n, link, (x, y, θ)]
-        self._D = coefficients * np.array([factorial(k) for k in range(order + 1)])[:, None, None, None]
+        self._D = derivatives
         self._D.setflags(write=False)
+        self._cos_sin = trig
+        self._trig_cache: dict[int, tuple[np.ndarray, np.ndarray]] = {}
         self.status = status
         self.condition = condition
+
+    @classmethod
+    def from_coefficients(cls, mechanism: Mechanism, inputs: np.ndarray, time: np.ndarray | None,
+                          coefficients: np.ndarray, status: np.ndarray,
+                          condition: np.ndarray) -> Solution:
+        """From Taylor coefficients q⁽ᵏ⁾/k! of the link poses (the form the jet solvers use)."""
+        fact = np.array([factorial(k) for k in range(coefficients.shape[0])])
+        return cls(mechanism, inputs, time, coefficients * fact[:, None, None, None], status,
+                   condition)
+
+    @classmethod
+    def concatenate(cls, parts: list[Solution]) -> Solution:
+        """One solution from consecutive solutions of the same mechanism (sample axis joined)."""
+        first = parts[0]
+        time = None if first.time is None else np.concatenate([p.time for p in parts])
+        return cls(first.mechanism, np.concatenate([p.inputs for p in parts]), time,
+                   np.concatenate([p._D for p in parts], axis=1),
+                   np.concatenate([p.status for p in parts]),
+                   np.concatenate([p.condition for p in parts]))
 
     # ------------------------------------------------------------------ basics
     def __len__(self) -> int:
@@ -101,41 +156,34 @@ class Solution:
             raise ModelError(f"mechanism '{self.mechanism.name}' has no link '{link}'") from None
 
     # ------------------------------------------------------------------ points
-    def _trig(self, link: str) -> tuple[np.ndarray, np.ndarray]:
-        """cos θ, sin θ of `link` at every sample, computed once per link."""
-        cache = self.__dict__.setdefault("_trig_cache", {})
-        if link not in cache:
-            th = self.pose_derivatives(link)[0, :, 2]
-            cache[link] = (np.cos(th), np.sin(th))
-        return cache[link]
+    def _trig(self, i: int) -> tuple[np.ndarray, np.ndarray]:
+        """cos θ, sin θ of link index i at every sample (the solver's, or computed once)."""
+        t = self._trig_cache.get(i)
+        if t is None:
+            if self._cos_sin is not None:
+                t = (self._cos_sin[0][:, i], self._cos_sin[1][:, i])
+            else:
+                th = self._D[0, :, i, 2]
+                t = (np.cos(th), np.sin(th))
+            self._trig_cache[i] = t
+        return t
 
     def point_on(self, link: str, s) -> PointMotion:
         """Motion of the point with design coordinates `s` carried by `link` (s may be (2,) or
         (N, 2) to follow a moving material point of the link, e.g. a coincident point)."""
         s = np.asarray(s, dtype=float)
-        D = self.pose_derivatives(link)
-        c, sn = self._trig(link)
-        sx, sy = s[..., 0], s[..., 1]
-        rx, ry = c * sx - sn * sy, sn * sx + c * sy  # R(θ)s, and ⊥R(θ)s = (−ry, rx)
-        w = D[1, :, 2]
-
-        def combine(k: int, along: np.ndarray, across: np.ndarray) -> np.ndarray:
-            # D_k(t) + across·⊥r + along·r, written column by column (no stacked temporaries)
-            out = np.empty((len(c), 2))
-            out[:, 0] = D[k, :, 0] + along * rx - across * ry
-            out[:, 1] = D[k, :, 1] + along * ry + across * rx
-            return out
-
-        pos = combine(0, 1.0, 0.0)
-        vel = combine(1, 0.0, w)
-        acc = jerk = None
-        if self.order >= 2:
-            a = D[2, :, 2]
-            acc = combine(2, -w * w, a)
-            if self.order >= 3:
-                # d/dt of a: ẗ' + j ⊥r + α ⊥(ω ⊥r) − 2ωα r − ω² ω ⊥r
-                jerk = combine(3, -3 * w * a, D[3, :, 2] - w ** 3)
-        return PointMotion(pos, vel, acc, jerk)
+        i = self._li(link)
+        D = self._D[:, :, i]
+        c, sn = self._trig(i)
+        N, K = len(self), self.order
+        # out[k, x|y, n]: each quantity's x and y rows contiguous; handed out as (N, 2) views
+        out = np.empty((K + 1, 2, N))
+        for lo in range(0, N, BLOCK):  # blocks of samples: the temporaries stay in the cache
+            sl = slice(lo, lo + BLOCK)
+            ss = s if s.ndim == 1 else s[sl]
+            _point_block(D[:, sl], c[sl], sn[sl], ss[..., 0], ss[..., 1], out[:, :, sl])
+        q = [out[k].T for k in range(K + 1)] + [None] * (3 - K)
+        return PointMotion(*q)
 
     def point(self, name: str) -> PointMotion:
         mech = self.mechanism

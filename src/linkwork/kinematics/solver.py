@@ -9,6 +9,7 @@ then one batched Newton solve at the samples).
 from __future__ import annotations
 
 from functools import lru_cache
+from math import factorial
 
 import numpy as np
 
@@ -33,6 +34,20 @@ def _pose_array(order: int, N: int, n_links: int) -> np.ndarray:
     every Q[k, :, link, c] the group solvers and `Solution` work on is contiguous (a C-ordered
     array would make each of them a strided walk over all of Q[k]). Same shape and values."""
     return np.zeros((order + 1, n_links, 3, N)).transpose(0, 3, 1, 2)
+
+
+def _finish_block(state: State, ok: np.ndarray, cos: np.ndarray, sin: np.ndarray) -> None:
+    """Hand a solved block over to `Solution`: every link's cos θ and sin θ (most of them known
+    from the group solvers) into cos/sin[link, n], and the Taylor coefficients q⁽ᵏ⁾/k! the
+    solvers work with turned into time derivatives, in place."""
+    frame = state.mech.link_index[state.mech.frame]
+    for i in range(cos.shape[0]):
+        if i == frame and ok.all():
+            cos[i], sin[i] = 1.0, 0.0  # unassembled samples carry NaN instead
+        else:
+            cos[i], sin[i] = state.cs(i)
+    for k in range(2, state.order + 1):
+        state.Q[k] *= factorial(k)
 
 
 def _as_2d(a, n_drivers: int, name: str) -> np.ndarray | None:
@@ -86,6 +101,8 @@ def solve(mech: Mechanism, inputs=None, *, times=None, velocities=None, accelera
     guesses = continuation_guesses(mech, solvers, values) if generic else {}
     assembled = np.ones(N, dtype=bool)
     condition = np.ones(N)
+    n_links = len(mech.links)
+    cos, sin = np.empty((n_links, N)), np.empty((n_links, N))  # rows contiguous, like Q's
     # Closed-form groups work sample by sample, so the samples are solved in blocks whose
     # temporaries stay in the CPU cache (same operations per sample, same results); the
     # Newton path keeps one batch.
@@ -103,7 +120,8 @@ def solve(mech: Mechanism, inputs=None, *, times=None, velocities=None, accelera
         cond = condition[sl]
         for s in solvers:
             np.maximum(cond, s.derivatives(state, ok), out=cond)
+        _finish_block(state, ok, cos[:, sl], sin[:, sl])
     status = np.where(assembled, np.where(condition > SINGULAR_CONDITION, Status.SINGULAR, Status.OK),
                       Status.UNREACHABLE).astype(np.int8)
     condition = np.where(assembled, condition, np.nan)
-    return Solution(mech, values, t, Q, status, condition)
+    return Solution(mech, values, t, Q, status, condition, trig=(cos.T, sin.T))
