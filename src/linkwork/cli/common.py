@@ -42,11 +42,11 @@ def driver_names(mech: Mechanism) -> str:
     return ", ".join(d.joint for d in mech.drivers)
 
 
-def show_input(mech: Mechanism, driver: Driver, value: float, digits: str = ".3f") -> str:
+def show_input(mech: Mechanism, driver: Driver, value: float) -> str:
     """One input value as the user writes it: degrees, or the file's length unit."""
     if _is_prismatic(mech, driver):
         return f"{value:.4g} {mech.length_unit}"
-    return f"{np.degrees(value):{digits}}°"
+    return f"{np.degrees(value):.3f}°"
 
 
 def input_value(mech: Mechanism, text: str, driver: Driver | None = None) -> tuple[str, float]:
@@ -157,9 +157,19 @@ def input_values(mech: Mechanism, at: str | list[str] | None,
 def _unnamed(mech: Mechanism, at_texts: list[str], at_items: list, sweep_texts: list[str]
              ) -> tuple[str, np.ndarray]:
     if at_texts and sweep_texts:
-        raise InputError("give either --at or --sweep, not both (or name the drivers: "
-                         "--sweep O2=0:360:10 --at O5=45 holds O5 while O2 turns)")
-    several = len(mech.drivers) != 1
+        raise InputError("give either --at or --sweep, not both (with several drivers, named "
+                         "ones combine: --sweep O2=0:360:10 --at O5=45 holds O5 while O2 turns)")
+    if len(mech.drivers) != 1:
+        # only times drive several drivers without names: check before reading the values
+        # with the first driver's unit
+        option = "--at" if at_texts else "--sweep"
+        texts = [v for _, v in at_items] if at_texts else sweep_texts[0].split(":")
+        if any(t.strip() and unit_dimension(t) != "time" for t in texts):
+            raise InputError(
+                f"mechanism '{mech.name}' has {len(mech.drivers)} drivers ({driver_names(mech)}): "
+                f"name the driver of each value, e.g. --at {mech.drivers[0].joint}=30 "
+                f"--at {mech.drivers[1].joint}=10 or --sweep {mech.drivers[0].joint}=0:360:10 "
+                f"--sweep {mech.drivers[1].joint}=0:360:10, or give times ({option} 0.5s)")
     if at_texts:
         parsed = [input_value(mech, v) for _, v in at_items]
         kinds = {k for k, _ in parsed}
@@ -171,13 +181,6 @@ def _unnamed(mech: Mechanism, at_texts: list[str], at_items: list, sweep_texts: 
             raise InputError("--sweep is given more than once; a one-driver mechanism takes one "
                              "START:STOP:STEP (name the drivers of a mechanism with several)")
         kind, values = _range(mech, sweep_texts[0], "--sweep", None)
-    if kind == "input" and several:
-        option = "--at" if at_texts else "--sweep"
-        raise InputError(
-            f"mechanism '{mech.name}' has {len(mech.drivers)} drivers ({driver_names(mech)}): "
-            f"name the driver of each value, e.g. --at {mech.drivers[0].joint}=30 "
-            f"--at {mech.drivers[1].joint}=10 or --sweep {mech.drivers[0].joint}=0:360:10 "
-            f"--sweep {mech.drivers[1].joint}=0:360:10, or give times ({option} 0.5s)")
     return kind, values if kind == "time" else values[:, None]
 
 

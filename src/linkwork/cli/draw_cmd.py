@@ -17,7 +17,7 @@ import numpy as np
 import typer
 
 from ..errors import InputError
-from .common import input_value, load_mechanism, user_errors
+from .common import input_values, load_mechanism, user_errors
 
 
 def _list(text: Optional[str]) -> list[str]:
@@ -28,7 +28,7 @@ def register(app: typer.Typer) -> None:
     @app.command()
     def draw(
         mechanism: str = typer.Argument(..., help="a mechanism file, or library:NAME"),
-        at: Optional[str] = typer.Option(None, "--at", help="input value: degrees (revolute) or the file's length unit (prismatic) unless a unit is written; default: the design position"),
+        at: Optional[list[str]] = typer.Option(None, "--at", help="input value: degrees (revolute) or the file's length unit (prismatic) unless a unit is written, or a time (0.5s); several drivers: NAME=V per driver (--at O2=30 --at O5=10); default: the design position"),
         show: str = typer.Option("mechanism", "--show", help="layers, comma-separated: mechanism, paths, velocities, accelerations, poles, pole-lines, centrodes, inflection, return, bresse, gamma"),
         construction: Optional[str] = typer.Option(None, "--construction", help="rotated-velocities, velocity-plan, acceleration-plan, euler-savary, bobillier, hartmann, two-points, klein, kennedy"),
         point: Optional[str] = typer.Option(None, "--point", help="the point whose centre of curvature a curvature construction seeks"),
@@ -57,10 +57,12 @@ def register(app: typer.Typer) -> None:
                 value = np.array([mech.driver_input_at_design(d) for d in mech.drivers])[None, :]
                 sol = solve(mech, value)
             else:
-                kind, v = input_value(mech, at)
-                sol = solve(mech, times=[v]) if kind == "time" else solve(mech, np.array([v]))
+                kind, v = input_values(mech, at, None)
+                if len(v) != 1:
+                    raise InputError(f"--at {','.join(at)}: draw takes one position, got {len(v)}")
+                sol = solve(mech, times=v) if kind == "time" else solve(mech, v)
             if sol.status[0] == 2:
-                raise InputError(f"mechanism '{mech.name}' cannot be assembled at {at}")
+                raise InputError(f"mechanism '{mech.name}' cannot be assembled at {' '.join(at or [])}")
             sc = Scene(mech, sol)
             if any(x is not None for x in (length_scale, velocity_scale, acceleration_scale)):
                 sc.scales = sc.auto_scales(length=length_scale, velocity=velocity_scale,

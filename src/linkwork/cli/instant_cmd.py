@@ -78,7 +78,7 @@ def _circle_text(c: Circle, n: int) -> str:
     return f"centre ({cen['x']:.6g}, {cen['y']:.6g}), radius {doc['radius']:.6g}"
 
 
-def _solve(mech: Mechanism, at: Optional[str], order: int) -> Solution:
+def _solve(mech: Mechanism, at: Optional[list[str]], order: int) -> Solution:
     asked = input_values(mech, at, None)
     if asked is None:
         return solve(mech, order=order)
@@ -89,9 +89,13 @@ def _solve(mech: Mechanism, at: Optional[str], order: int) -> Solution:
 def _input_text(mech: Mechanism, sol: Solution, n: int) -> str:
     if sol.time is not None:
         return f"t = {sol.time[n]:.6g} s"
-    prismatic = mech.joint(mech.drivers[0].joint).kind == "prismatic"
-    vals = sol.inputs[n]
-    return ", ".join(f"{v:.6g} {mech.length_unit}" if prismatic else f"{math.degrees(v):.6g}°" for v in vals)
+    def one(d, v) -> str:
+        prismatic = mech.joint(d.joint).kind == "prismatic"
+        return f"{v:.6g} {mech.length_unit}" if prismatic else f"{math.degrees(v):.6g}°"
+
+    if len(mech.drivers) == 1:
+        return one(mech.drivers[0], sol.inputs[n, 0])
+    return ", ".join(f"{d.joint} {one(d, v)}" for d, v in zip(mech.drivers, sol.inputs[n]))
 
 
 def _input_doc(sol: Solution, n: int):
@@ -108,7 +112,7 @@ def _render(tables: list) -> str:
 
 
 # ---------------------------------------------------------------------------- poles
-def _poles_command(mechanism: str, at: Optional[str], schedule: bool, fmt: Format,
+def _poles_command(mechanism: str, at: Optional[list[str]], schedule: bool, fmt: Format,
                    output: Optional[str]) -> None:
     with user_errors():
         mech = load_mechanism(mechanism)
@@ -177,7 +181,7 @@ def _design_point(mech: Mechanism, text: str):
 
 
 def _curvature_command(mechanism: str, link: str, relative_to: Optional[str], points: list[str],
-                       at: Optional[str], fmt: Format, output: Optional[str]) -> None:
+                       at: Optional[list[str]], fmt: Format, output: Optional[str]) -> None:
     with user_errors():
         mech = load_mechanism(mechanism)
         sol = _solve(mech, at, 3)
@@ -256,7 +260,7 @@ def register(app: typer.Typer) -> None:
     @app.command("poles")
     def poles_cmd(
         mechanism: str = typer.Argument(..., help="a mechanism file, or library:NAME"),
-        at: Optional[str] = typer.Option(None, "--at", help="input values V[,V…] (degrees, the file's length unit, or a time like 0.5s); default: the design position"),
+        at: Optional[list[str]] = typer.Option(None, "--at", help="input values V[,V…] (degrees, the file's length unit, or a time like 0.5s); several drivers: NAME=V[,V…] per driver, as for analyze; default: the design position"),
         schedule: bool = typer.Option(False, "--schedule", help="also print the three-pole theorem schedule (P13 = P12P23 ∩ P14P34 …)"),
         fmt: Format = typer.Option(Format.table, "--format", help="table or json"),
         output: Optional[str] = typer.Option(None, "-o", "--output", help="write to this file instead of stdout"),
@@ -270,7 +274,7 @@ def register(app: typer.Typer) -> None:
         link: str = typer.Option(..., "--link", help="the moving link"),
         relative_to: Optional[str] = typer.Option(None, "--relative-to", help="the reference link (default: the frame)"),
         point: Optional[list[str]] = typer.Option(None, "--point", help="a point name or design coordinates x,y whose path curvature centre to report (repeatable)"),
-        at: Optional[str] = typer.Option(None, "--at", help="input values V[,V…]; default: the design position"),
+        at: Optional[list[str]] = typer.Option(None, "--at", help="input values V[,V…]; several drivers: NAME=V[,V…] per driver, as for analyze; default: the design position"),
         fmt: Format = typer.Option(Format.table, "--format", help="table or json"),
         output: Optional[str] = typer.Option(None, "-o", "--output", help="write to this file instead of stdout"),
     ) -> None:
