@@ -1,71 +1,375 @@
 """Newton starting values for the groups without a closed form, by continuation.
 
-From the design position the input is marched along a coarse grid (`CONTINUATION_STEP`), each
-point's Newton solve starting from the previous one's poses, so that every generic group stays
-on the assembly branch of the design; the samples then get their guesses by interpolation.
+The input is marched from the design position by predictor–corrector continuation with
+adaptive step control, so that every generic group stays on the assembly branch of the design:
+
+- predictor: Euler's, along the tangent dq/dλ of the solution path (the poses' velocities at
+  unit input rate, from the groups' velocity solve);
+- corrector: Newton's method on each generic group, which gives up as soon as its iterates stop
+  contracting (the predicted poses then lie outside the basin of the nearby solution);
+- step control: a step is accepted when every group assembled and the corrected poses lie
+  close to the predicted ones (the corrector distance is small against the predicted change):
+  the poses changed smoothly. Otherwise the step is halved, down to a floor; after a success
+  it is doubled again, up to `CONTINUATION_STEP`. The predicted change of the poses per step
+  is bounded too, so that the march resolves fast swings of the output in pose space.
+
+A fixed step jumps to the other assembly branch where the solution swings fast (a slotted
+lever whose slot passes close to its pivot, a dyad near its dead centre); the adaptive step
+shrinks there instead. Near a limit position (turning point of the path) the halving closes in
+on it, so the march ends within `MIN_STEP` of the limit.
+
+One driver: the march runs upwards and downwards from the design value. Its steps do not depend
+on the range asked for (the march goes on until it has passed it), so the marched points — the
+poses and tangents — are kept per mechanism and extended when a later solve asks for more: the
+whole motion (grid, bisection of the limits, then the samples) marches once. The samples get
+their guesses by cubic Hermite interpolation of the marched poses and tangents. Several drivers:
+the march goes through the samples in their order, subdividing adaptively between them.
 """
 
 from __future__ import annotations
 
+from collections import OrderedDict
+
 import numpy as np
 
 from ..model import Mechanism
+from . import groups
 from .groups import State, input_coefficients
 
-CONTINUATION_STEP = np.radians(2.0)
+CONTINUATION_STEP = np.radians(2.0)  # largest step of a revolute input (a prismatic one: 1 % of L)
+MIN_STEP = 2.0 ** -42                # smallest step, relative to the largest (≈ 1e-14 rad)
+MAX_POSE_CHANGE = 0.1                # largest predicted change of any pose per step, in L (θ·L)
+PREDICTOR_TOLERANCE = 0.25           # largest corrector distance, relative to the predicted change
+SLACK = 1e-4                         # ... plus this, in L: the curvature allowed where dq/dλ ≈ 0
+CONTRACTION = 0.5                    # each Newton step must be at most this times the one before
+CORRECTOR_ITERATIONS = 12
+CACHE_SIZE = 32
+
+# (mechanism, its group solvers) -> {+1: lane upwards, -1: lane downwards}; both are compared
+# by identity, so re-planning (`solver.plan`) or a new Mechanism starts a new march
+_marches: OrderedDict = OrderedDict()
 
 
 def continuation_guesses(mech: Mechanism, solvers, values: np.ndarray) -> dict:
-    """Newton starting poses of the generic groups at every sample, by continuation."""
+    """Newton starting poses (N, k, 3) of every generic group at the samples `values`
+    (N, drivers), by continuation from the design position; NaN where the march does not reach
+    (the branch of the design cannot be assembled there)."""
+    gen = _Generic(mech, solvers)
     design = np.array([mech.driver_input_at_design(d) for d in mech.drivers])
     if values.shape[1] == 1:
-        lo, hi = min(values[:, 0].min(), design[0]), max(values[:, 0].max(), design[0])
-        step = CONTINUATION_STEP if not _prismatic(mech) else 0.01 * mech.length_scale
-        up = np.append(np.arange(design[0], hi, step), hi)
-        down = np.append(np.arange(design[0], lo, -step), lo)
-        branches = [_march(mech, solvers, up[:, None]), _march(mech, solvers, down[:, None])]
-        guesses = {}
-        for s in solvers:
-            if s.kind != "generic":
-                continue
-            g = np.full((values.shape[0], s.group.size, 3), np.nan)
-            for path, poses in zip((up, down), branches):
-                sel = (values[:, 0] >= path.min()) & (values[:, 0] <= path.max())
-                order = np.argsort(path)
-                P = poses[s.group][order]
-                for k in range(s.group.size):
-                    for c in range(3):
-                        g[sel, k, c] = np.interp(values[sel, 0], path[order], P[:, k, c])
-            guesses[s.group] = g
-        return guesses
+        lanes = _one_driver_lanes(mech, solvers, gen, design)
+        lam = values[:, 0] - design[0]
+        finite = np.isfinite(lam)
+        reach = {+1: lam[finite].max(initial=0.0), -1: -lam[finite].min(initial=0.0)}
+        _march(mech, solvers, gen, list(lanes.values()), reach)
+        g = np.full((values.shape[0], gen.size, 3), np.nan)
+        up = finite & (lam >= 0)
+        down = finite & (lam < 0)
+        g[up] = lanes[+1].interpolate(lam[up])
+        g[down] = lanes[-1].interpolate(-lam[down])
+        return gen.split(g)
     # several drivers: march through the samples in their order
-    path = np.vstack([design[None], values])
-    poses = _march(mech, solvers, path)
-    return {s.group: poses[s.group][1:] for s in solvers if s.kind == "generic"}
+    lane = _Lane(gen, np.vstack([design[None], values]))
+    _march(mech, solvers, gen, [lane], {lane.sense: lane.knots[-1]})
+    return gen.split(lane.at_vertices()[1:])
 
 
-def _prismatic(mech: Mechanism) -> bool:
-    return mech.joint(mech.drivers[0].joint).kind == "prismatic"
+def _one_driver_lanes(mech: Mechanism, solvers, gen: "_Generic", design: np.ndarray) -> dict:
+    key = (mech, tuple(solvers))
+    lanes = _marches.get(key)
+    if lanes is None:
+        far = np.array([[1.0]])
+        lanes = {s: _Lane(gen, np.vstack([design[None], design[None] + s * far]), sense=s,
+                          ray=True) for s in (+1, -1)}
+        _marches[key] = lanes
+        while len(_marches) > CACHE_SIZE:
+            _marches.popitem(last=False)
+    else:
+        _marches.move_to_end(key)
+    return lanes
 
 
-def _march(mech: Mechanism, solvers, path: np.ndarray) -> dict:
-    """Solve positions along `path` (M, drivers) one point after another, each Newton solve
-    starting from the previous point's poses; stops where the chain cannot assemble."""
-    M = path.shape[0]
-    out = {s.group: np.full((M, s.group.size, 3), np.nan) for s in solvers if s.kind == "generic"}
-    prev = {g: np.zeros((1, g.size, 3)) for g in out}
-    for m in range(M):
-        state = State(mech, np.zeros((2, 1, len(mech.links), 3)),
-                      input_coefficients(mech, path[m:m + 1], None, None, None, 1))
-        ok = True
-        for s in solvers:
-            ok = ok and bool(s.positions(state, prev.get(s.group))[0])
-            if not ok:
-                break
-            if s.group in out:
-                q = state.Q[0][0, [state.li(ln) for ln in s.group.links]]
-                out[s.group][m] = q
-                prev[s.group] = q[None]
-        if not ok:
+class _Generic:
+    """The links of the generic groups, stacked: rows of the (G, 3) pose arrays of a march."""
+
+    def __init__(self, mech: Mechanism, solvers) -> None:
+        self.solvers = [s for s in solvers if s.kind == "generic"]
+        self.last = max((i for i, s in enumerate(solvers) if s.kind == "generic"), default=-1)
+        self.slices, start = {}, 0
+        for s in self.solvers:
+            self.slices[s.group] = slice(start, start + s.group.size)
+            start += s.group.size
+        self.size = start
+        self.links = [mech.link_index[ln] for s in self.solvers for ln in s.group.links]
+        self.L = mech.length_scale
+        prismatic = mech.joint(mech.drivers[0].joint).kind == "prismatic"
+        self.h_max = 0.01 * self.L if prismatic and len(mech.drivers) == 1 else CONTINUATION_STEP
+        # several drivers: λ is the distance in input space, radians and lengths mixed; the
+        # revolute step bounds it, and the pose-change bound takes care of slides
+
+    def norm(self, q: np.ndarray) -> np.ndarray:
+        """Max-norm of pose arrays (..., G, 3) in lengths: angles times L."""
+        a = np.abs(q)
+        return np.maximum(a[..., :2].max(axis=(-1, -2), initial=0.0),
+                          self.L * a[..., 2].max(axis=-1, initial=0.0))
+
+    def split(self, g: np.ndarray) -> dict:
+        return {s.group: g[:, self.slices[s.group]] for s in self.solvers}
+
+
+class _Lane:
+    """One march along a polyline of inputs from the design position (its first vertex),
+    parametrised by the distance λ travelled in input space. Keeps every accepted point: λ,
+    the generic poses and their tangents d/dλ."""
+
+    def __init__(self, gen: _Generic, vertices: np.ndarray, *, sense: int = 1,
+                 ray: bool = False) -> None:
+        # samples after a non-finite one are not marched to (the march cannot pass it)
+        bad = np.flatnonzero(~np.isfinite(vertices).all(axis=1))
+        n = vertices.shape[0] if bad.size == 0 else int(bad[0])
+        self.n_given = vertices.shape[0]
+        d = np.diff(vertices[:n], axis=0)
+        keep = np.concatenate([[True], np.abs(d).max(axis=1) > 0])[:n]  # repeats: one vertex
+        self.vertex_of = np.cumsum(keep) - 1  # vertex index of every given (finite) vertex
+        v = vertices[:n][keep]
+        d = np.diff(v, axis=0)
+        length = np.sqrt((d * d).sum(axis=1))
+        self.vertices = v
+        # a lone vertex: no direction to go, the tangent is taken along the first input
+        self.dirs = d / length[:, None] if d.shape[0] else np.eye(1, v.shape[1])
+        if ray:  # one driver: a ray from the design value, marched as far as asked
+            length = np.full(1, np.inf)
+        self.knots = np.concatenate([[0.0], np.cumsum(length)])
+        self.sense = sense
+        self.h_max = gen.h_max
+        self.h = gen.h_max
+        self.stopped = n == 0
+        self.started = False
+        self.lam: list[float] = []
+        self.P: list[np.ndarray] = []
+        self.T: list[np.ndarray] = []
+        self._arrays = None
+
+    # ------------------------------------------------------------------ stepping
+    def point(self, lam: float) -> np.ndarray:
+        """Input at λ (a vertex exactly, at its knot)."""
+        j = np.searchsorted(self.knots, lam)
+        if j < self.knots.size and self.knots[j] == lam and j < len(self.vertices):
+            return self.vertices[j]
+        seg = j - 1
+        return self.vertices[seg] + (lam - self.knots[seg]) * self.dirs[seg]
+
+    def direction_after(self, lam: float) -> np.ndarray:
+        """Direction of the segment a step from λ goes along (the next one at a vertex)."""
+        seg = np.searchsorted(self.knots, lam, side="right") - 1
+        return self.dirs[min(max(seg, 0), len(self.dirs) - 1)]
+
+    def proposal(self, gen: _Generic) -> tuple[float, float, np.ndarray]:
+        """(step, λ, predicted poses) of the next attempt."""
+        if not self.started:
+            return 0.0, 0.0, np.zeros((gen.size, 3))  # the design position: poses all zero
+        lam, q, t = self.lam[-1], self.P[-1], self.T[-1]
+        h = self.h
+        tn = gen.norm(t)
+        if np.isfinite(tn) and tn > 0:  # bound the predicted change of the poses
+            h = min(h, max(MAX_POSE_CHANGE * gen.L / tn, MIN_STEP * self.h_max))
+        nxt = self.knots[np.searchsorted(self.knots, lam, side="right")]
+        to = lam + h
+        if h >= nxt - lam:  # land on the next sample exactly
+            h, to = nxt - lam, nxt
+        pred = q + h * t if np.isfinite(t).all() else q.copy()
+        return h, to, pred
+
+    def settle(self, gen: _Generic, h: float, lam: float, pred: np.ndarray, ok: bool,
+               q: np.ndarray, t: np.ndarray) -> None:
+        """Accept or reject the attempt at λ, adapt the step."""
+        if not self.started:
+            self.started = True
+            if ok:
+                self._append(lam, q, t)
+            else:
+                self.stopped = True  # the design position itself does not assemble
+            return
+        predicted = gen.norm(pred - self.P[-1])
+        smooth = gen.norm(q - pred) <= PREDICTOR_TOLERANCE * predicted + SLACK * gen.L
+        if ok and smooth:
+            self._append(lam, q, t)
+            if h >= self.h:
+                self.h = min(2 * h, self.h_max)
+        else:
+            self.h = h / 2
+            if self.h < MIN_STEP * self.h_max:
+                self.stopped = True  # a limit position (or a passage no step gets across)
+
+    def _append(self, lam: float, q: np.ndarray, t: np.ndarray) -> None:
+        self.lam.append(lam)
+        self.P.append(q)
+        self.T.append(t)
+        self._arrays = None
+
+    def reached(self, target: float) -> bool:
+        return self.stopped or (self.started and bool(self.lam) and self.lam[-1] >= target)
+
+    # ------------------------------------------------------------------ reading
+    def arrays(self):
+        if self._arrays is None:
+            self._arrays = (np.array(self.lam), np.array(self.P), np.array(self.T))
+        return self._arrays
+
+    def interpolate(self, lam: np.ndarray) -> np.ndarray:
+        """Poses (N, G, 3) at λ ≥ 0 by cubic Hermite interpolation of the marched poses and
+        tangents (linear on a span whose tangents are unknown: singular ends); NaN beyond the
+        last marched point."""
+        G = self.P[0].shape[0] if self.P else 0
+        out = np.full((lam.size, G, 3), np.nan)
+        if not self.P or lam.size == 0:
+            return out
+        K, P, T = self.arrays()
+        inside = lam <= K[-1]
+        if K.size == 1:
+            out[inside] = P[0]
+            return out
+        x = lam[inside]
+        i = np.clip(np.searchsorted(K, x, side="right") - 1, 0, K.size - 2)
+        H = (K[i + 1] - K[i])[:, None, None]
+        s = ((x - K[i]) / H[:, 0, 0])[:, None, None]
+        P0, P1, T0, T1 = P[i], P[i + 1], T[i], T[i + 1]
+        hermite = ((1 + 2 * s) * (1 - s) ** 2 * P0 + s * (1 - s) ** 2 * H * T0
+                   + s * s * (3 - 2 * s) * P1 + s * s * (s - 1) * H * T1)
+        linear = P0 + s * (P1 - P0)
+        known = (np.isfinite(T0) & np.isfinite(T1)).all(axis=(1, 2))[:, None, None]
+        out[inside] = np.where(known, hermite, linear)
+        return out
+
+    def at_vertices(self) -> np.ndarray:
+        """Poses (V, G, 3) at the given vertices (NaN where the march did not get)."""
+        out = np.full((self.n_given, self.P[0].shape[0] if self.P else 0, 3), np.nan)
+        if self.P:
+            K, P, _ = self.arrays()
+            j = np.searchsorted(K, self.knots)
+            hit = j < K.size
+            hit[hit] = K[j[hit]] == self.knots[hit]
+            marched = np.full((self.knots.size,) + P.shape[1:], np.nan)
+            marched[hit] = P[j[hit]]
+            out[:self.vertex_of.size] = marched[self.vertex_of]
+        return out
+
+def _march(mech: Mechanism, solvers: tuple, gen: _Generic, lanes: list[_Lane], reach: dict) -> None:
+    """Advance the lanes (together: one batched solve per round) until each has passed
+    reach[lane.sense] or stopped. Every attempt solves all groups in order at the proposed
+    input — the generic ones by `_correct` from the predicted poses — then their velocities at
+    unit input rate along the lane: the tangent for the next prediction."""
+    n_links = len(mech.links)
+    while True:
+        todo = [ln for ln in lanes if not ln.reached(reach[ln.sense])]
+        if not todo:
+            return
+        props = [ln.proposal(gen) for ln in todo]
+        u = np.array([ln.point(p[1]) for ln, p in zip(todo, props)])
+        rates = np.array([ln.direction_after(p[1]) for ln, p in zip(todo, props)])
+        pred = np.array([p[2] for p in props])
+        N = len(todo)
+        # second order, so that the driver and RRR dyads take their closed-form velocities
+        state = State(mech, np.zeros((3, N, n_links, 3)),
+                      input_coefficients(mech, u, rates, None, None, 2))
+        ok = np.ones(N, dtype=bool)
+        jacobians = {}
+        with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+            for s in solvers:
+                if s.kind == "generic":
+                    conv, jacobians[s.group] = _correct(state, s, pred[:, gen.slices[s.group]])
+                    ok &= conv
+                else:
+                    ok &= s.positions(state)
+            # velocities of the groups up to the last generic one: the tangents
+            for s in solvers[:gen.last + 1]:
+                if s.kind == "generic":
+                    _tangent(state, s, jacobians[s.group], ok)
+                else:
+                    s.derivatives(state, ok)
+        q = state.Q[0][:, gen.links]
+        t = state.Q[1][:, gen.links]
+        for k, (ln, (h, lam, p)) in enumerate(zip(todo, props)):
+            ln.settle(gen, h, lam, p, bool(ok[k]), q[k].copy(), t[k].copy())
+
+
+def _residual_and_jacobian(state: State, group) -> tuple[np.ndarray, np.ndarray]:
+    """Residuals (N, 3k) of the group's constraints and their Jacobian (N, 3k, 3k) with
+    respect to its link poses, from one evaluation on first-order jets (the residuals are the
+    jets' values; `groups.group_jacobian` evaluates the same jets)."""
+    N, k = state.Q.shape[1], group.size
+    m = 3 * k
+    U = np.zeros((2, N, m, k, 3))
+    U[0] = state.Q[0][:, [state.li(ln) for ln in group.links]][:, None]
+    U[1] = np.eye(m).reshape(m, k, 3)[None]
+    # only the unknowns' directions: known links and inputs held still
+    still = State(state.mech, np.stack([state.Q[0], np.zeros_like(state.Q[0])]),
+                  {j: np.stack([v[0], np.zeros_like(v[0])]) for j, v in state.inputs.items()})
+    res = groups._residuals(still, group, U, 1)
+    return (np.stack([x.c[0][:, 0] for x in res], axis=1),
+            np.stack([x.c[1] for x in res], axis=1))
+
+
+def _correct(state: State, solver, guess: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Newton's method on one generic group from the predicted poses `guess` (N, k, 3); fills
+    the group's poses in Q[0] (NaN where it failed). Returns the convergence mask and the last
+    Jacobian (at the final poses, or one Newton step before them).
+
+    An iteration whose step is not at most `CONTRACTION` times the one before fails the sample:
+    near a regular solution Newton's method contracts fast, so slow or growing steps mean that
+    the prediction is too far away, and the continuation step is to be halved rather than the
+    iteration pursued (possibly towards the other branch)."""
+    group = solver.group
+    idx = [state.li(ln) for ln in group.links]
+    L = state.mech.length_scale
+    tol = groups.NEWTON_TOL * L
+    N, m = guess.shape[0], 3 * group.size
+    q = guess.copy()
+    alive = np.isfinite(q).all(axis=(1, 2)) & np.isfinite(state.Q[0]).all(axis=(1, 2))
+    q[~alive] = 0.0
+    converged = np.zeros(N, dtype=bool)
+    last = np.full(N, np.inf)
+    J = np.full((N, m, m), np.nan)
+    for _ in range(CORRECTOR_ITERATIONS):
+        state.Q[0][:, idx, :] = q
+        r, Jq = _residual_and_jacobian(state, group)
+        converged = alive & (np.abs(r).max(axis=1) <= tol)
+        J[alive] = Jq[alive]
+        todo = alive & ~converged
+        if not todo.any():
             break
-    return out
+        try:
+            step = np.linalg.solve(Jq[todo], -r[todo][..., None])[..., 0]
+        except np.linalg.LinAlgError:  # a singular sample in the batch: least squares
+            step = (np.linalg.pinv(Jq[todo]) @ -r[todo][..., None])[..., 0]
+        step = step.reshape(-1, group.size, 3)
+        size = np.maximum(np.abs(step[..., :2]).max(axis=(1, 2)), L * np.abs(step[..., 2]).max(axis=1))
+        # steps at rounding level carry no information on contraction
+        failing = ~np.isfinite(size) | ((size > CONTRACTION * last[todo]) & (size > 1e3 * tol))
+        alive[np.flatnonzero(todo)[failing]] = False
+        q[todo] += step
+        last[todo] = size
+    converged &= alive
+    state.Q[0][:, idx, :] = np.where(converged[:, None, None], q, np.nan)
+    state.forget_trig(idx)
+    return converged, J
+
+
+def _tangent(state: State, solver, J: np.ndarray, ok: np.ndarray) -> None:
+    """Velocities of the group's links in Q[1] (the path's tangent at the state's input rates):
+    J·q̇ = −ṙ, where ṙ is the constraints' rate with the group held still (the first-order
+    jets of the residuals with the unknown velocities zero), J the corrector's last Jacobian."""
+    group = solver.group
+    idx = [state.li(ln) for ln in group.links]
+    U = state.Q[:, :, idx, :][:, :, None].copy()
+    U[1] = 0.0
+    res = groups._residuals(state, group, U, 1)
+    r = np.stack([x.c[1][:, 0] for x in res], axis=1)
+    good = ok & np.isfinite(J).all(axis=(1, 2))
+    v = np.full(r.shape, np.nan)
+    if good.any():
+        try:
+            v[good] = np.linalg.solve(J[good], -r[good][..., None])[..., 0]
+        except np.linalg.LinAlgError:  # singular: no tangent (the predictor stands still)
+            pass
+    state.Q[1][:, idx, :] = v.reshape(-1, group.size, 3)

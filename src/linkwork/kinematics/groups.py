@@ -23,6 +23,7 @@ import numpy as np
 
 from ..model import ConstantSpeed, Driver, Mechanism, Prismatic, Revolute, Slot
 from ..structure import Group
+from . import kernels
 from .constraints import driver_residual, joint_residuals
 from .jet import Jet
 
@@ -51,51 +52,70 @@ def _angle(v: np.ndarray) -> np.ndarray:
 class State:
     """Work arrays of a solve: Q[k, n, link, (x, y, θ)] = k-th Taylor coefficient of link poses.
 
-    `trig` caches, per link index i, (cos θ, sin θ) under the key i and rotated design vectors
-    R(θ)·s under (i, sx, sy), so that the closed-form groups evaluate each cosine, sine and
-    rotation once (the same operations as before, so the same bits); `set_pose` and
-    `set_pose_xy` keep it up to date, and whoever writes angles into Q by other means must drop
-    the link's entries (`forget_trig`).
+    `T[link, (cos θ, sin θ), n]` holds each link's cos θ and sin θ once known (`known`): the
+    group solvers read them instead of recomputing, the compiled kernels write them as they
+    place a link, and `solve` hands them to `Solution`. Rotated design vectors R(θ)·s of the
+    NumPy paths are cached in `rots`. Whoever writes angles into Q by other means must drop the
+    link's entries (`forget_trig`).
     """
 
     mech: Mechanism
     Q: np.ndarray
     inputs: dict[str, np.ndarray]  # driver joint -> (K+1, N) Taylor coefficients of its input
-    trig: dict = field(default_factory=dict)
+    T: np.ndarray | None = None
+    known: set = field(default_factory=set)
+    rots: dict = field(default_factory=dict)
+
+    def __post_init__(self) -> None:
+        if self.T is None:
+            self.T = np.empty((len(self.mech.links), 2, self.Q.shape[1]))
 
     @property
     def order(self) -> int:
         return self.Q.shape[0] - 1
 
+    @property
+    def Qm(self) -> np.ndarray:
+        """Q as the kernels index it: Qm[k, link, (x, y, θ), n] (a view)."""
+        return self.Q.transpose(0, 2, 3, 1)
+
     def li(self, link: str) -> int:
         return self.mech.link_index[link]
 
     def cs(self, i: int) -> tuple[np.ndarray, np.ndarray]:
-        """(cos θ, sin θ), each (N,), of link index i's angle (cached)."""
-        t = self.trig.get(i)
-        if t is None:
+        """(cos θ, sin θ), each (N,), of link index i's angle (computed once)."""
+        if i not in self.known:
             th = self.Q[0, :, i, 2]
-            t = self.trig[i] = (np.cos(th), np.sin(th))
-        return t
+            np.cos(th, out=self.T[i, 0])
+            np.sin(th, out=self.T[i, 1])
+            self.known.add(i)
+        return self.T[i, 0], self.T[i, 1]
 
     def rot(self, i: int, s: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """R(θ)·s for link index i and design vector s, as (x, y) arrays (cached with cs)."""
+        """R(θ)·s for link index i and design vector s, as (x, y) arrays (cached)."""
         key = (i, float(s[0]), float(s[1]))
-        r = self.trig.get(key)
+        r = self.rots.get(key)
         if r is None:
             c, sn = self.cs(i)
-            r = self.trig[key] = (c * s[0] - sn * s[1], sn * s[0] + c * s[1])
+            r = self.rots[key] = (c * s[0] - sn * s[1], sn * s[0] + c * s[1])
         return r
 
     def forget_trig(self, indices=None) -> None:
-        """Drop cached cos/sin and rotated vectors (of the given link indices, or all) after
-        Q[0] changed."""
+        """Drop cos/sin and rotated vectors (of the given link indices, or all) after Q[0]
+        changed."""
         if indices is None:
-            self.trig.clear()
+            self.known.clear()
+            self.rots.clear()
             return
         gone = set(indices)
-        for k in [k for k in self.trig if (k[0] if isinstance(k, tuple) else k) in gone]:
-            del self.trig[k]
+        self.known -= gone
+        for k in [k for k in self.rots if k[0] in gone]:
+            del self.rots[k]
+
+    def placed(self, *indices: int) -> None:
+        """Links whose Q[0] and T a kernel has just written."""
+        self.forget_trig(indices)
+        self.known.update(indices)
 
     def world(self, link: str, s: np.ndarray) -> np.ndarray:
         """(N, 2) positions of the point with design coordinates s on `link`."""
@@ -104,90 +124,14 @@ class State:
         c, sn = self.cs(i)
         return q[:, :2] + np.stack([c * s[0] - sn * s[1], sn * s[0] + c * s[1]], axis=-1)
 
-    def point_derivatives(self, link: str, s: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """Position, velocity, acceleration (N, 2) of a point fixed in `link`."""
-        i = self.li(link)
-        q = self.Q[:, :, i]
-        w, a = q[1, :, 2], 2 * q[2, :, 2]
-        c, sn = self.cs(i)
-        rs = np.stack([c * s[0] - sn * s[1], sn * s[0] + c * s[1]], axis=-1)
-        pos = q[0, :, :2] + rs
-        vel = q[1, :, :2] + w[:, None] * _perp(rs)
-        acc = 2 * q[2, :, :2] + a[:, None] * _perp(rs) - (w * w)[:, None] * rs
-        return pos, vel, acc
-
     def set_pose(self, link: str, point_w: np.ndarray, s: np.ndarray, theta: np.ndarray) -> None:
         """Place `link` so that its design point s is at point_w and its angle is θ."""
         i = self.li(link)
-        c, sn = np.cos(theta), np.sin(theta)
-        self.Q[0, :, i, :2] = point_w - np.stack([c * s[0] - sn * s[1], sn * s[0] + c * s[1]],
-                                                 axis=-1)
         self.Q[0, :, i, 2] = theta
         self.forget_trig([i])
-        self.trig[i] = (c, sn)
-
-    # -------------------------------------------------- component-wise helpers (hot paths)
-    def _frame_still(self, i: int, ok: np.ndarray | None) -> bool:
-        """True when link i is the frame and every sample is assembled: its pose and all its
-        derivatives are then exactly zero (unassembled samples carry NaN instead)."""
-        return i == self.mech.link_index[self.mech.frame] and ok is not None and bool(ok.all())
-
-    def point_xy(self, i: int, s: np.ndarray) -> tuple:
-        """World (x, y) of design point s on link index i, as two (N,) arrays (or the exact
-        scalars s when i is the frame, which positions never move)."""
-        if i == self.mech.link_index[self.mech.frame]:
-            return s[0], s[1]  # Q[0] of the frame is zero until `solve` marks failures
-        rx, ry = self.rot(i, s)
-        q = self.Q[0, :, i]
-        return q[:, 0] + rx, q[:, 1] + ry
-
-    def point_va(self, i: int, s: np.ndarray, ok: np.ndarray | None = None) -> tuple:
-        """Velocity and acceleration (vx, vy, ax, ay) of design point s on link index i."""
-        if self._frame_still(i, ok):
-            return 0.0, 0.0, 0.0, 0.0
-        rx, ry = self.rot(i, s)
-        Q1, Q2 = self.Q[1, :, i], self.Q[2, :, i]
-        w, a = Q1[:, 2], 2 * Q2[:, 2]
-        ww = w * w
-        return (Q1[:, 0] - w * ry, Q1[:, 1] + w * rx,
-                2 * Q2[:, 0] - a * ry - ww * rx, 2 * Q2[:, 1] + a * rx - ww * ry)
-
-    def set_pose_xy(self, i: int, px, py, s: np.ndarray, theta: np.ndarray, c: np.ndarray,
-                    sn: np.ndarray) -> None:
-        """`set_pose` on link index i from components, with cos θ and sin θ already known."""
-        self.forget_trig([i])
-        self.trig[i] = (c, sn)
-        rx, ry = self.rot(i, s)
-        q = self.Q[0, :, i]
-        np.subtract(px, rx, out=q[:, 0])
-        np.subtract(py, ry, out=q[:, 1])
-        q[:, 2] = theta
-
-    def set_rates(self, i: int, s: np.ndarray, vx, vy, ax, ay, om: np.ndarray,
-                  al: np.ndarray) -> None:
-        """Velocity and acceleration coefficients of link index i from the motion (v, a) of its
-        design point s and its angular velocity ω and acceleration α."""
-        rx, ry = self.rot(i, s)
-        Q1, Q2 = self.Q[1, :, i], self.Q[2, :, i]
-        # v_origin = v − ω ⊥r,  a_origin = a − α ⊥r + ω² r  (⊥(x, y) = (−y, x)), written
-        # straight into Q with the operations of the (N, 2) formulation
-        x, y = Q1[:, 0], Q1[:, 1]
-        np.multiply(om, ry, out=x)
-        x += vx
-        np.multiply(om, rx, out=y)
-        np.subtract(vy, y, out=y)
-        Q1[:, 2] = om
-        oo = om * om
-        x, y = Q2[:, 0], Q2[:, 1]
-        np.multiply(al, ry, out=x)
-        x += ax
-        x += oo * rx
-        x *= 0.5
-        np.multiply(al, rx, out=y)
-        np.subtract(ay, y, out=y)
-        y += oo * ry
-        y *= 0.5
-        np.multiply(al, 0.5, out=Q2[:, 2])
+        c, sn = self.cs(i)
+        self.Q[0, :, i, :2] = point_w - np.stack([c * s[0] - sn * s[1], sn * s[0] + c * s[1]],
+                                                 axis=-1)
 
 
 def input_coefficients(mech: Mechanism, values: np.ndarray, rates: np.ndarray | None,
@@ -382,9 +326,14 @@ class GroupSolver:
         A, B, C = P[p["a"].point], P[p["b"].point], P[p["c"].point]
         L1, L2 = np.hypot(*(B - A)), np.hypot(*(B - C))
         phi1, phi2 = _angle(B - A), _angle(B - C)
+        # cos θ = (r·(cos φ, sin φ))/L, sin θ = (r × (cos φ, sin φ))/L for the hinge vector r
+        # of a link drawn at angle φ; the condition number needs only L1², L2² and c1·c2
         return dict(
             A=A, C=C, BA=B - A, BC=B - C, L1sq=L1 * L1, diff=L1 * L1 - L2 * L2, tol=-1e-12 * L1 * L1,
             branch=_design_branch(_cross(C - A, B - A)), phi1=phi1, phi2=phi2,
+            k1=np.array([np.cos(phi1), np.sin(phi1)]) / L1,
+            k2=np.array([np.cos(phi2), np.sin(phi2)]) / L2,
+            mid=0.5 * (L1 * L1 + L2 * L2), hd2=(0.5 * (L1 * L1 - L2 * L2)) ** 2,
             i1=li[p["l1"]], i2=li[p["l2"]],
             iA=li[_other(p["a"], p["l1"])], iC=li[_other(p["c"], p["l2"])])
 
@@ -427,33 +376,26 @@ class GroupSolver:
             state.forget_trig([state.li(ln)])
         else:
             f = self.fast
-            theta = base[:, 2] + (u - f["u0"])
-            H = f["H"]
-            hx, hy = state.point_xy(f["b"], H)
-            state.set_pose_xy(f["i"], hx, hy, H, theta, np.cos(theta), np.sin(theta))
+            state.cs(f["b"])
+            kernels.driver_positions(state.Qm[0], state.T, f["b"], f["i"], f["H"], u, f["u0"])
+            state.placed(f["i"])
         return np.isfinite(u) & np.isfinite(base).all(axis=1)
 
     def _pos_RRR(self, state: State) -> np.ndarray:
-        """Circle–circle intersection: the same operations, in the same order, as the (N, 2)
-        formulation, on x and y arrays, with each link's cos θ, sin θ kept for later use."""
+        """Circle–circle intersection (`kernels.rrr_positions`)."""
         f = self.fast
-        A, C = f["A"], f["C"]
-        ax, ay = state.point_xy(f["iA"], A)
-        cx, cy = state.point_xy(f["iC"], C)
-        dx, dy = cx - ax, cy - ay
-        D = np.hypot(dx, dy)
-        with np.errstate(invalid="ignore", divide="ignore"):
-            a = (f["diff"] + D * D) / (2 * D)
-            h2 = f["L1sq"] - a * a
-            h2 = np.where((h2 < 0) & (h2 > f["tol"]), 0.0, h2)
-            ex, ey = dx / D, dy / D
-            h = f["branch"] * np.sqrt(h2)
-            bx, by = (ax + a * ex) - h * ey, (ay + a * ey) + h * ex
-        th1 = np.arctan2(by - ay, bx - ax) - f["phi1"]
-        th2 = np.arctan2(by - cy, bx - cx) - f["phi2"]
-        state.set_pose_xy(f["i1"], ax, ay, A, th1, np.cos(th1), np.sin(th1))
-        state.set_pose_xy(f["i2"], cx, cy, C, th2, np.cos(th2), np.sin(th2))
-        return np.isfinite(bx) & np.isfinite(by)
+        state.cs(f["iA"])
+        state.cs(f["iC"])
+        N = state.Q.shape[1]
+        ok = np.ones(N, dtype=bool)
+        r = np.empty((4, N))
+        Q0 = state.Qm[0]
+        kernels.rrr_positions(Q0, state.T, f["iA"], f["A"], f["iC"], f["C"], f["i1"], f["i2"],
+                              f["diff"], f["L1sq"], f["tol"], f["branch"], f["k1"], f["k2"], r, ok)
+        for i, (x, y), phi in ((f["i1"], r[:2], f["phi1"]), (f["i2"], r[2:], f["phi2"])):
+            np.subtract(np.arctan2(y, x), phi, out=Q0[i, 2])
+        state.placed(f["i1"], f["i2"])
+        return ok
 
     def _pos_rod_in_slot(self, state: State) -> np.ndarray:
         p = self.parts
@@ -528,16 +470,18 @@ class GroupSolver:
         N = state.Q.shape[1]
         q = np.zeros((N, self.group.size, 3)) if guess is None else guess.copy()
         scale = self.mech.length_scale
-        active = np.isfinite(q).all(axis=(1, 2)) & np.isfinite(state.Q[0]).all(axis=(1, 2))
+        active = np.isfinite(q).all(axis=(1, 2))
         converged = np.zeros(N, dtype=bool)
         polished = np.zeros(N, dtype=bool)
         q[~active] = 0.0
-        for _ in range(50):
+        for it in range(50):
             state.Q[0][:, idx, :] = q
             U = q[None, :, None]
             res = _residuals(state, self.group, U, 0)
             r = np.stack([x.c[0][:, 0] for x in res], axis=1)
             err = np.abs(r).max(axis=1)
+            if it == 0:  # samples whose known links did not assemble upstream
+                active &= np.isfinite(err)
             converged = active & (err <= NEWTON_TOL * scale)
             todo = active & ~(converged & polished)
             if not todo.any():
@@ -569,45 +513,16 @@ class GroupSolver:
         return derivatives_generic(state, self.group, ok)
 
     def _der_driver(self, state: State, ok: np.ndarray) -> np.ndarray:
-        """Revolute driver: θ follows the base's angle plus the input; the driven link turns
-        about the hinge H, whose motion is that of H on the base."""
+        """Revolute driver (`kernels.driver_rates`); its condition number is the design one."""
         f = self.fast
-        i, b = f["i"], f["b"]
         u = state.inputs[f["joint"]]
-        vx, vy, ax, ay = state.point_va(b, f["H"], ok)
-        om = state.Q[1, :, b, 2] + u[1]
-        al = 2 * (state.Q[2, :, b, 2] + u[2])
-        state.set_rates(i, f["H"], vx, vy, ax, ay, om, al)
+        kernels.driver_rates(state.Qm, state.T, f["b"], f["i"], f["H"], u[1], u[2])
         return np.full(state.Q.shape[1], f["cond"])
 
     def _der_RRR(self, state: State, ok: np.ndarray) -> np.ndarray:
-        """Velocities and accelerations of an RRR dyad in closed form (Cramer's rule)."""
+        """Velocities and accelerations of an RRR dyad (`kernels.rrr_rates`)."""
         f = self.fast
-        A, C, BA, BC = f["A"], f["C"], f["BA"], f["BC"]
-        i1, i2 = f["i1"], f["i2"]
-        vAx, vAy, aAx, aAy = state.point_va(f["iA"], A, ok)
-        vCx, vCy, aCx, aCy = state.point_va(f["iC"], C, ok)
-        r1x, r1y = state.rot(i1, BA)  # B − A, in world directions
-        r2x, r2y = state.rot(i2, BC)  # B − C
-        # columns of the hinge closure ω1 ⊥r1 − ω2 ⊥r2 = vC − vA:  c1 = ⊥r1, c2 = −⊥r2
-        c1x, c1y, c2x, c2y = -r1y, r1x, r2y, -r2x
-        with np.errstate(invalid="ignore", divide="ignore"):
-            det = c1x * c2y - c1y * c2x
-            wx, wy = vCx - vAx, vCy - vAy
-            om1 = (wx * c2y - wy * c2x) / det
-            om2 = (c1x * wy - c1y * wx) / det
-            o1, o2 = om1 * om1, om2 * om2
-            w2x = aCx - aAx + o1 * r1x - o2 * r2x
-            w2y = aCy - aAy + o1 * r1y - o2 * r2y
-            al1 = (w2x * c2y - w2y * c2x) / det
-            al2 = (c1x * w2y - c1y * w2x) / det
-            a_ = c1x * c1x + c1y * c1y
-            b_ = c1x * c2x + c1y * c2y
-            cc = c2x * c2x + c2y * c2y
-            mid = 0.5 * (a_ + cc)
-            hd = 0.5 * (a_ - cc)
-            rad = np.sqrt(hd * hd + b_ * b_)
-            cond = np.sqrt((mid + rad) / (mid - rad))
-        state.set_rates(i1, A, vAx, vAy, aAx, aAy, om1, al1)
-        state.set_rates(i2, C, vCx, vCy, aCx, aCy, om2, al2)
-        return np.where(np.isfinite(cond), cond, np.inf)
+        cond = np.ones(state.Q.shape[1])
+        kernels.rrr_rates(state.Qm, state.T, f["iA"], f["A"], f["iC"], f["C"], f["i1"], f["i2"],
+                          f["BA"], f["BC"], f["mid"], f["hd2"], cond)
+        return cond

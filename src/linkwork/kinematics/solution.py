@@ -16,6 +16,7 @@ import numpy as np
 
 from ..errors import ModelError
 from ..model import CircularSlot, Gear, Mechanism, Prismatic, Slot
+from . import kernels
 
 
 class Status(enum.IntEnum):
@@ -34,38 +35,6 @@ def _perp(v: np.ndarray) -> np.ndarray:
 def _rot(theta: np.ndarray, s: np.ndarray) -> np.ndarray:
     c, sn = np.cos(theta), np.sin(theta)
     return np.stack([c * s[..., 0] - sn * s[..., 1], sn * s[..., 0] + c * s[..., 1]], axis=-1)
-
-
-BLOCK = 8192  # samples per block of point reads
-
-
-def _point_block(D: np.ndarray, c: np.ndarray, sn: np.ndarray, sx, sy, out: np.ndarray) -> None:
-    """Derivatives of the point s = (sx, sy) fixed in a link with pose derivatives D[k, n, (x,
-    y, θ)] into out[k, x|y, n]: r = R(θ)s, v = ṫ + ω ⊥r, a = ẗ + α ⊥r − ω² r, and the jerk."""
-    rx = c * sx
-    rx -= sn * sy
-    ry = sn * sx
-    ry += c * sy  # r = R(θ)s;  ⊥r = (−ry, rx)
-    np.add(D[0, :, 0], rx, out=out[0, 0])
-    np.add(D[0, :, 1], ry, out=out[0, 1])
-    w = D[1, :, 2]
-    np.subtract(D[1, :, 0], w * ry, out=out[1, 0])
-    np.add(D[1, :, 1], w * rx, out=out[1, 1])
-    if D.shape[0] > 2:
-        a, ww = D[2, :, 2], w * w
-        x, y = out[2]
-        np.subtract(D[2, :, 0], a * ry, out=x)
-        x -= ww * rx
-        np.add(D[2, :, 1], a * rx, out=y)
-        y -= ww * ry
-    if D.shape[0] > 3:
-        # d/dt of the acceleration: ⃛t + (j − ω³) ⊥r − 3ωα r
-        jt, wa = D[3, :, 2] - w ** 3, 3 * w * D[2, :, 2]
-        x, y = out[3]
-        np.subtract(D[3, :, 0], jt * ry, out=x)
-        x -= wa * rx
-        np.add(D[3, :, 1], jt * rx, out=y)
-        y -= wa * ry
 
 
 @dataclass(frozen=True)
@@ -176,12 +145,9 @@ class Solution:
         D = self._D[:, :, i]
         c, sn = self._trig(i)
         N, K = len(self), self.order
-        # out[k, x|y, n]: each quantity's x and y rows contiguous; handed out as (N, 2) views
-        out = np.empty((K + 1, 2, N))
-        for lo in range(0, N, BLOCK):  # blocks of samples: the temporaries stay in the cache
-            sl = slice(lo, lo + BLOCK)
-            ss = s if s.ndim == 1 else s[sl]
-            _point_block(D[:, sl], c[sl], sn[sl], ss[..., 0], ss[..., 1], out[:, :, sl])
+        out = np.empty((K + 1, 2, N))  # out[k, x|y, n]; handed out as (N, 2) views
+        sx, sy = (np.broadcast_to(s[..., j], (N,)) for j in (0, 1))
+        kernels.point_motion(D, c, sn, sx, sy, out)
         q = [out[k].T for k in range(K + 1)] + [None] * (3 - K)
         return PointMotion(*q)
 

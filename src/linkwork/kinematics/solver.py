@@ -29,23 +29,23 @@ def plan(mech: Mechanism) -> tuple[GroupSolver, ...]:
     return tuple(GroupSolver(mech, g) for g in solution_order(mech))
 
 
-def _pose_array(order: int, N: int, n_links: int) -> np.ndarray:
-    """Zeroed Q[k, n, link, (x, y, θ)], stored with the sample axis last in memory, so that
-    every Q[k, :, link, c] the group solvers and `Solution` work on is contiguous (a C-ordered
-    array would make each of them a strided walk over all of Q[k]). Same shape and values."""
-    return np.zeros((order + 1, n_links, 3, N)).transpose(0, 3, 1, 2)
+def _pose_array(order: int, N: int, n_links: int, frame: int) -> np.ndarray:
+    """Q[k, n, link, (x, y, θ)], stored with the sample axis last in memory, so that every
+    Q[k, :, link, c] the group solvers and `Solution` work on is contiguous (a C-ordered array
+    would make each of them a strided walk over all of Q[k]). The frame's rows are zero; every
+    other link's rows are written by the group that solves it (not zeroed first: on large
+    batches that pass over memory is a noticeable part of the solve)."""
+    Q = np.empty((order + 1, n_links, 3, N))
+    Q[:, frame] = 0.0
+    return Q.transpose(0, 3, 1, 2)
 
 
-def _finish_block(state: State, ok: np.ndarray, cos: np.ndarray, sin: np.ndarray) -> None:
-    """Hand a solved block over to `Solution`: every link's cos θ and sin θ (most of them known
-    from the group solvers) into cos/sin[link, n], and the Taylor coefficients q⁽ᵏ⁾/k! the
+def _finish_block(state: State) -> None:
+    """Hand a solved block over to `Solution`: cos θ and sin θ of every link in state.T (most
+    of them written by the group solvers already), and the Taylor coefficients q⁽ᵏ⁾/k! the
     solvers work with turned into time derivatives, in place."""
-    frame = state.mech.link_index[state.mech.frame]
-    for i in range(cos.shape[0]):
-        if i == frame and ok.all():
-            cos[i], sin[i] = 1.0, 0.0  # unassembled samples carry NaN instead
-        else:
-            cos[i], sin[i] = state.cs(i)
+    for i in range(state.T.shape[0]):
+        state.cs(i)
     for k in range(2, state.order + 1):
         state.Q[k] *= factorial(k)
 
@@ -95,21 +95,23 @@ def solve(mech: Mechanism, inputs=None, *, times=None, velocities=None, accelera
         jerks = _as_2d(jerks, nd, "jerks")
     N = values.shape[0]
     solvers = plan(mech)
-    Q = _pose_array(order, N, len(mech.links))
+    frame = mech.link_index[mech.frame]
+    Q = _pose_array(order, N, len(mech.links), frame)
     inputs = input_coefficients(mech, values, velocities, accelerations, jerks, order)
     generic = any(s.kind == "generic" for s in solvers)
     guesses = continuation_guesses(mech, solvers, values) if generic else {}
     assembled = np.ones(N, dtype=bool)
     condition = np.ones(N)
-    n_links = len(mech.links)
-    cos, sin = np.empty((n_links, N)), np.empty((n_links, N))  # rows contiguous, like Q's
+    T = np.empty((len(mech.links), 2, N))  # cos θ, sin θ of every link, rows contiguous
+    T[frame, 0], T[frame, 1] = 1.0, 0.0
     # Closed-form groups work sample by sample, so the samples are solved in blocks whose
     # temporaries stay in the CPU cache (same operations per sample, same results); the
     # Newton path keeps one batch.
     block = max(N, 1) if generic else BLOCK
     for lo in range(0, N, block):
         sl = slice(lo, lo + block)
-        state = State(mech, Q[:, sl], {j: c[:, sl] for j, c in inputs.items()})
+        state = State(mech, Q[:, sl], {j: c[:, sl] for j, c in inputs.items()}, T=T[:, :, sl],
+                      known={frame})
         ok = assembled[sl]  # a view: updated in place
         for s in solvers:
             g = guesses.get(s.group)
@@ -120,8 +122,8 @@ def solve(mech: Mechanism, inputs=None, *, times=None, velocities=None, accelera
         cond = condition[sl]
         for s in solvers:
             np.maximum(cond, s.derivatives(state, ok), out=cond)
-        _finish_block(state, ok, cos[:, sl], sin[:, sl])
+        _finish_block(state)
     status = np.where(assembled, np.where(condition > SINGULAR_CONDITION, Status.SINGULAR, Status.OK),
                       Status.UNREACHABLE).astype(np.int8)
     condition = np.where(assembled, condition, np.nan)
-    return Solution(mech, values, t, Q, status, condition, trig=(cos.T, sin.T))
+    return Solution(mech, values, t, Q, status, condition, trig=(T[:, 0].T, T[:, 1].T))

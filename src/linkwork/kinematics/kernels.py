@@ -1,0 +1,168 @@
+"""Compiled per-sample loops of the closed-form hot paths: the RRR dyad, the revolute driver and
+the motion of a point carried by a link.
+
+Why compiled (numba): a dyad's positions, velocities and accelerations are some 150 arithmetic
+operations per sample. As NumPy array operations each of them is a Python call and a walk
+through memory, which held the four-bar, the six-bars and Jansen's linkage to several hundred
+nanoseconds per sample and dyad; these loops do the same arithmetic in registers. Each formula
+has this one implementation; the generic path (constraints on jets and a linear solve,
+`groups.derivatives_generic`) stays the independent check of it
+(tests/kinematics/test_generic_vs_closed_form.py).
+
+Array conventions (as in `groups.State`): Q[k, link, (x, y, θ), n] holds the k-th Taylor
+coefficient q⁽ᵏ⁾/k! of every link pose, the sample axis last; T[link, (cos θ, sin θ), n].
+A link's pose places its design point s at (x, y) + R(θ)·s. Division by zero gives inf/NaN as
+in NumPy (error_model="numpy"); unassembled samples are flagged in `ok` and their values are
+overwritten with NaN by `solver.solve`.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numba as nb
+
+_jit = nb.njit(cache=True, nogil=True, error_model="numpy")
+
+
+@_jit
+def rrr_positions(Q0, T, iA, A, iC, C, i1, i2, diff, L1sq, tol, branch, k1, k2, r, ok):
+    """Circle–circle intersection: the hinge B of links i1 (through A) and i2 (through C) at
+    |AB| = L1 and |CB| = L2 on the design's side `branch` of AC (diff = L1² − L2²). The
+    links' cos θ and sin θ follow from the hinge vectors (k = (cos φ, sin φ)/L for a link drawn
+    at angle φ); the hinge vectors B − A, B − C go to r[0:2], r[2:4], whose angles the caller
+    takes with NumPy's vectorised arctan2 (a scalar atan2 here would cost more than the rest)."""
+    for n in range(Q0.shape[2]):
+        cA, sA, cC, sC = T[iA, 0, n], T[iA, 1, n], T[iC, 0, n], T[iC, 1, n]
+        ax = Q0[iA, 0, n] + cA * A[0] - sA * A[1]
+        ay = Q0[iA, 1, n] + sA * A[0] + cA * A[1]
+        cx = Q0[iC, 0, n] + cC * C[0] - sC * C[1]
+        cy = Q0[iC, 1, n] + sC * C[0] + cC * C[1]
+        dx, dy = cx - ax, cy - ay
+        D2 = dx * dx + dy * dy
+        inv = 1.0 / math.sqrt(D2)
+        a = (diff + D2) * (0.5 * inv)  # distance of B's foot from A along AC
+        h2 = L1sq - a * a  # squared distance of B from AC
+        if not h2 > tol:  # rounding may take a limit position just below zero; NaN fails too
+            ok[n] = False
+        h = branch * math.sqrt(h2 if h2 > 0.0 else 0.0) * inv
+        a *= inv
+        r1x, r1y = a * dx - h * dy, a * dy + h * dx  # B − A
+        r2x, r2y = ax + r1x - cx, ay + r1y - cy  # B − C
+        c1, s1 = r1x * k1[0] + r1y * k1[1], r1y * k1[0] - r1x * k1[1]
+        c2, s2 = r2x * k2[0] + r2y * k2[1], r2y * k2[0] - r2x * k2[1]
+        T[i1, 0, n], T[i1, 1, n], T[i2, 0, n], T[i2, 1, n] = c1, s1, c2, s2
+        Q0[i1, 0, n] = ax - (c1 * A[0] - s1 * A[1])
+        Q0[i1, 1, n] = ay - (s1 * A[0] + c1 * A[1])
+        Q0[i2, 0, n] = cx - (c2 * C[0] - s2 * C[1])
+        Q0[i2, 1, n] = cy - (s2 * C[0] + c2 * C[1])
+        r[0, n], r[1, n], r[2, n], r[3, n] = r1x, r1y, r2x, r2y
+
+
+@_jit
+def _point_rates(Q, T, i, s0, s1, n):
+    """Velocity and acceleration (vx, vy, ax, ay) of design point s on link i at sample n."""
+    c, sn = T[i, 0, n], T[i, 1, n]
+    rx, ry = c * s0 - sn * s1, sn * s0 + c * s1
+    w, al = Q[1, i, 2, n], 2.0 * Q[2, i, 2, n]
+    ww = w * w
+    return (Q[1, i, 0, n] - w * ry, Q[1, i, 1, n] + w * rx,
+            2.0 * Q[2, i, 0, n] - al * ry - ww * rx, 2.0 * Q[2, i, 1, n] + al * rx - ww * ry)
+
+
+@_jit
+def _set_rates(Q, T, i, s0, s1, n, vx, vy, ax, ay, om, al):
+    """Rates of link i from the motion (v, a) of its design point s and its ω and α:
+    v_origin = v − ω ⊥r, a_origin = a − α ⊥r + ω² r, r = R(θ)s, ⊥(x, y) = (−y, x)."""
+    c, sn = T[i, 0, n], T[i, 1, n]
+    rx, ry = c * s0 - sn * s1, sn * s0 + c * s1
+    oo = om * om
+    Q[1, i, 0, n] = vx + om * ry
+    Q[1, i, 1, n] = vy - om * rx
+    Q[1, i, 2, n] = om
+    Q[2, i, 0, n] = 0.5 * (ax + al * ry + oo * rx)
+    Q[2, i, 1, n] = 0.5 * (ay - al * rx + oo * ry)
+    Q[2, i, 2, n] = 0.5 * al
+
+
+@_jit
+def rrr_rates(Q, T, iA, A, iC, C, i1, i2, BA, BC, mid, hd2, cond):
+    """Velocities and accelerations of the RRR dyad by Cramer's rule on the hinge closure
+    ω1 ⊥r1 − ω2 ⊥r2 = vC − vA (r1 = B − A, r2 = B − C) and its derivative. The condition
+    number of the 2×2 system raises cond[n] where larger: its columns have lengths L1, L2,
+    so σ² = mid ± √(hd2 + (r1·r2)²) with mid = (L1² + L2²)/2, hd2 = ((L1² − L2²)/2)², and
+    σ_max/σ_min = σ_max²/|det| (σ_max σ_min = |det|), free of cancellation near singularity."""
+    for n in range(Q.shape[3]):
+        vAx, vAy, aAx, aAy = _point_rates(Q, T, iA, A[0], A[1], n)
+        vCx, vCy, aCx, aCy = _point_rates(Q, T, iC, C[0], C[1], n)
+        c1, s1, c2, s2 = T[i1, 0, n], T[i1, 1, n], T[i2, 0, n], T[i2, 1, n]
+        r1x, r1y = c1 * BA[0] - s1 * BA[1], s1 * BA[0] + c1 * BA[1]
+        r2x, r2y = c2 * BC[0] - s2 * BC[1], s2 * BC[0] + c2 * BC[1]
+        inv = 1.0 / (r1y * r2x - r1x * r2y)
+        wx, wy = vCx - vAx, vCy - vAy
+        om1 = -(wx * r2x + wy * r2y) * inv
+        om2 = -(wx * r1x + wy * r1y) * inv
+        o1, o2 = om1 * om1, om2 * om2
+        w2x = aCx - aAx + o1 * r1x - o2 * r2x
+        w2y = aCy - aAy + o1 * r1y - o2 * r2y
+        al1 = -(w2x * r2x + w2y * r2y) * inv
+        al2 = -(w2x * r1x + w2y * r1y) * inv
+        b = r1x * r2x + r1y * r2y
+        k = (mid + math.sqrt(hd2 + b * b)) * abs(inv)
+        if not k < math.inf:  # NaN and ∞: the dyad is singular (or unassembled) here
+            k = math.inf
+        if k > cond[n]:
+            cond[n] = k
+        _set_rates(Q, T, i1, A[0], A[1], n, vAx, vAy, aAx, aAy, om1, al1)
+        _set_rates(Q, T, i2, C[0], C[1], n, vCx, vCy, aCx, aCy, om2, al2)
+
+
+@_jit
+def driver_positions(Q0, T, b, i, H, u, u0):
+    """Revolute driver: link i turns about the hinge H of its base link b by the input u,
+    θ = θ_b + u − u0 (u0 the input at the design position)."""
+    for n in range(Q0.shape[2]):
+        cb, sb = T[b, 0, n], T[b, 1, n]
+        hx = Q0[b, 0, n] + cb * H[0] - sb * H[1]
+        hy = Q0[b, 1, n] + sb * H[0] + cb * H[1]
+        th = Q0[b, 2, n] + (u[n] - u0)
+        c, sn = math.cos(th), math.sin(th)
+        T[i, 0, n], T[i, 1, n] = c, sn
+        Q0[i, 0, n] = hx - (c * H[0] - sn * H[1])
+        Q0[i, 1, n] = hy - (sn * H[0] + c * H[1])
+        Q0[i, 2, n] = th
+
+
+@_jit
+def driver_rates(Q, T, b, i, H, u1, u2):
+    """Revolute driver: ω = ω_b + u̇, α = α_b + ü (u1 = u̇, u2 = ü/2 as Taylor coefficients);
+    the driven link turns about the hinge H, whose motion is that of H on the base."""
+    for n in range(Q.shape[3]):
+        vx, vy, ax, ay = _point_rates(Q, T, b, H[0], H[1], n)
+        om = Q[1, b, 2, n] + u1[n]
+        al = 2.0 * (Q[2, b, 2, n] + u2[n])
+        _set_rates(Q, T, i, H[0], H[1], n, vx, vy, ax, ay, om, al)
+
+
+@_jit
+def point_motion(D, c, s, sx, sy, out):
+    """Time derivatives out[k, (x, y), n] (k = 0 … K) of the point s = (sx[n], sy[n]) fixed in
+    a link with pose derivatives D[k, n, (x, y, θ)] and cos θ, sin θ = c, s:
+    r = R(θ)s, v = ṫ + ω ⊥r, a = ẗ + α ⊥r − ω² r, j = ⃛t + (ω̈ − ω³) ⊥r − 3ωα r."""
+    K = D.shape[0] - 1
+    for n in range(D.shape[1]):
+        rx = c[n] * sx[n] - s[n] * sy[n]
+        ry = s[n] * sx[n] + c[n] * sy[n]
+        out[0, 0, n] = D[0, n, 0] + rx
+        out[0, 1, n] = D[0, n, 1] + ry
+        w = D[1, n, 2]
+        out[1, 0, n] = D[1, n, 0] - w * ry
+        out[1, 1, n] = D[1, n, 1] + w * rx
+        if K >= 2:
+            a, ww = D[2, n, 2], w * w
+            out[2, 0, n] = D[2, n, 0] - a * ry - ww * rx
+            out[2, 1, n] = D[2, n, 1] + a * rx - ww * ry
+            if K >= 3:
+                jt, wa = D[3, n, 2] - w * w * w, 3.0 * w * a
+                out[3, 0, n] = D[3, n, 0] - jt * ry - wa * rx
+                out[3, 1, n] = D[3, n, 1] + jt * rx - wa * ry
