@@ -22,7 +22,7 @@ import math
 
 import numba as nb
 
-_jit = nb.njit(cache=True, nogil=True, error_model="numpy")
+_jit = nb.njit(cache=True, nogil=True, error_model="numpy", fastmath={"contract", "arcp", "nsz"})
 
 
 @_jit
