@@ -446,3 +446,20 @@ A = {{ type = "circular-slot", links = ["rocker", "crank"], center = "K" }}
 [driver]
 joint = "O2"
 """
+
+
+
+def four_bar_with_driven_arm() -> str:
+    """Four-bar O2 A B O4 with an arm BG hinged at B, where coupler, rocker and arm share the
+    hinge, driven by a second input at B2 (arm against rocker). The three-pole theorem gives the
+    pole of the arm relative to frame or crank only one line (every line to it runs through B),
+    so those two poles depend on the second input's speed."""
+    text = four_bar_from_points((0, 0), (0, 10), (30, 30), (40, 0))
+    for old, new in (('O4 = [', 'G = [45.0, 50.0]\nO4 = ['),
+                     ('rocker = ["B", "O4"]\n', 'rocker = ["B", "O4"]\narm = ["B", "G"]\n'),
+                     ('[driver]\njoint = "O2"\nreference = "A"\n',
+                      'B2 = { type = "revolute", links = ["rocker", "arm"], point = "B" }\n'
+                      '[[drivers]]\njoint = "O2"\n[[drivers]]\njoint = "B2"\n')):
+        assert old in text, old
+        text = text.replace(old, new)
+    return text

@@ -2,6 +2,10 @@
 pole counts and schedules are Rosenauer's (§84, §85, §91, §92) and Pöschl's (§51), and the
 poles the theorem cannot reach are those of chains without four-bar loops (Rosenauer 1937)."""
 
+import re
+from dataclasses import replace
+from itertools import combinations
+
 import numpy as np
 import pytest
 
@@ -101,6 +105,91 @@ def test_chain_without_four_bar_loops_needs_more_than_the_theorem():
         assert np.isfinite(P[pair].coords).all()
     # and the velocity poles obey the three-pole theorem on every one of the 56 lines
     assert max(float(np.nanmax(pl.residual)) for pl in pole_lines(P, mech.length_scale)) < 1e-9
+
+
+# ---------------------------------------------------------------------------- links on one hinge
+def _jansen():
+    """Jansen's linkage at crank angles all round: three links share each of the hinges A, B
+    and D, so for every position many pairs of its pole lines are one line."""
+    mech = linkwork.load("library:jansen-linkage")
+    u0 = mech.driver_input_at_design(mech.drivers[0])
+    sol = linkwork.solve(mech, u0 + np.radians([0.0, 50.0, 110.0, 180.0, 250.0, 320.0]), order=1)
+    assert (sol.status == linkwork.Status.OK).all()
+    return mech, sol
+
+
+def _unit_line(P, a, b, L):
+    """(N, 3) unit line through the poles a and b of P, lengths in units of L."""
+    p, q = (np.asarray(P[x].coords) * [1 / L, 1 / L, 1] for x in (a, b))
+    ln = np.cross(p, q)
+    return ln / np.linalg.norm(ln, axis=1, keepdims=True)
+
+
+def test_jansen_every_pole_by_the_theorem_is_the_velocity_pole():
+    mech, sol = _jansen()
+    sch = pole_schedule(mech)
+    assert sch.unreachable == ()
+    P, K = poles(sol), kennedy_poles(sol, sch)
+    for pair, d in agreement(P, K, mech.length_scale).items():
+        assert np.isfinite(K[pair].coords).all(), f"{P.label(*pair)} undetermined"
+        assert np.all(d < TOL), f"{P.label(*pair)}: {d.max():.2e}"
+
+
+def test_jansen_schedule_lines_are_different_lines():
+    # The two lines printed for a pole give it on their own (kennedy_poles otherwise picks the
+    # best pair of all a step keeps), and every two lines a step keeps are different lines:
+    # the sine of their angle, measured on the velocity poles, is far from 0.
+    mech, sol = _jansen()
+    L = mech.length_scale
+    sch = pole_schedule(mech)
+    printed = replace(sch, steps=tuple(replace(s, lines=s.lines[:2]) for s in sch.steps))
+    P = poles(sol)
+    for pair, d in agreement(P, kennedy_poles(sol, printed), L).items():
+        assert np.all(d < TOL), f"{P.label(*pair)}: {d.max():.2e}"
+    for st in sch.derived:
+        for a, b in combinations(st.lines, 2):
+            sine = np.linalg.norm(np.cross(_unit_line(P, *a.poles, L), _unit_line(P, *b.poles, L)), axis=1)
+            assert sine.min() > 1e-3, f"{st.text(sch.links)}: {a.text(sch.links)} = {b.text(sch.links)}"
+
+
+def test_jansen_schedule_reads_like_a_textbook():
+    mech = linkwork.load("library:jansen-linkage")
+    sch = pole_schedule(mech)
+    text = sch.lines()
+    assert "P35 = hinge A1 (common to three links)" in text
+    # the foot's pole: the line of the crank pivot O and P28, and the line B D of link_c
+    assert "P18 = P12P28 ∩ P16P68" in text
+    for st in sch.derived:
+        assert re.fullmatch(r"P\d\d = P\d\dP\d\d ∩ P\d\dP\d\d", st.text(sch.links))
+        for src in st.lines[:2]:  # each printed line is P_im P_km for a third link m
+            assert len(set(st.pair) | set(src.poles[0]) | set(src.poles[1])) == 3
+
+
+def test_only_coincident_lines_leave_a_pole_unreachable():
+    # Coupler, rocker and arm share B: the lines P13P35 and P14P45 to P15 are both O4 B, and the
+    # lines to P25 are both A B. The poles are not NaN in disguise but reported unreachable.
+    mech = linkwork.load_text(im.four_bar_with_driven_arm())
+    sch = pole_schedule(mech)
+    assert [sch.links.index(ln) + 1 for ln in ("frame", "crank", "coupler", "rocker", "arm")] == [1, 2, 3, 4, 5]
+    assert sch.lines()[-1] == "not reachable by the three-pole theorem: P15, P25"
+    L = mech.length_scale
+    u0 = np.array([mech.driver_input_at_design(d) for d in mech.drivers])
+    inputs = u0 + np.radians([[0.0, 0.0], [5.0, 10.0], [-5.0, 20.0]])
+    found = []
+    for arm_speed in (0.5, -2.0):
+        sol = linkwork.solve(mech, inputs, velocities=np.array([[1.0, arm_speed]] * 3), order=1)
+        P, K = poles(sol), kennedy_poles(sol, sch)
+        for pair, d in agreement(P, K, L).items():
+            if pair in sch.unreachable:
+                assert np.isnan(K[pair].coords).all()
+            else:
+                assert np.all(d < TOL), f"{P.label(*pair)}: {d.max():.2e}"
+        # the theorem's one line O4 B does hold P15, but where on it depends on the second input
+        O4B = _unit_line(P, ("frame", "rocker"), ("coupler", "rocker"), L)
+        p15 = np.asarray(P["frame", "arm"].coords) * [1 / L, 1 / L, 1]
+        assert np.allclose((O4B * p15).sum(1) / np.linalg.norm(p15, axis=1), 0, atol=1e-12)
+        found.append(P["frame", "arm"])
+    assert np.all(pole_discrepancy(*found, L) > 1e-3)
 
 
 # ---------------------------------------------------------------------------- agreement

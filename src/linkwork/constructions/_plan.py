@@ -68,7 +68,84 @@ def _meet(l1: np.ndarray, l2: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return np.where(par[:, None], np.nan, x), par
 
 
-class VelocityConstruction:
+class _SlidingGroups:
+    """The groups in which a link turns about a known hinge while one of its points slides on a
+    guide: the rod in a slot and the RRP dyad (a point of the rod slides along the guide of a
+    link G), the slotted lever and the RPR dyad (the lever carries the guide, the pin on it is
+    known). In both constructions each is the same sequence — the two given images, one step,
+    the intersection of the line about the hinge with the line along the guide, the images on
+    the block — so it is written once here; a construction supplies the words of its steps
+    (`SLIDING_STEPS`, `_sliding_words`), the intersection (`_sliding_image`) and what it keeps
+    of the sliding (`_slid`)."""
+
+    SLIDING_STEPS: dict[str, str]
+
+    def _other(self, j, link: str) -> str:
+        return j.links[1] if j.links[0] == link else j.links[0]
+
+    def _slid(self, joint, X: str, pin_img: np.ndarray, guide_img: np.ndarray) -> None:
+        """Keep the sliding at X (the pin's image less the guide's); the acceleration plan takes
+        it from its velocity plan instead."""
+
+    def _axis(self, guide_link: str, axis) -> np.ndarray:
+        th = self.sol.pose_derivatives(guide_link)[0, :, 2]
+        a = rotate(th, np.broadcast_to(np.asarray(axis, float), (self.n, 2)))
+        return a / norm(a)[:, None]
+
+    def _g_rod_in_slot(self, gs) -> None:
+        p = gs.parts
+        G = p["line"].links[0]
+        self._sliding_group(gs.kind, p["rod"], p["pivot"], p["line"], p["line"].point, G, G)
+
+    def _g_RRP(self, gs) -> None:
+        p = gs.parts
+        G = p["guide"].links[0]
+        self._sliding_group(gs.kind, p["rod"], p["pivot"], p["guide"], p["hinge"].point, G, G, p["block"])
+
+    def _g_slotted_lever(self, gs) -> None:
+        p = gs.parts
+        line, lever = p["line"], p["lever"]
+        self._sliding_group(gs.kind, lever, p["pivot"], line, line.point, lever, line.links[1])
+
+    def _g_RPR(self, gs) -> None:
+        p = gs.parts
+        pin, lever, block = p["pin"], p["lever"], p["block"]
+        self._sliding_group(gs.kind, lever, p["pivot"], p["guide"], pin.point, lever,
+                            self._other(pin, block), block)
+
+    def _sliding_group(self, kind: str, link: str, pivot, joint, X: str, guide: str, given: str,
+                       block: str | None = None) -> None:
+        """``link`` turns about the hinge ``pivot``; its point ``X`` slides along the axis of
+        ``joint`` fixed in ``guide``. If ``guide`` is another link (rod), the given image at X is
+        that of guide's coincident point and the constructed one is the rod's; if ``link`` is
+        the guide itself (lever), the given image is the pin's on ``given`` and the constructed
+        one is the lever's point under it (starred). A ``block`` (RRP, RPR) is hinged at X to
+        the pin's side and turns with the guide."""
+        on_guide = link == guide
+        A, P = self.pos[pivot.point], self.pos[X]
+        pivot_img = self.image(self._other(pivot, link), pivot.point)
+        given_img = (self.image(given, X) if on_guide else
+                     self.image(guide, f"{X}@{guide}", P, label=self.lbl(X) + "*"))
+        axis = self._axis(guide, joint.axis)
+        lab = self.lbl(X) + ("*" if on_guide else "")
+        self.b.step(self.SLIDING_STEPS[kind].format(
+            X=upper(X), P=upper(pivot.point), p=self.lbl(pivot.point), x=self.lbl(X), lab=lab,
+            link=link, G=guide, block=block, **self._sliding_words(guide)))
+        img = self._sliding_image(link, guide, joint, X, A, pivot_img, given_img, axis, lab)
+        self.set_known(link, A, pivot_img, pivot.point)
+        self.set_known(link, P, img, f"{X}@{link}" if on_guide else X)
+        # images on the pin's side and on the guide at X: the sliding is their difference
+        pin_img, guide_img = (given_img, img) if on_guide else (img, given_img)
+        if block is not None:
+            # the block moves like the guide link plus the common sliding
+            shift = pin_img - guide_img
+            self.set_known(block, P, pin_img, X)
+            X2 = P + axis * self.mech.length_scale
+            self.set_known(block, X2, self.image(guide, f"{X}+@{guide}", X2, draw=False) + shift, X + "+")
+        self._slid(joint, X, pin_img, guide_img)
+
+
+class VelocityConstruction(_SlidingGroups):
     """Velocity images of all points, group by group. ``mode`` is ``"plan"`` (polar velocity
     plan in the space ``velocity``) or ``"rotated"`` (rotated velocities on the mechanism, at
     ``kv`` mechanism lengths per velocity unit)."""
@@ -199,9 +276,6 @@ class VelocityConstruction:
                 self.image(link.name, p)
             self.measured_omega(link.name)
 
-    def _other(self, j, link: str) -> str:
-        return j.links[1] if j.links[0] == link else j.links[0]
-
     def _g_driver(self, gs) -> None:
         mech, sol = self.mech, self.sol
         (ln,) = gs.group.links
@@ -280,101 +354,37 @@ class VelocityConstruction:
         self._point(key, img, lab, role, lines=(key + ".1", key + ".2"))
         return img
 
-    def _axis(self, guide_link: str, axis) -> np.ndarray:
-        th = self.sol.pose_derivatives(guide_link)[0, :, 2]
-        a = rotate(th, np.broadcast_to(np.asarray(axis, float), (self.n, 2)))
-        return a / norm(a)[:, None]
+    # the sliding groups (rod in slot, slotted lever, RRP, RPR): `_SlidingGroups` builds them
+    SLIDING_STEPS = {
+        "rod-in-slot": "Velocity of {X} ({link}, sliding in the slot of {G}): v_{X} = v_{P} + "
+                       "v_rel(\u27c2{P}{X}) = v_{X}*({G}) + v_slide(\u2225 slot). Through {p} draw the {rel} "
+                       "to {P}{X}, through the image of the coincident point of {G} the {par} to the slot; "
+                       "they meet in {lab}.",
+        "RRP": "Velocity of {X} (block {block} on the guide of {G}): v_{X} = v_{P} + v_rel(\u27c2{P}{X}) = "
+               "v_{X}*({G}) + v_slide(\u2225 guide). Through {p} draw the {rel} to {P}{X}, through {through} "
+               "the {par} to the guide; they meet in {lab}.",
+        "slotted-lever": "The point of the lever {link} under the pin {X}: v_{X} = v_{X}*({link}) + "
+                         "v_slide(\u2225 slot), v_{X}* \u27c2 {P}{X}. Through {p} draw the {rel} to {P}{X}, "
+                         "through {x} the {par} to the slot; they meet in {lab}.",
+        "RPR": "The point of the lever {link} under the block's pin {X}: v_{X} = v_{X}*({link}) + "
+               "v_slide(\u2225 {link}), v_{X}* \u27c2 {P}{X}; they meet in {lab}.",
+    }
 
-    def _g_rod_in_slot(self, gs) -> None:
-        p = gs.parts
-        piv, line, rod = p["pivot"], p["line"], p["rod"]
-        K, G = self._other(piv, rod), line.links[0]
-        A, Cp = self.pos[piv.point], self.pos[line.point]
-        ia = self.image(K, piv.point)
-        ig = self.image(G, f"{line.point}@{G}", Cp, label=self.lbl(line.point) + "*")
-        axis = self._axis(G, line.axis)
-        lab = self.lbl(line.point)
-        self.b.step(f"Velocity of {upper(line.point)} ({rod}, sliding in the slot of {G}): "
-                    f"v_{upper(line.point)} = v_{upper(piv.point)} + v_rel(\u27c2{upper(piv.point)}{upper(line.point)}) "
-                    f"= v_{upper(line.point)}*({G}) + v_slide(\u2225 slot). Through {self.lbl(piv.point)} draw the "
-                    f"{self.rel_words()} to {upper(piv.point)}{upper(line.point)}, through the image of the "
-                    f"coincident point of {G} the {'parallel' if self.mode == 'plan' else 'perpendicular'} "
-                    f"to the slot; they meet in {lab}.")
-        img = self._slide(f"v.{rod}.{line.point}", Cp, ia, Cp - A, ig, axis, lab, f"rod {rod}")
-        self.set_known(rod, A, ia, piv.point)
-        self.set_known(rod, Cp, img, line.point)
-        self.sliding[line.name] = self.velocity(Cp, img) - self.velocity(Cp, ig)
+    def _sliding_words(self, guide: str) -> dict[str, str]:
+        plan = self.mode == "plan"
+        return {"rel": self.rel_words(), "par": "parallel" if plan else "perpendicular",
+                "through": "o" if guide == self.mech.frame and plan else
+                           f"the image of the coincident point of {guide}"}
 
-    def _g_slotted_lever(self, gs) -> None:
-        p = gs.parts
-        piv, line, lever = p["pivot"], p["line"], p["lever"]
-        K, K2 = self._other(piv, lever), line.links[1]
-        O, Q = self.pos[piv.point], self.pos[line.point]
-        io = self.image(K, piv.point)
-        iq = self.image(K2, line.point)
-        axis = self._axis(lever, line.axis)
-        lab = self.lbl(line.point) + "*"
-        self.b.step(f"The point of the lever {lever} under the pin {upper(line.point)}: "
-                    f"v_{upper(line.point)} = v_{upper(line.point)}*({lever}) + v_slide(\u2225 slot), "
-                    f"v_{upper(line.point)}* \u27c2 {upper(piv.point)}{upper(line.point)}. Through "
-                    f"{self.lbl(piv.point)} draw the {self.rel_words()} to {upper(piv.point)}{upper(line.point)}, "
-                    f"through {self.lbl(line.point)} the {'parallel' if self.mode == 'plan' else 'perpendicular'} "
-                    f"to the slot; they meet in {lab}.")
-        img = self._slide(f"v.{lever}.{line.point}", Q, io, Q - O, iq, axis, lab, f"lever {lever}")
-        self.set_known(lever, O, io, piv.point)
-        self.set_known(lever, Q, img, f"{line.point}@{lever}")
-        self.sliding[line.name] = self.velocity(Q, iq) - self.velocity(Q, img)
+    def _sliding_image(self, link, guide, joint, X, A, pivot_img, given_img, axis, lab) -> np.ndarray:
+        what = f"{'lever' if link == guide else 'rod'} {link}"
+        return self._slide(f"v.{link}.{X}", self.pos[X], pivot_img, self.pos[X] - A, given_img, axis, lab, what)
 
-    def _g_RRP(self, gs) -> None:
-        p = gs.parts
-        piv, hinge, guide, rod, block = p["pivot"], p["hinge"], p["guide"], p["rod"], p["block"]
-        K, G = self._other(piv, rod), guide.links[0]
-        A, B = self.pos[piv.point], self.pos[hinge.point]
-        ia = self.image(K, piv.point)
-        ig = self.image(G, f"{hinge.point}@{G}", B, label=self.lbl(hinge.point) + "*")
-        axis = self._axis(G, guide.axis)
-        lab = self.lbl(hinge.point)
-        self.b.step(f"Velocity of {upper(hinge.point)} (block {block} on the guide of {G}): "
-                    f"v_{upper(hinge.point)} = v_{upper(piv.point)} + v_rel(\u27c2{upper(piv.point)}{upper(hinge.point)}) "
-                    f"= v_{upper(hinge.point)}*({G}) + v_slide(\u2225 guide). Through {self.lbl(piv.point)} draw the "
-                    f"{self.rel_words()} to {upper(piv.point)}{upper(hinge.point)}, through "
-                    f"{'o' if G == self.mech.frame and self.mode == 'plan' else 'the image of the coincident point of ' + G} "
-                    f"the {'parallel' if self.mode == 'plan' else 'perpendicular'} to the guide; they meet in {lab}.")
-        img = self._slide(f"v.{rod}.{hinge.point}", B, ia, B - A, ig, axis, lab, f"rod {rod}")
-        self.set_known(rod, A, ia, piv.point)
-        self.set_known(rod, B, img, hinge.point)
-        # the block moves like the guide link plus the common sliding velocity
-        shift = img - ig
-        self.set_known(block, B, img, hinge.point)
-        X2 = B + axis * self.mech.length_scale
-        self.set_known(block, X2, self.image(G, f"{hinge.point}+@{G}", X2, draw=False) + shift,
-                       hinge.point + "+")
-        self.sliding[guide.name] = self.velocity(B, img) - self.velocity(B, ig)
-
-    def _g_RPR(self, gs) -> None:
-        p = gs.parts
-        piv, pin, guide, lever, block = p["pivot"], p["pin"], p["guide"], p["lever"], p["block"]
-        K2, K = self._other(piv, lever), self._other(pin, block)
-        O, A = self.pos[piv.point], self.pos[pin.point]
-        io = self.image(K2, piv.point)
-        ia = self.image(K, pin.point)
-        axis = self._axis(lever, guide.axis)
-        lab = self.lbl(pin.point) + "*"
-        self.b.step(f"The point of the lever {lever} under the block's pin {upper(pin.point)}: "
-                    f"v_{upper(pin.point)} = v_{upper(pin.point)}*({lever}) + v_slide(\u2225 {lever}), "
-                    f"v_{upper(pin.point)}* \u27c2 {upper(piv.point)}{upper(pin.point)}; they meet in {lab}.")
-        img = self._slide(f"v.{lever}.{pin.point}", A, io, A - O, ia, axis, lab, f"lever {lever}")
-        self.set_known(lever, O, io, piv.point)
-        self.set_known(lever, A, img, f"{pin.point}@{lever}")
-        shift = ia - img
-        self.set_known(block, A, ia, pin.point)
-        X2 = A + axis * self.mech.length_scale
-        self.set_known(block, X2, self.image(lever, f"{pin.point}+@{lever}", X2, draw=False) + shift,
-                       pin.point + "+")
-        self.sliding[guide.name] = self.velocity(A, ia) - self.velocity(A, img)
+    def _slid(self, joint, X, pin_img, guide_img) -> None:
+        self.sliding[joint.name] = self.velocity(self.pos[X], pin_img) - self.velocity(self.pos[X], guide_img)
 
 
-class AccelerationConstruction:
+class AccelerationConstruction(_SlidingGroups):
     """The polar acceleration plan (space ``acceleration``), built on a finished polar
     :class:`VelocityConstruction` ``vc`` (whose images give ω of every link and the sliding
     velocities)."""
@@ -473,11 +483,6 @@ class AccelerationConstruction:
                 self.image(link.name, p)
             self.measured_alpha(link.name)
 
-    _other = VelocityConstruction._other
-
-    def _axis(self, guide_link, axis):
-        return self.vc._axis(guide_link, axis)
-
     def _g_driver(self, gs) -> None:
         mech, sol = self.mech, self.sol
         (ln,) = gs.group.links
@@ -542,7 +547,7 @@ class AccelerationConstruction:
         self.set_known(l2, C, ic, c.point)
         self.set_known(l2, B, img, bj.point)
 
-    def _slide(self, key, X, ia, A, img_g, cor, axis, w_rel_link, lab, how: str) -> np.ndarray:
+    def _slide(self, key, X, ia, A, img_g, cor, axis, w_rel_link, lab) -> np.ndarray:
         """a_X = a_A + ω²·XA + t(⟂AX) = a_{X∈G} + Coriolis + s(∥ axis)."""
         n = (w_rel_link * w_rel_link)[:, None] * (A - X)
         e1 = self._component(key + ".n", ia, n, None)
@@ -555,88 +560,27 @@ class AccelerationConstruction:
         self.b.extend(key + ".s", pt(img))
         return img
 
-    def _g_rod_in_slot(self, gs) -> None:
-        p = gs.parts
-        piv, line, rod = p["pivot"], p["line"], p["rod"]
-        K, G = self._other(piv, rod), line.links[0]
-        A, Cp = self.pos[piv.point], self.pos[line.point]
-        ia = self.image(K, piv.point)
-        ig = self.image(G, f"{line.point}@{G}", Cp, label=self.lbl(line.point) + "*")
-        axis = self._axis(G, line.axis)
-        vrel = self.vc.sliding[line.name]
-        cor = 2 * self.w(G)[:, None] * perp(vrel)
-        self.coriolis[line.name] = cor
-        self.b.step(f"Acceleration of {upper(line.point)}: a = a_{upper(piv.point)} + a^n + a^t(\u27c2{upper(piv.point)}"
-                    f"{upper(line.point)}) = a*({G}) + 2\u03c9_{G}\u00d7v_rel (Coriolis) + a_rel(\u2225 slot); "
-                    f"the two lines meet in {self.lbl(line.point)}.")
-        img = self._slide(f"a.{rod}.{line.point}", Cp, ia, A, ig, cor, axis, self.w(rod),
-                          self.lbl(line.point), "slot")
-        self.set_known(rod, A, ia, piv.point)
-        self.set_known(rod, Cp, img, line.point)
+    # the sliding groups (rod in slot, slotted lever, RRP, RPR): `_SlidingGroups` builds them
+    SLIDING_STEPS = {
+        "rod-in-slot": "Acceleration of {X}: a = a_{P} + a^n + a^t(\u27c2{P}{X}) = a*({G}) + "
+                       "2\u03c9_{G}\u00d7v_rel (Coriolis) + a_rel(\u2225 slot); the two lines meet in {lab}.",
+        "RRP": "Acceleration of {X}: a_{X} = a_{P} + a^n + a^t(\u27c2{P}{X}) = a*({G}){coriolis} + "
+               "a_rel(\u2225 guide); the lines meet in {lab}.",
+        "slotted-lever": "The lever's point under the pin {X}: a_{X} = a* + 2\u03c9_{link}\u00d7v_rel "
+                         "(Coriolis) + a_rel(\u2225 slot), a* = a_{P} + a^n + a^t(\u27c2{P}{X}): from {x} "
+                         "take away the Coriolis component and draw the parallel to the slot.",
+        "RPR": "The lever's point under the pin {X}: a_{X} = a* + 2\u03c9_{link}\u00d7v_rel (Coriolis) + "
+               "a_rel(\u2225 {link}).",
+    }
 
-    def _g_slotted_lever(self, gs) -> None:
-        p = gs.parts
-        piv, line, lever = p["pivot"], p["line"], p["lever"]
-        K, K2 = self._other(piv, lever), line.links[1]
-        O, Q = self.pos[piv.point], self.pos[line.point]
-        io, iq = self.image(K, piv.point), self.image(K2, line.point)
-        axis = self._axis(lever, line.axis)
-        vrel = self.vc.sliding[line.name]
-        cor = 2 * self.w(lever)[:, None] * perp(vrel)
-        self.coriolis[line.name] = cor
-        self.b.step(f"The lever's point under the pin {upper(line.point)}: a_{upper(line.point)} = a* + "
-                    f"2\u03c9_{lever}\u00d7v_rel (Coriolis) + a_rel(\u2225 slot), a* = a_{upper(piv.point)} + "
-                    f"a^n + a^t(\u27c2{upper(piv.point)}{upper(line.point)}): from {self.lbl(line.point)} take "
-                    "away the Coriolis component and draw the parallel to the slot.")
-        img = self._slide(f"a.{lever}.{line.point}", Q, io, O, iq, -cor, axis, self.w(lever),
-                          self.lbl(line.point) + "*", "slot")
-        self.set_known(lever, O, io, piv.point)
-        self.set_known(lever, Q, img, f"{line.point}@{lever}")
+    def _sliding_words(self, guide: str) -> dict[str, str]:
+        # a guide on the frame does not turn: no Coriolis component to name
+        return {"coriolis": " + 2\u03c9\u00d7v_rel (Coriolis)" if guide != self.mech.frame else ""}
 
-    def _g_RRP(self, gs) -> None:
-        p = gs.parts
-        piv, hinge, guide, rod, block = p["pivot"], p["hinge"], p["guide"], p["rod"], p["block"]
-        K, G = self._other(piv, rod), guide.links[0]
-        A, B = self.pos[piv.point], self.pos[hinge.point]
-        ia = self.image(K, piv.point)
-        ig = self.image(G, f"{hinge.point}@{G}", B, label=self.lbl(hinge.point) + "*")
-        axis = self._axis(G, guide.axis)
-        vrel = self.vc.sliding[guide.name]
-        cor = 2 * self.w(G)[:, None] * perp(vrel)
-        self.coriolis[guide.name] = cor
-        self.b.step(f"Acceleration of {upper(hinge.point)}: a_{upper(hinge.point)} = a_{upper(piv.point)} + a^n + "
-                    f"a^t(\u27c2{upper(piv.point)}{upper(hinge.point)}) = a*({G})"
-                    + (" + 2\u03c9\u00d7v_rel (Coriolis)" if G != self.mech.frame else "")
-                    + f" + a_rel(\u2225 guide); the lines meet in {self.lbl(hinge.point)}.")
-        img = self._slide(f"a.{rod}.{hinge.point}", B, ia, A, ig, cor, axis, self.w(rod),
-                          self.lbl(hinge.point), "guide")
-        self.set_known(rod, A, ia, piv.point)
-        self.set_known(rod, B, img, hinge.point)
-        shift = img - ig
-        self.set_known(block, B, img, hinge.point)
-        X2 = B + axis * self.mech.length_scale
-        # the block turns with G: its second point moves like G's point plus the same a_rel + Coriolis
-        self.set_known(block, X2, self.image(G, f"{hinge.point}+@{G}", X2, draw=False) + shift,
-                       hinge.point + "+")
-
-    def _g_RPR(self, gs) -> None:
-        p = gs.parts
-        piv, pin, guide, lever, block = p["pivot"], p["pin"], p["guide"], p["lever"], p["block"]
-        K2, K = self._other(piv, lever), self._other(pin, block)
-        O, A = self.pos[piv.point], self.pos[pin.point]
-        io, ia = self.image(K2, piv.point), self.image(K, pin.point)
-        axis = self._axis(lever, guide.axis)
-        vrel = self.vc.sliding[guide.name]
-        cor = 2 * self.w(lever)[:, None] * perp(vrel)
-        self.coriolis[guide.name] = cor
-        self.b.step(f"The lever's point under the pin {upper(pin.point)}: a_{upper(pin.point)} = a* + "
-                    f"2\u03c9_{lever}\u00d7v_rel (Coriolis) + a_rel(\u2225 {lever}).")
-        img = self._slide(f"a.{lever}.{pin.point}", A, io, O, ia, -cor, axis, self.w(lever),
-                          self.lbl(pin.point) + "*", "guide")
-        self.set_known(lever, O, io, piv.point)
-        self.set_known(lever, A, img, f"{pin.point}@{lever}")
-        shift = ia - img
-        self.set_known(block, A, ia, pin.point)
-        X2 = A + axis * self.mech.length_scale
-        self.set_known(block, X2, self.image(lever, f"{pin.point}+@{lever}", X2, draw=False) + shift,
-                       pin.point + "+")
+    def _sliding_image(self, link, guide, joint, X, A, pivot_img, given_img, axis, lab) -> np.ndarray:
+        """With the Coriolis component 2ω_G × v_rel of the guide link G: added to the image of G's
+        coincident point for a rod, taken away from the pin's image for a lever."""
+        cor = 2 * self.w(guide)[:, None] * perp(self.vc.sliding[joint.name])
+        self.coriolis[joint.name] = cor
+        return self._slide(f"a.{link}.{X}", self.pos[X], pivot_img, A, given_img,
+                           -cor if link == guide else cor, axis, self.w(link), lab)

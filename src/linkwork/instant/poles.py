@@ -8,9 +8,10 @@ Owns two independent ways to the n(n−1)/2 relative poles P_ij of an n-link mec
   primary poles (hinges; sliders at infinity normal to the guide; gear pitch points; the
   contact normal of a pin in a slot as a line through its pole) and apply the Aronhold–Kennedy
   three-pole theorem (Rosenauer §62, §75, §91–92; Pöschl §51): P_ij lies on the line of P_ik and
-  P_jk for every third link k. The schedule prints like a textbook ("P13 = P12P23 ∩ P14P34")
-  and names the poles the theorem alone cannot reach (chains without four-bar loops,
-  Rosenauer 1937, "Koppeltriebe ohne Gelenkvierecke").
+  P_jk for every third link k. Lines that are one line for every position (three links on one
+  hinge) count once. The schedule prints like a textbook ("P13 = P12P23 ∩ P14P34") and names
+  the poles the theorem alone cannot reach (chains without four-bar loops, Rosenauer 1937,
+  "Koppeltriebe ohne Gelenkvierecke").
 
 Also `pole_lines` (the n(n−1)(n−2)/6 lines holding three poles each, Rosenauer §85) and
 `pole_discrepancy` to compare two pole sets. Poles at infinity (translations, sliders) are
@@ -175,9 +176,9 @@ class PoleStep:
 @dataclass(frozen=True)
 class PoleSchedule:
     """The order in which a textbook finds the poles: primary poles first, then each derived
-    pole from two lines through already known poles. `unreachable` are the poles the
-    three-pole theorem cannot reach from the primary poles (they need velocities, or
-    Rosenauer's auxiliary points of 1937)."""
+    pole from two different lines through already known poles. `unreachable` are the poles the
+    three-pole theorem cannot reach from the primary poles: no two different lines through
+    them are known (they need velocities, or Rosenauer's auxiliary points of 1937)."""
 
     links: tuple[str, ...]
     steps: tuple[PoleStep, ...]
@@ -213,15 +214,23 @@ def pole_schedule(mechanism: Mechanism) -> PoleSchedule:
     Primary poles come from the pairs: a revolute is the pole of its two links, a prismatic
     pair's pole is at infinity normal to the guide, a gear pair's is its pitch point; a pin in
     a straight or circular slot gives one line through the pole (its contact normal,
-    Rosenauer §65). Then, repeatedly, the first unknown pole with two known lines through it
-    is found as their intersection; each derived step keeps every line known at that moment,
-    so that `kennedy_poles` can use the best-conditioned pair at each sample.
+    Rosenauer §65). Then, repeatedly, the first unknown pole with two known, independent lines
+    through it is found as their intersection; each derived step keeps one line of every
+    independent line known at that moment, so that `kennedy_poles` can use the best-conditioned
+    pair at each sample.
+
+    Lines are independent when they are not one line for the topology alone. Where three links
+    share a hinge (Jansen's linkage), the lines P_ik P_km and P_im' P_km' through the common
+    hinge coincide for every position, and intersecting them gives no point; such lines are
+    recognised (`_IncidenceStructure`) and count once. A pole with fewer than two independent
+    lines is in `unreachable`.
     """
     links = mechanism.link_names
     known: dict[Pair, PoleStep] = {}
     hinge_point: dict[Pair, str] = {}
     normals: dict[Pair, list[PoleLineSource]] = {}
     steps: list[PoleStep] = []
+    inc = _IncidenceStructure(links)
 
     def add(step: PoleStep) -> None:
         known[step.pair] = step
@@ -257,28 +266,25 @@ def pole_schedule(mechanism: Mechanism) -> PoleSchedule:
                 if pa in hinge_point and pb in hinge_point and hinge_point[pa] == hinge_point[pb]:
                     add(PoleStep(p, "common hinge", known[pa].joint))
                     hinge_point[p] = hinge_point[pa]
+                    inc.same_point(p, pa, pb)
                     changed = True
                     break
-    # pairs joined by two slots: the two contact normals
     for p, srcs in normals.items():
-        if p not in known and len(srcs) >= 2:
+        for src in srcs:
+            inc.add_normal(p, src, _normal_points(mechanism, src.joint, hinge_point))
+    inc.close()
+    # pairs joined by two slots: the two contact normals (if they are two lines)
+    for p in normals:
+        srcs = [] if p in known else inc.independent_lines(p, {})
+        if len(srcs) >= 2:
             add(PoleStep(p, "normals", lines=tuple(srcs)))
     # the three-pole theorem, one pole at a time
     while True:
         found = None
-        for i, k in combinations(links, 2):
-            p = (i, k)
+        for p in combinations(links, 2):
             if p in known:
                 continue
-            srcs = list(normals.get(p, []))
-            for m in links:
-                if m in (i, k):
-                    continue
-                pa, pb = _pair(links, i, m), _pair(links, k, m)
-                if pa in known and pb in known:
-                    if pa in hinge_point and pb in hinge_point and hinge_point[pa] == hinge_point[pb]:
-                        continue  # both poles are one point: no line
-                    srcs.append(PoleLineSource(poles=(pa, pb)))
+            srcs = inc.independent_lines(p, known)
             if len(srcs) >= 2:
                 found = PoleStep(p, "three-pole", lines=tuple(srcs))
                 break
@@ -287,6 +293,123 @@ def pole_schedule(mechanism: Mechanism) -> PoleSchedule:
         add(found)
     unreachable = tuple(p for p in _all_pairs(links) if p not in known)
     return PoleSchedule(links, tuple(steps), unreachable)
+
+
+def _normal_points(mechanism: Mechanism, joint: str, hinge_point: dict[Pair, str]) -> list[Pair]:
+    """Hinge poles that lie on the contact normal of a pin in a slot for every position: the
+    hinges at the pin (on the pin's link) and, for a circular slot, at the slot's centre (on the
+    slot's link). Needed so that a normal is not taken as a second line where it is the pole
+    line of those hinges."""
+    j = mechanism.joint(joint)
+    slot_link, pin_link = j.links
+    on = [(j.point, pin_link)]
+    if isinstance(j, CircularSlot):
+        on.append((j.center, slot_link))
+    return [p for p, x in hinge_point.items() for pt, ln in on if x == pt and ln in p]
+
+
+class _IncidenceStructure:
+    """Which poles are one point and which pole lines are one line, for the topology alone.
+
+    Points: a pole is its own point, except the poles of links on one hinge, which are one.
+    Lines: the three poles of every three links (Aronhold–Kennedy) and every contact normal
+    with the hinge poles on it. Two lines sharing two different points are one line; `close`
+    merges them until no two share two points (union–find over the lines). Then two different
+    lines through an unknown pole meet in that pole alone, in a general position."""
+
+    def __init__(self, links: tuple[str, ...]) -> None:
+        self.links = links
+        self._point: dict[Pair, Pair] = {}      # union–find over poles: pole -> same point
+        self._points: list[set[Pair]] = []       # the points of each line (of a merged one: empty)
+        self._parent: list[int] = []             # union–find over lines
+        self._triple: dict[frozenset[str], int] = {}
+        self._normals: dict[int, list[tuple[Pair, PoleLineSource]]] = {}  # line -> (pole, normal)
+
+    def point(self, p: Pair) -> Pair:
+        while self._point.get(p, p) != p:
+            p = self._point[p]
+        return p
+
+    def same_point(self, p: Pair, *others: Pair) -> None:
+        for q in others:
+            a, b = self.point(p), self.point(q)
+            if a != b:
+                self._point[b] = a
+
+    def line(self, i: int) -> int:
+        while self._parent[i] != i:
+            i = self._parent[i]
+        return i
+
+    def _new_line(self, points: set[Pair]) -> int:
+        self._points.append(points)
+        self._parent.append(len(self._parent))
+        return len(self._parent) - 1
+
+    def add_normal(self, p: Pair, src: PoleLineSource, on: list[Pair]) -> None:
+        self._normals[self._new_line({p, *on})] = [(p, src)]
+
+    def close(self) -> None:
+        """Add the pole lines of all triples of links and merge coincident lines. Call once,
+        after every `same_point` and `add_normal`."""
+        self._points = [{self.point(p) for p in pts} for pts in self._points]
+        for t in combinations(self.links, 3):
+            pts = {self.point(_pair(self.links, a, b)) for a, b in combinations(t, 2)}
+            if len(pts) == 3:  # else the three links are on one hinge: one point, no line
+                self._triple[frozenset(t)] = self._new_line(pts)
+        owner: dict[frozenset[Pair], int] = {}  # a line through each two points met so far
+        todo = list(range(len(self._points)))
+        while todo:
+            i = self.line(todo.pop())
+            for two in combinations(sorted(self._points[i]), 2):
+                j = self.line(owner.setdefault(frozenset(two), i))
+                if j != i:  # two points in common: one line
+                    self._parent[j] = i
+                    self._points[i] |= self._points[j]
+                    self._points[j] = set()
+                    self._normals.setdefault(i, []).extend(self._normals.pop(j, []))
+                    todo.append(i)  # its points grew: look at all their pairs again
+                    break
+
+    def independent_lines(self, p: Pair, known: dict[Pair, PoleStep]) -> list[PoleLineSource]:
+        """One source for each different line through the unknown pole p that is determined by
+        a contact normal or by two known poles of different points: p's own normals first,
+        then, in the order of the third link m, the textbook pair P_im P_km, else any normal on
+        the line, else the first two known poles on it (a line reached through one it
+        coincides with)."""
+        i, k = p
+        order = [ln for ln, srcs in self._normals.items() if any(q == p for q, _ in srcs)]
+        rank = {q: n for n, q in enumerate(known)}
+        textbook: dict[int, tuple[Pair, Pair]] = {}
+        for m in self.links:
+            t = self._triple.get(frozenset((i, k, m)))
+            if m in (i, k) or t is None:
+                continue
+            ln = self.line(t)
+            order.append(ln)
+            pa, pb = _pair(self.links, i, m), _pair(self.links, k, m)
+            if pa in rank and pb in rank:
+                # of the textbook pairs on one line, the one known earliest (hinges first)
+                best = textbook.get(ln)
+                if best is None or max(rank[pa], rank[pb]) < max(rank[x] for x in best):
+                    textbook[ln] = (pa, pb)
+        out: list[PoleLineSource] = []
+        for ln in dict.fromkeys(order):  # each line once, in order
+            normals = self._normals.get(ln, [])
+            own = [s for q, s in normals if q == p]
+            given: dict[Pair, Pair] = {}  # point -> its first known pole, in schedule order
+            for q in known:
+                if self.point(q) in self._points[ln]:
+                    given.setdefault(self.point(q), q)
+            if own:
+                out.append(own[0])
+            elif ln in textbook:
+                out.append(PoleLineSource(poles=textbook[ln]))
+            elif normals:
+                out.append(normals[0][1])
+            elif len(given) >= 2:
+                out.append(PoleLineSource(poles=tuple(given.values())[:2]))
+        return out
 
 
 def _scaled(h: np.ndarray, L: float) -> np.ndarray:
@@ -358,7 +481,9 @@ def kennedy_poles(solution: Solution, schedule: PoleSchedule | None = None) -> P
     """All poles the three-pole theorem reaches, evaluated at every sample by `schedule`
     (default: `pole_schedule` of the solution's mechanism). Each derived pole is the
     intersection of the best-conditioned pair among the lines known at its step; the poles
-    in `schedule.unreachable` are all-NaN."""
+    in `schedule.unreachable` are all-NaN. The schedule's lines of a step are different lines
+    for a general position, so a derived pole is NaN elsewhere only at a sample where all of
+    them coincide (a special position) or a pole they are drawn through is NaN."""
     mech = solution.mechanism
     schedule = schedule or pole_schedule(mech)
     L = mech.length_scale
