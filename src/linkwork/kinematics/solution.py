@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import enum
 from dataclasses import dataclass
+from functools import cached_property
 from math import factorial
 
 import numpy as np
@@ -142,14 +143,23 @@ class Solution:
         (N, 2) to follow a moving material point of the link, e.g. a coincident point)."""
         s = np.asarray(s, dtype=float)
         i = self._li(link)
+        N, K = len(self), self.order
+        if i == self.mechanism.link_index[self.mechanism.frame] and s.ndim == 1 and \
+                self._all_assembled:
+            # a point of the frame stands still: its motion costs no memory
+            zero = np.broadcast_to(0.0, (N, 2))
+            return PointMotion(np.broadcast_to(s, (N, 2)), *([zero] * K + [None] * (3 - K)))
         D = self._D[:, :, i]
         c, sn = self._trig(i)
-        N, K = len(self), self.order
         out = np.empty((K + 1, 2, N))  # out[k, x|y, n]; handed out as (N, 2) views
         sx, sy = (np.broadcast_to(s[..., j], (N,)) for j in (0, 1))
         kernels.point_motion(D, c, sn, sx, sy, out)
-        q = [out[k].T for k in range(K + 1)] + [None] * (3 - K)
-        return PointMotion(*q)
+        out.setflags(write=False)  # like the rest of a solution
+        return PointMotion(*([out[k].T for k in range(K + 1)] + [None] * (3 - K)))
+
+    @cached_property
+    def _all_assembled(self) -> bool:
+        return bool((self.status != Status.UNREACHABLE).all())
 
     def point(self, name: str) -> PointMotion:
         mech = self.mechanism
