@@ -208,8 +208,8 @@ def fourth_order(solution: Solution, input_snap=None) -> Solution:
         for s in plan(mech):
             derivatives_generic(state, s.group, ok)
     state.Q[:, ~ok] = np.nan
-    return Solution.from_coefficients(mech, solution_.inputs, solution_.time, state.Q,
-                                      solution_.status, solution_.condition)
+    return Solution(mech, solution_.inputs, solution_.time, state.Q, solution_.status,
+                    solution_.condition)
 
 
 def _poly_mul(p: np.ndarray, q: np.ndarray) -> np.ndarray:

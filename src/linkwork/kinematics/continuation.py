@@ -36,17 +36,18 @@ from ..model import Mechanism
 from . import groups
 from .groups import State, input_coefficients
 
-CONTINUATION_STEP = np.radians(2.0)  # largest step of a revolute input (a prismatic one: 1 % of L)
+CONTINUATION_STEP = np.radians(2.0)  # largest step of a revolute input (of a prismatic one: 1 % of L)
 MIN_STEP = 2.0 ** -42                # smallest step, relative to the largest (≈ 1e-14 rad)
 MAX_POSE_CHANGE = 0.1                # largest predicted change of any pose per step, in L (θ·L)
 PREDICTOR_TOLERANCE = 0.25           # largest corrector distance, relative to the predicted change
 SLACK = 1e-4                         # ... plus this, in L: the curvature allowed where dq/dλ ≈ 0
 CONTRACTION = 0.5                    # each Newton step must be at most this times the one before
 CORRECTOR_ITERATIONS = 12
+STEP_TOL = 1e-6                      # a Newton step this small (in L) ends the corrector
 CACHE_SIZE = 32
 
-# (mechanism, its group solvers) -> {+1: lane upwards, -1: lane downwards}; both are compared
-# by identity, so re-planning (`solver.plan`) or a new Mechanism starts a new march
+# (mechanism, its group solvers) -> {+1: lane upwards, -1: lane downwards}. Both are compared
+# by identity, so a new Mechanism or a new plan (`solver.plan`) starts a new march.
 _marches: OrderedDict = OrderedDict()
 
 
@@ -58,29 +59,29 @@ def continuation_guesses(mech: Mechanism, solvers, values: np.ndarray) -> dict:
     design = np.array([mech.driver_input_at_design(d) for d in mech.drivers])
     if values.shape[1] == 1:
         lanes = _one_driver_lanes(mech, solvers, gen, design)
-        lam = values[:, 0] - design[0]
+        lam = (values[:, 0] - design[0]) * gen.weights[0]
         finite = np.isfinite(lam)
         reach = {+1: lam[finite].max(initial=0.0), -1: -lam[finite].min(initial=0.0)}
         _march(mech, solvers, gen, list(lanes.values()), reach)
         g = np.full((values.shape[0], gen.size, 3), np.nan)
-        up = finite & (lam >= 0)
-        down = finite & (lam < 0)
+        up, down = finite & (lam >= 0), finite & (lam < 0)
         g[up] = lanes[+1].interpolate(lam[up])
         g[down] = lanes[-1].interpolate(-lam[down])
         return gen.split(g)
     # several drivers: march through the samples in their order
-    lane = _Lane(gen, np.vstack([design[None], values]))
+    lane = _Lane(gen, np.vstack([design[None], values]) * gen.weights)
     _march(mech, solvers, gen, [lane], {lane.sense: lane.knots[-1]})
     return gen.split(lane.at_vertices()[1:])
 
 
 def _one_driver_lanes(mech: Mechanism, solvers, gen: "_Generic", design: np.ndarray) -> dict:
+    """The two marches of a one-driver mechanism, from the cache or new."""
     key = (mech, tuple(solvers))
     lanes = _marches.get(key)
     if lanes is None:
-        far = np.array([[1.0]])
-        lanes = {s: _Lane(gen, np.vstack([design[None], design[None] + s * far]), sense=s,
-                          ray=True) for s in (+1, -1)}
+        origin = design * gen.weights
+        lanes = {s: _Lane(gen, np.vstack([origin, origin + s]), sense=s, ray=True)
+                 for s in (+1, -1)}
         _marches[key] = lanes
         while len(_marches) > CACHE_SIZE:
             _marches.popitem(last=False)
@@ -90,7 +91,8 @@ def _one_driver_lanes(mech: Mechanism, solvers, gen: "_Generic", design: np.ndar
 
 
 class _Generic:
-    """The links of the generic groups, stacked: rows of the (G, 3) pose arrays of a march."""
+    """What a march carries: the links of the generic groups, stacked as the rows of (G, 3)
+    pose arrays, and the input metric."""
 
     def __init__(self, mech: Mechanism, solvers) -> None:
         self.solvers = [s for s in solvers if s.kind == "generic"]
@@ -102,10 +104,12 @@ class _Generic:
         self.size = start
         self.links = [mech.link_index[ln] for s in self.solvers for ln in s.group.links]
         self.L = mech.length_scale
-        prismatic = mech.joint(mech.drivers[0].joint).kind == "prismatic"
-        self.h_max = 0.01 * self.L if prismatic and len(mech.drivers) == 1 else CONTINUATION_STEP
-        # several drivers: λ is the distance in input space, radians and lengths mixed; the
-        # revolute step bounds it, and the pose-change bound takes care of slides
+        # λ, the distance marched in input space, counts a slide of 1 % of L like a turn of
+        # CONTINUATION_STEP, so that one largest step serves revolute and prismatic inputs
+        # (and mixtures of them, with several drivers)
+        self.weights = np.array([CONTINUATION_STEP / (0.01 * self.L)
+                                 if mech.joint(d.joint).kind == "prismatic" else 1.0
+                                 for d in mech.drivers])
 
     def norm(self, q: np.ndarray) -> np.ndarray:
         """Max-norm of pose arrays (..., G, 3) in lengths: angles times L."""
@@ -141,8 +145,7 @@ class _Lane:
             length = np.full(1, np.inf)
         self.knots = np.concatenate([[0.0], np.cumsum(length)])
         self.sense = sense
-        self.h_max = gen.h_max
-        self.h = gen.h_max
+        self.h = CONTINUATION_STEP
         self.stopped = n == 0
         self.started = False
         self.lam: list[float] = []
@@ -172,7 +175,7 @@ class _Lane:
         h = self.h
         tn = gen.norm(t)
         if np.isfinite(tn) and tn > 0:  # bound the predicted change of the poses
-            h = min(h, max(MAX_POSE_CHANGE * gen.L / tn, MIN_STEP * self.h_max))
+            h = min(h, max(MAX_POSE_CHANGE * gen.L / tn, MIN_STEP * CONTINUATION_STEP))
         nxt = self.knots[np.searchsorted(self.knots, lam, side="right")]
         to = lam + h
         if h >= nxt - lam:  # land on the next sample exactly
@@ -190,15 +193,20 @@ class _Lane:
             else:
                 self.stopped = True  # the design position itself does not assemble
             return
-        predicted = gen.norm(pred - self.P[-1])
-        smooth = gen.norm(q - pred) <= PREDICTOR_TOLERANCE * predicted + SLACK * gen.L
+        # the poses changed smoothly: the predictions from both ends, along their tangents,
+        # come close to the other end (a step into a fast swing fails the one from the new end)
+        forward = gen.norm(q - pred) <= PREDICTOR_TOLERANCE * gen.norm(pred - self.P[-1]) + SLACK * gen.L
+        back = q - h * t
+        backward = (not np.isfinite(back).all()
+                    or gen.norm(back - self.P[-1]) <= PREDICTOR_TOLERANCE * gen.norm(h * t) + SLACK * gen.L)
+        smooth = forward and backward
         if ok and smooth:
             self._append(lam, q, t)
             if h >= self.h:
-                self.h = min(2 * h, self.h_max)
+                self.h = min(2 * h, CONTINUATION_STEP)
         else:
             self.h = h / 2
-            if self.h < MIN_STEP * self.h_max:
+            if self.h < MIN_STEP * CONTINUATION_STEP:
                 self.stopped = True  # a limit position (or a passage no step gets across)
 
     def _append(self, lam: float, q: np.ndarray, t: np.ndarray) -> None:
@@ -265,12 +273,13 @@ def _march(mech: Mechanism, solvers: tuple, gen: _Generic, lanes: list[_Lane], r
         if not todo:
             return
         props = [ln.proposal(gen) for ln in todo]
-        u = np.array([ln.point(p[1]) for ln, p in zip(todo, props)])
-        rates = np.array([ln.direction_after(p[1]) for ln, p in zip(todo, props)])
+        u = np.array([ln.point(p[1]) for ln, p in zip(todo, props)]) / gen.weights
+        rates = np.array([ln.direction_after(p[1]) for ln, p in zip(todo, props)]) / gen.weights
         pred = np.array([p[2] for p in props])
         N = len(todo)
-        # second order, so that the driver and RRR dyads take their closed-form velocities
-        state = State(mech, np.zeros((3, N, n_links, 3)),
+        # second order, so that the driver and RRR dyads take their closed-form velocities;
+        # the sample axis last in memory, as `solve` lays out Q for the compiled kernels
+        state = State(mech, np.zeros((3, n_links, 3, N)).transpose(0, 3, 1, 2),
                       input_coefficients(mech, u, rates, None, None, 2))
         ok = np.ones(N, dtype=bool)
         jacobians = {}
@@ -333,7 +342,7 @@ def _correct(state: State, solver, guess: np.ndarray) -> tuple[np.ndarray, np.nd
     for _ in range(CORRECTOR_ITERATIONS):
         state.Q[0][:, idx, :] = q
         r, Jq = _residual_and_jacobian(state, group)
-        converged = alive & (np.abs(r).max(axis=1) <= tol)
+        converged |= alive & (np.abs(r).max(axis=1) <= tol)
         J[alive] = Jq[alive]
         todo = alive & ~converged
         if not todo.any():
@@ -344,11 +353,17 @@ def _correct(state: State, solver, guess: np.ndarray) -> tuple[np.ndarray, np.nd
             step = (np.linalg.pinv(Jq[todo]) @ -r[todo][..., None])[..., 0]
         step = step.reshape(-1, group.size, 3)
         size = np.maximum(np.abs(step[..., :2]).max(axis=(1, 2)), L * np.abs(step[..., 2]).max(axis=1))
+        before = last[todo]
         # steps at rounding level carry no information on contraction
-        failing = ~np.isfinite(size) | ((size > CONTRACTION * last[todo]) & (size > 1e3 * tol))
-        alive[np.flatnonzero(todo)[failing]] = False
+        failing = ~np.isfinite(size) | ((size > CONTRACTION * before) & (size > 1e3 * tol))
+        rows = np.flatnonzero(todo)
+        alive[rows[failing]] = False
         q[todo] += step
         last[todo] = size
+        # a small step after a contracting one leaves an error of the order of its square
+        # (quadratic convergence): close enough for a starting value and a tangent, and it
+        # saves the evaluation that would confirm it
+        converged[rows[~failing & np.isfinite(before) & (size <= STEP_TOL * L)]] = True
     converged &= alive
     state.Q[0][:, idx, :] = np.where(converged[:, None, None], q, np.nan)
     state.forget_trig(idx)

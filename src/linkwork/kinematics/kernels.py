@@ -145,24 +145,24 @@ def driver_rates(Q, T, b, i, H, u1, u2):
 
 
 @_jit
-def point_motion(D, c, s, sx, sy, out):
+def point_motion(C, c, s, sx, sy, out):
     """Time derivatives out[k, (x, y), n] (k = 0 … K) of the point s = (sx[n], sy[n]) fixed in
-    a link with pose derivatives D[k, n, (x, y, θ)] and cos θ, sin θ = c, s:
+    a link with pose Taylor coefficients C[k, n, (x, y, θ)] (q⁽ᵏ⁾/k!) and cos θ, sin θ = c, s:
     r = R(θ)s, v = ṫ + ω ⊥r, a = ẗ + α ⊥r − ω² r, j = ⃛t + (ω̈ − ω³) ⊥r − 3ωα r."""
-    K = D.shape[0] - 1
-    for n in range(D.shape[1]):
+    K = C.shape[0] - 1
+    for n in range(C.shape[1]):
         rx = c[n] * sx[n] - s[n] * sy[n]
         ry = s[n] * sx[n] + c[n] * sy[n]
-        out[0, 0, n] = D[0, n, 0] + rx
-        out[0, 1, n] = D[0, n, 1] + ry
-        w = D[1, n, 2]
-        out[1, 0, n] = D[1, n, 0] - w * ry
-        out[1, 1, n] = D[1, n, 1] + w * rx
+        out[0, 0, n] = C[0, n, 0] + rx
+        out[0, 1, n] = C[0, n, 1] + ry
+        w = C[1, n, 2]
+        out[1, 0, n] = C[1, n, 0] - w * ry
+        out[1, 1, n] = C[1, n, 1] + w * rx
         if K >= 2:
-            a, ww = D[2, n, 2], w * w
-            out[2, 0, n] = D[2, n, 0] - a * ry - ww * rx
-            out[2, 1, n] = D[2, n, 1] + a * rx - ww * ry
+            a, ww = 2.0 * C[2, n, 2], w * w
+            out[2, 0, n] = 2.0 * C[2, n, 0] - a * ry - ww * rx
+            out[2, 1, n] = 2.0 * C[2, n, 1] + a * rx - ww * ry
             if K >= 3:
-                jt, wa = D[3, n, 2] - w * w * w, 3.0 * w * a
-                out[3, 0, n] = D[3, n, 0] - jt * ry - wa * rx
-                out[3, 1, n] = D[3, n, 1] + jt * rx - wa * ry
+                jt, wa = 6.0 * C[3, n, 2] - w * w * w, 3.0 * w * a
+                out[3, 0, n] = 6.0 * C[3, n, 0] - jt * ry - wa * rx
+                out[3, 1, n] = 6.0 * C[3, n, 1] + jt * rx - wa * ry

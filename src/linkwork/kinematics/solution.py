@@ -20,6 +20,9 @@ from ..model import CircularSlot, Gear, Mechanism, Prismatic, Slot
 from . import kernels
 
 
+_FACTORIALS = np.array([factorial(k) for k in range(8)], dtype=float)
+
+
 class Status(enum.IntEnum):
     OK = 0
     SINGULAR = 1  # dead centre / change point: the group Jacobian is (nearly) singular
@@ -62,29 +65,22 @@ class Solution:
     """Kinematics of `mechanism` at N samples. Index a point, link or pair by name."""
 
     def __init__(self, mechanism: Mechanism, inputs: np.ndarray, time: np.ndarray | None,
-                 derivatives: np.ndarray, status: np.ndarray, condition: np.ndarray, *,
+                 coefficients: np.ndarray, status: np.ndarray, condition: np.ndarray, *,
                  trig: tuple[np.ndarray, np.ndarray] | None = None) -> None:
-        """`derivatives` D[k, n, link, (x, y, θ)]: the k-th time derivative (k = 0 … order) of
-        every link's pose; `trig`: (cos θ, sin θ) of every link, each (N, links), when the
-        solver has them already (else computed on first use)."""
+        """`coefficients` C[k, n, link, (x, y, θ)]: the Taylor coefficients q⁽ᵏ⁾/k! (k = 0 …
+        order) of every link's pose in time, as the solver computes them (turned into
+        derivatives per link on demand, not all at once); `trig`: (cos θ, sin θ) of every
+        link, each (N, links), when the solver has them already (else computed on first use)."""
         self.mechanism = mechanism
         self.inputs = inputs  # (N, drivers)
         self.time = time
-        self._D = derivatives
-        self._D.setflags(write=False)
+        self._C = coefficients
+        self._C.setflags(write=False)
         self._cos_sin = trig
         self._trig_cache: dict[int, tuple[np.ndarray, np.ndarray]] = {}
+        self._pose_cache: dict[int, np.ndarray] = {}
         self.status = status
         self.condition = condition
-
-    @classmethod
-    def from_coefficients(cls, mechanism: Mechanism, inputs: np.ndarray, time: np.ndarray | None,
-                          coefficients: np.ndarray, status: np.ndarray,
-                          condition: np.ndarray) -> Solution:
-        """From Taylor coefficients q⁽ᵏ⁾/k! of the link poses (the form the jet solvers use)."""
-        fact = np.array([factorial(k) for k in range(coefficients.shape[0])])
-        return cls(mechanism, inputs, time, coefficients * fact[:, None, None, None], status,
-                   condition)
 
     @classmethod
     def concatenate(cls, parts: list[Solution]) -> Solution:
@@ -92,13 +88,13 @@ class Solution:
         first = parts[0]
         time = None if first.time is None else np.concatenate([p.time for p in parts])
         return cls(first.mechanism, np.concatenate([p.inputs for p in parts]), time,
-                   np.concatenate([p._D for p in parts], axis=1),
+                   np.concatenate([p._C for p in parts], axis=1),
                    np.concatenate([p.status for p in parts]),
                    np.concatenate([p.condition for p in parts]))
 
     # ------------------------------------------------------------------ basics
     def __len__(self) -> int:
-        return self._D.shape[1]
+        return self._C.shape[1]
 
     def __repr__(self) -> str:
         n_ok = int((self.status == Status.OK).sum())
@@ -108,7 +104,7 @@ class Solution:
 
     @property
     def order(self) -> int:
-        return self._D.shape[0] - 1
+        return self._C.shape[0] - 1
 
     @property
     def input(self) -> np.ndarray:
@@ -117,7 +113,13 @@ class Solution:
 
     def pose_derivatives(self, link: str) -> np.ndarray:
         """(order+1, N, 3): derivatives of (x, y, θ) of `link`'s pose."""
-        return self._D[:, :, self._li(link)]
+        i = self._li(link)
+        D = self._pose_cache.get(i)
+        if D is None:
+            D = self._C[:, :, i] * _FACTORIALS[: self.order + 1, None, None]
+            D.setflags(write=False)
+            self._pose_cache[i] = D
+        return D
 
     def _li(self, link: str) -> int:
         try:
@@ -133,7 +135,7 @@ class Solution:
             if self._cos_sin is not None:
                 t = (self._cos_sin[0][:, i], self._cos_sin[1][:, i])
             else:
-                th = self._D[0, :, i, 2]
+                th = self._C[0, :, i, 2]
                 t = (np.cos(th), np.sin(th))
             self._trig_cache[i] = t
         return t
@@ -149,11 +151,11 @@ class Solution:
             # a point of the frame stands still: its motion costs no memory
             zero = np.broadcast_to(0.0, (N, 2))
             return PointMotion(np.broadcast_to(s, (N, 2)), *([zero] * K + [None] * (3 - K)))
-        D = self._D[:, :, i]
+        C = self._C[:, :, i]
         c, sn = self._trig(i)
         out = np.empty((K + 1, 2, N))  # out[k, x|y, n]; handed out as (N, 2) views
         sx, sy = (np.broadcast_to(s[..., j], (N,)) for j in (0, 1))
-        kernels.point_motion(D, c, sn, sx, sy, out)
+        kernels.point_motion(C, c, sn, sx, sy, out)
         out.setflags(write=False)  # like the rest of a solution
         return PointMotion(*([out[k].T for k in range(K + 1)] + [None] * (3 - K)))
 

@@ -9,7 +9,6 @@ then one batched Newton solve at the samples).
 from __future__ import annotations
 
 from functools import lru_cache
-from math import factorial
 
 import numpy as np
 
@@ -42,12 +41,9 @@ def _pose_array(order: int, N: int, n_links: int, frame: int) -> np.ndarray:
 
 def _finish_block(state: State) -> None:
     """Hand a solved block over to `Solution`: cos θ and sin θ of every link in state.T (most
-    of them written by the group solvers already), and the Taylor coefficients q⁽ᵏ⁾/k! the
-    solvers work with turned into time derivatives, in place."""
+    of them written by the group solvers already)."""
     for i in range(state.T.shape[0]):
         state.cs(i)
-    for k in range(2, state.order + 1):
-        state.Q[k] *= factorial(k)
 
 
 def _as_2d(a, n_drivers: int, name: str) -> np.ndarray | None:
