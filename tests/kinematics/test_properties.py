@@ -148,6 +148,8 @@ def _check(text: str, du: float, w: float, *, step: float = H, max_kappa: float 
            tol: float = 3e-7) -> None:
     mech = linkwork.load_text(text)
     L = mech.length_scale
+    # a drawing at a singular position (pivots collinear) does not define the assembly branch
+    assume(linkwork.solve(mech).condition[0] < MAX_CONDITION)
     u0 = mech.driver_input_at_design(mech.drivers[0]) + du
     first = linkwork.solve(mech, [u0], velocities=[w])
     assume(first.status[0] == Status.OK and first.condition[0] < MAX_CONDITION)

@@ -302,11 +302,10 @@ def test_design_half_turn_keeps_its_form(name):
         assert (w_out * w_in < 0).all()
 
 
-@pytest.mark.xfail(strict=True, reason="the closed-form RRR dyad keeps the sign of the design "
-                   "triangle, so past a change point the parallelogram becomes the antiparallelogram "
-                   "and vice versa; a whole turn of either form is not followed")
 @pytest.mark.parametrize("name", sorted(CHANGE_POINT))
 def test_whole_turn_keeps_its_form(name):
+    """Past the change points the motion with continuous velocities goes on in the same form:
+    the parallelogram's follower turns with the crank, the antiparallelogram's against it."""
     sol = motion(name)
     ok = sol.status == Status.OK
     w_in, w_out = sol.link("crank").omega[ok], sol.link("follower").omega[ok]

@@ -29,6 +29,9 @@ from .jet import Jet
 
 NEWTON_TOL = 1e-12  # relative to the mechanism's length scale
 SINGULAR_CONDITION = 1e8
+# above this the linear solve for the rates loses every digit (condition × ε ~ 1): the rates of
+# such samples are NaN, not invented (the sample is singular either way)
+UNRELIABLE_CONDITION = 1e14
 
 
 def _perp(v: np.ndarray) -> np.ndarray:
@@ -65,6 +68,7 @@ class State:
     T: np.ndarray | None = None
     known: set = field(default_factory=set)
     rots: dict = field(default_factory=dict)
+    branches: dict = field(default_factory=dict)  # group -> (N,) assembly signs (`branches`)
 
     def __post_init__(self) -> None:
         if self.T is None:
@@ -224,7 +228,7 @@ def derivatives_generic(state: State, group: Group, ok: np.ndarray) -> np.ndarra
     cond = np.full(J.shape[0], np.inf)
     if finite.any():
         cond[finite] = np.linalg.cond(_scaled(J[finite], state.mech.length_scale))
-    good = finite & (cond < 1e14)
+    good = finite & (cond < UNRELIABLE_CONDITION)
     for k in range(1, state.order + 1):
         U = state.Q[:, :, idx, :][:, :, None].copy()
         U[k] = 0.0
@@ -390,12 +394,28 @@ class GroupSolver:
         ok = np.ones(N, dtype=bool)
         r = np.empty((4, N))
         Q0 = state.Qm[0]
+        branch = state.branches.get(self.group)
+        if branch is None:  # the design's side everywhere
+            branch = np.broadcast_to(f["branch"], (N,))
         kernels.rrr_positions(Q0, state.T, f["iA"], f["A"], f["iC"], f["C"], f["i1"], f["i2"],
-                              f["diff"], f["L1sq"], f["tol"], f["branch"], f["k1"], f["k2"], r, ok)
+                              f["diff"], f["L1sq"], f["tol"], branch, f["k1"], f["k2"], r, ok)
         for i, (x, y), phi in ((f["i1"], r[:2], f["phi1"]), (f["i2"], r[2:], f["phi2"])):
             np.subtract(np.arctan2(y, x), phi, out=Q0[i, 2])
         state.placed(f["i1"], f["i2"])
         return ok
+
+    def discriminant(self, state: State) -> np.ndarray:
+        """h²/L1² of an RRR dyad whose neighbours are placed: the squared distance of its hinge
+        from the line AC, relative to |AB|² (negative: it cannot assemble; zero: a limit or
+        change position)."""
+        f = self.fast
+        Q0 = state.Q[0]
+        (ax, ay), (cx, cy) = ((Q0[:, i, 0] + state.rot(i, s)[0], Q0[:, i, 1] + state.rot(i, s)[1])
+                              for i, s in ((f["iA"], f["A"]), (f["iC"], f["C"])))
+        D2 = (cx - ax) ** 2 + (cy - ay) ** 2
+        with np.errstate(invalid="ignore", divide="ignore"):
+            a = (f["diff"] + D2) / (2 * np.sqrt(D2))
+        return 1.0 - a * a / f["L1sq"]
 
     def _pos_rod_in_slot(self, state: State) -> np.ndarray:
         p = self.parts
@@ -524,5 +544,5 @@ class GroupSolver:
         f = self.fast
         cond = np.ones(state.Q.shape[1])
         kernels.rrr_rates(state.Qm, state.T, f["iA"], f["A"], f["iC"], f["C"], f["i1"], f["i2"],
-                          f["BA"], f["BC"], f["mid"], f["hd2"], cond)
+                          f["BA"], f["BC"], f["mid"], f["hd2"], UNRELIABLE_CONDITION, cond)
         return cond

@@ -28,7 +28,7 @@ _jit = nb.njit(cache=True, nogil=True, error_model="numpy", fastmath={"contract"
 @_jit
 def rrr_positions(Q0, T, iA, A, iC, C, i1, i2, diff, L1sq, tol, branch, k1, k2, r, ok):
     """Circle–circle intersection: the hinge B of links i1 (through A) and i2 (through C) at
-    |AB| = L1 and |CB| = L2 on the design's side `branch` of AC (diff = L1² − L2²). The
+    |AB| = L1 and |CB| = L2 on the side branch[n] = ±1 of AC (diff = L1² − L2²). The
     links' cos θ and sin θ follow from the hinge vectors (k = (cos φ, sin φ)/L for a link drawn
     at angle φ); the hinge vectors B − A, B − C go to r[0:2], r[2:4], whose angles the caller
     takes with NumPy's vectorised arctan2 (a scalar atan2 here would cost more than the rest)."""
@@ -45,7 +45,7 @@ def rrr_positions(Q0, T, iA, A, iC, C, i1, i2, diff, L1sq, tol, branch, k1, k2, 
         h2 = L1sq - a * a  # squared distance of B from AC
         if not h2 > tol:  # rounding may take a limit position just below zero; NaN fails too
             ok[n] = False
-        h = branch * math.sqrt(h2 if h2 > 0.0 else 0.0) * inv
+        h = branch[n] * math.sqrt(h2 if h2 > 0.0 else 0.0) * inv
         a *= inv
         r1x, r1y = a * dx - h * dy, a * dy + h * dx  # B − A
         r2x, r2y = ax + r1x - cx, ay + r1y - cy  # B − C
@@ -86,12 +86,13 @@ def _set_rates(Q, T, i, s0, s1, n, vx, vy, ax, ay, om, al):
 
 
 @_jit
-def rrr_rates(Q, T, iA, A, iC, C, i1, i2, BA, BC, mid, hd2, cond):
+def rrr_rates(Q, T, iA, A, iC, C, i1, i2, BA, BC, mid, hd2, unreliable, cond):
     """Velocities and accelerations of the RRR dyad by Cramer's rule on the hinge closure
     ω1 ⊥r1 − ω2 ⊥r2 = vC − vA (r1 = B − A, r2 = B − C) and its derivative. The condition
     number of the 2×2 system raises cond[n] where larger: its columns have lengths L1, L2,
     so σ² = mid ± √(hd2 + (r1·r2)²) with mid = (L1² + L2²)/2, hd2 = ((L1² − L2²)/2)², and
-    σ_max/σ_min = σ_max²/|det| (σ_max σ_min = |det|), free of cancellation near singularity."""
+    σ_max/σ_min = σ_max²/|det| (σ_max σ_min = |det|), free of cancellation near singularity.
+    Where it reaches `unreliable` the rates are NaN: no digit of them would be right."""
     for n in range(Q.shape[3]):
         vAx, vAy, aAx, aAy = _point_rates(Q, T, iA, A[0], A[1], n)
         vCx, vCy, aCx, aCy = _point_rates(Q, T, iC, C[0], C[1], n)
@@ -113,6 +114,8 @@ def rrr_rates(Q, T, iA, A, iC, C, i1, i2, BA, BC, mid, hd2, cond):
             k = math.inf
         if k > cond[n]:
             cond[n] = k
+        if k >= unreliable:
+            om1 = om2 = al1 = al2 = math.nan
         _set_rates(Q, T, i1, A[0], A[1], n, vAx, vAy, aAx, aAy, om1, al1)
         _set_rates(Q, T, i2, C[0], C[1], n, vCx, vCy, aCx, aCy, om2, al2)
 

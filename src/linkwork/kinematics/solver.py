@@ -15,6 +15,7 @@ import numpy as np
 from ..errors import InputError
 from ..model import ConstantSpeed, Mechanism
 from ..structure import solution_order
+from .branches import branch_schedule
 from .continuation import continuation_guesses
 from .groups import SINGULAR_CONDITION, GroupSolver, State, input_coefficients
 from .solution import Solution, Status
@@ -95,6 +96,7 @@ def solve(mech: Mechanism, inputs=None, *, times=None, velocities=None, accelera
     Q = _pose_array(order, N, len(mech.links), frame)
     inputs = input_coefficients(mech, values, velocities, accelerations, jerks, order)
     generic = any(s.kind == "generic" for s in solvers)
+    branches = {g: sch.signs(values[:, 0]) for g, sch in branch_schedule(mech).items()}
     guesses = continuation_guesses(mech, solvers, values) if generic else {}
     assembled = np.ones(N, dtype=bool)
     condition = np.ones(N)
@@ -107,7 +109,7 @@ def solve(mech: Mechanism, inputs=None, *, times=None, velocities=None, accelera
     for lo in range(0, N, block):
         sl = slice(lo, lo + block)
         state = State(mech, Q[:, sl], {j: c[:, sl] for j, c in inputs.items()}, T=T[:, :, sl],
-                      known={frame})
+                      known={frame}, branches={g: b[sl] for g, b in branches.items()})
         ok = assembled[sl]  # a view: updated in place
         for s in solvers:
             g = guesses.get(s.group)

@@ -1,0 +1,115 @@
+"""Assembly branches across change points (German *Verzweigungslage*, the change position of a
+four-bar whose pivots all fall on one line).
+
+A closed-form RRR dyad chooses between its two assemblies by a sign: the side of AC on which
+its hinge B lies, taken from the design drawing. At a limit position the dyad stretches out
+(h², the squared distance of B from AC, crosses zero) and the input cannot go on. At a change
+point h² only touches zero and the input goes on; the motion whose velocities stay continuous
+(the one the real mechanism follows, carried by its inertia) crosses AC there, so the sign
+flips. Keeping the design's sign would silently turn a parallelogram into an antiparallelogram
+after the change point.
+
+For a mechanism with one driver, `branch_schedule` finds the change points of every RRR dyad
+along the input once per mechanism: a scan of the input over its period (one turn, or two when
+an upstream dyad flips an odd number of times per turn, so that the chain repeats only after
+two), each touching minimum of h² refined by Brent's method and accepted when h vanishes there.
+`branch_signs` then gives the sign at any input value: the design's sign times −1 for every
+change point passed between the design input and the sample. Mechanisms with several drivers
+keep the design's signs (their change points form curves in the input space).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import lru_cache
+
+import numpy as np
+from scipy.optimize import minimize_scalar
+
+from ..model import Mechanism
+from .groups import GroupSolver, State, input_coefficients
+
+SCAN = 2048  # input samples per turn (or per 8 length scales of a prismatic input)
+TOUCH = 1e-3  # h²/L1² below which a local minimum is refined
+CHANGE = 1e-12  # h²/L1² at the refined minimum below which it is a change point (h < 1e-6 L1)
+
+
+@dataclass(frozen=True)
+class Schedule:
+    """The change points of one dyad: its design sign, the input values where the sign flips,
+    the period of the input (2π or 4π; None for a prismatic input) and the design input u0
+    the flips are counted from."""
+
+    sign: float
+    change_points: tuple[float, ...]
+    period: float | None
+    u0: float
+
+    def signs(self, u: np.ndarray) -> np.ndarray:
+        """The dyad's sign at inputs u: flipped once per change point between u0 and u."""
+        flips = np.zeros(u.shape, dtype=np.int64)
+        for c in self.change_points:
+            if self.period is None:
+                flips += (u >= c).astype(np.int64) - int(self.u0 >= c)
+            else:
+                flips += (np.floor((u - c) / self.period)
+                          - np.floor((self.u0 - c) / self.period)).astype(np.int64)
+        return np.where(flips % 2 == 0, self.sign, -self.sign)
+
+
+def _positions(mech: Mechanism, solvers: tuple[GroupSolver, ...], upto: GroupSolver,
+               u: np.ndarray, branches: dict) -> State:
+    """Positions of every group before and including `upto` at inputs u (one driver)."""
+    N = u.shape[0]
+    Q = np.zeros((1, N, len(mech.links), 3))
+    state = State(mech, Q, input_coefficients(mech, u[:, None], None, None, None, 0),
+                  branches={g: s.signs(u) for g, s in branches.items()})
+    for s in solvers:
+        s.positions(state)
+        if s is upto:
+            break
+    return state
+
+
+@lru_cache(maxsize=64)
+def branch_schedule(mech: Mechanism) -> dict:
+    """Group → `Schedule` for the RRR dyads of a one-driver mechanism that have change points
+    (groups not listed keep their design sign everywhere)."""
+    from .solver import plan  # the solver imports this module
+
+    solvers = plan(mech)
+    if len(mech.drivers) != 1 or not any(s.kind == "RRR" for s in solvers):
+        return {}
+    d = mech.drivers[0]
+    u0 = mech.driver_input_at_design(d)
+    revolute = mech.joint(d.joint).kind == "revolute"
+    found: dict = {}
+    period = 2 * np.pi if revolute else None
+    for k, s in enumerate(solvers):
+        if s.kind == "generic" and any(t.kind == "RRR" for t in solvers[k + 1:]):
+            break  # Newton groups upstream need continuation: keep the design signs below
+        if s.kind != "RRR":
+            continue
+        span = period if revolute else 8 * mech.length_scale
+        n = SCAN * (int(round(span / (2 * np.pi))) if revolute else 1)
+        grid = u0 - span / 2 + span * np.arange(n + 1) / n
+
+        def h2(u: np.ndarray) -> np.ndarray:
+            return s.discriminant(_positions(mech, solvers, s, u, found))
+
+        g = h2(grid)
+        inner = np.arange(1, n)
+        touch = inner[(g[inner] <= g[inner - 1]) & (g[inner] <= g[inner + 1]) & (g[inner] < TOUCH)
+                      & (g[inner - 1] > 0) & (g[inner + 1] > 0)]
+        points = []
+        for i in touch:
+            r = minimize_scalar(lambda x: float(h2(np.array([x]))[0]), method="bounded",
+                                bounds=(grid[i - 1], grid[i + 1]),
+                                options=dict(xatol=1e-13 * max(1.0, abs(grid[i]))))
+            if r.fun < CHANGE and not any(abs(r.x - p) < span / n for p in points):
+                points.append(float(r.x))
+        if points:
+            found[s.group] = Schedule(s.fast["branch"], tuple(sorted(points)), period, u0)
+            if revolute and len(points) % 2 == 1:
+                period *= 2  # downstream groups see the chain repeat after two turns
+    return found

@@ -1,0 +1,103 @@
+"""Assembly branches across change points (`linkwork.kinematics.branches`).
+
+Expectations: the change points of four-bars whose lengths satisfy s + l = p + q are the crank
+angles where all four pivots fall on one line (closed form); the motion through them is checked
+against finite differences of positions (velocities continuous, no switch of assembly)."""
+
+import math
+
+import numpy as np
+import pytest
+
+import linkwork
+from linkwork.kinematics.branches import Schedule, branch_schedule
+from linkwork.kinematics.solution import Status
+
+
+def _four_bar(crank: float, coupler: float, follower: float, frame: float, theta: float) -> str:
+    """A four-bar drawn with the crank at θ and the hinge B left of A→O4."""
+    A = (crank * math.cos(theta), crank * math.sin(theta))
+    O4 = (frame, 0.0)
+    d = math.dist(A, O4)
+    a = (coupler ** 2 - follower ** 2 + d * d) / (2 * d)
+    h = math.sqrt(coupler ** 2 - a * a)
+    ex, ey = (O4[0] - A[0]) / d, (O4[1] - A[1]) / d
+    B = (A[0] + a * ex - h * ey, A[1] + a * ey + h * ex)
+    pts = "\n".join(f"{k} = [{x!r}, {y!r}]" for k, (x, y) in
+                    dict(O2=(0.0, 0.0), A=A, B=B, O4=O4).items())
+    return f"""name = "four-bar"
+[points]
+{pts}
+[links]
+frame = ["O2", "O4"]
+crank = ["O2", "A"]
+coupler = ["A", "B"]
+follower = ["B", "O4"]
+[joints]
+O2 = {{ type = "revolute", links = ["frame", "crank"] }}
+A = {{ type = "revolute", links = ["crank", "coupler"] }}
+B = {{ type = "revolute", links = ["coupler", "follower"] }}
+O4 = {{ type = "revolute", links = ["follower", "frame"] }}
+[driver]
+joint = "O2"
+speed = "1 rad/s"
+"""
+
+
+KITE = (20.0, 20.0, 40.0, 40.0)  # crank = coupler, follower = frame: s + l = p + q
+
+
+@pytest.mark.parametrize("name", ["parallelogram", "antiparallelogram"])
+def test_change_points_are_where_the_pivots_are_collinear(name):
+    mech = linkwork.load(f"library:{name}")
+    ((group, sch),) = branch_schedule(mech).items()
+    assert group.links == ("coupler", "follower")
+    # crank along the frame line, towards O4 and away from it
+    got = np.sort(np.mod(np.array(sch.change_points) + 1e-6, np.pi)) - 1e-6
+    np.testing.assert_allclose(got, [0.0, 0.0], atol=1e-7)
+    assert sch.period == pytest.approx(2 * np.pi)
+
+
+def test_kite_change_points_and_continuous_motion_over_two_turns():
+    mech = linkwork.load_text(_four_bar(*KITE, theta=math.radians(60)))
+    ((_, sch),) = branch_schedule(mech).items()
+    np.testing.assert_allclose(np.sort(np.mod(np.array(sch.change_points) + 1e-6, 2 * np.pi)) - 1e-6,
+                               [0.0, np.pi], atol=1e-7)
+    h = np.radians(0.25)
+    u = math.radians(60) + h * np.arange(2 * 1440 + 1)  # two turns, through four change points
+    sol = linkwork.solve(mech, u, velocities=np.ones(u.shape))
+    singular = sol.status == Status.SINGULAR
+    at_change = np.minimum(np.mod(u, np.pi), np.pi - np.mod(u, np.pi)) < 1e-9
+    np.testing.assert_array_equal(singular, at_change)
+    for ln in ("coupler", "follower"):
+        angle = np.unwrap(sol.link(ln).angle)
+        omega = sol.link(ln).omega
+        fd = (angle[2:] - angle[:-2]) / (2 * h)  # central difference, O(h²)
+        inner = ~(singular[2:] | singular[1:-1] | singular[:-2])
+        np.testing.assert_allclose(omega[1:-1][inner], fd[inner], rtol=0, atol=1e-4, err_msg=ln)
+        # at the change points themselves the rates are indeterminate: NaN, not invented
+        assert np.isnan(omega[singular]).all()
+
+
+def test_kite_keeps_its_branch_where_the_design_sign_would_switch():
+    """Past the change point at crank angle π the hinge B lies on the other side of AO4 than in
+    the drawing: the design's sign alone would have switched to the other assembly there."""
+    mech = linkwork.load_text(_four_bar(*KITE, theta=math.radians(60)))
+    sol = linkwork.solve(mech, np.radians([60.0, 200.0, 300.0, 420.0]))
+    B, A = sol.point("B").position, sol.point("A").position
+    O4 = mech.points["O4"]
+    side = np.sign((O4[0] - A[:, 0]) * (B[:, 1] - A[:, 1]) - (O4[1] - A[:, 1]) * (B[:, 0] - A[:, 0]))
+    assert list(side) == [1.0, -1.0, -1.0, 1.0]  # flipped between π and 2π, back after 2π
+
+
+def test_crank_rocker_has_no_change_points():
+    assert branch_schedule(linkwork.load("library:crank-rocker")) == {}
+
+
+def test_signs_count_the_change_points_passed():
+    turn = Schedule(1.0, (1.0, 2.0), 2 * np.pi, 0.0)
+    u = np.array([0.5, 1.5, 2.5, 1.1 + 2 * np.pi, -0.5, 1.9 - 2 * np.pi])
+    # crossed: none; 1.0; 1.0 and 2.0; 1.0, 2.0, 1.0+2π; none; 2.0−2π going back
+    np.testing.assert_array_equal(turn.signs(u), [1, -1, 1, -1, 1, -1])
+    slide = Schedule(-1.0, (3.0,), None, 0.0)
+    np.testing.assert_array_equal(slide.signs(np.array([2.9, 3.0, 10.0, -5.0])), [-1, 1, 1, -1])
