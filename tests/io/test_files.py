@@ -8,6 +8,7 @@ import pytest
 import linkwork
 from linkwork.errors import MechanismFileError, StructureError, UnknownMechanismError
 from linkwork.io.files import dump_schema, library_names
+from mechanism_texts import five_bar_text
 
 FOURBAR = """\
 name = "test four-bar"
@@ -155,12 +156,7 @@ def test_over_constrained_mechanism_is_named():
 
 
 def test_under_constrained_mechanism_says_inputs_needed():
-    five_bar = FOURBAR.replace('O4 = { type = "revolute", links = ["rocker", "frame"] }',
-                               'O4 = { type = "revolute", links = ["rocker", "lever"] }\n'
-                               'O5 = { type = "revolute", links = ["lever", "frame"] }')
-    five_bar = five_bar.replace('O4 = [40, 0]', 'O4 = [40, 0]\nO5 = [50, -10]')
-    five_bar = five_bar.replace('rocker  = ["B", "O4"]', 'rocker  = ["B", "O4"]\nlever = ["O4", "O5"]')
-    five_bar = five_bar.replace('frame   = ["O2", "O4"]', 'frame   = ["O2", "O5"]')
+    five_bar = five_bar_text(name="test four-bar", units="mm", speed="60 rpm")
     mech = linkwork.load_text(five_bar)
     with pytest.raises(StructureError, match="under-constrained.*1 more input"):
         linkwork.solve(mech, [0.5])

@@ -5,28 +5,10 @@ import pytest
 
 import linkwork
 from linkwork import Status
+from mechanism_texts import four_bar_text
 
-ROCKER_DRIVEN = """\
-name = "four-bar driven by its rocker"
-[points]
-O2 = [0, 0]
-A  = [0, 10]
-B  = [30, 30]
-O4 = [40, 0]
-[links]
-frame   = ["O2", "O4"]
-crank   = ["O2", "A"]
-coupler = ["A", "B"]
-rocker  = ["O4", "B"]
-[joints]
-O2 = { type = "revolute", links = ["frame", "crank"] }
-A  = { type = "revolute", links = ["crank", "coupler"] }
-B  = { type = "revolute", links = ["coupler", "rocker"] }
-O4 = { type = "revolute", links = ["rocker", "frame"] }
-[driver]
-joint = "O4"
-speed = "1 rad/s"
-"""
+ROCKER_DRIVEN = four_bar_text(name="four-bar driven by its rocker", rocker_points=("O4", "B"),
+                              driver="O4", speed="1 rad/s")
 
 a, b = 10.0, np.hypot(30, 20)            # crank, coupler
 c, d = np.hypot(10, 30), 40.0            # rocker O4B, frame O2O4
@@ -80,8 +62,8 @@ def test_unreachable_samples_are_marked_not_invented():
 
 
 def test_change_point_is_flagged_singular():
-    parallelogram = ROCKER_DRIVEN.replace("B  = [30, 30]", "B  = [40, 10]").replace(
-        'joint = "O4"', 'joint = "O2"').replace('rocker  = ["O4", "B"]', 'rocker  = ["B", "O4"]')
+    parallelogram = four_bar_text(name="four-bar driven by its rocker", B=(40, 10), driver="O2",
+                                  speed="1 rad/s")
     mech = linkwork.load_text(parallelogram)
     sol = linkwork.solve(mech, np.radians([0.0, 45.0]))  # at 0° all four hinges are collinear
     assert sol.status[0] == Status.SINGULAR and sol.condition[0] > 1e8

@@ -8,7 +8,7 @@ from linkwork.errors import StructureError
 from linkwork.io.files import resolve
 from linkwork.structure import assur_groups, mechanism_class, solution_order
 from linkwork.structure.assur import dyad_type
-from mechanism_texts import SCOTCH_YOKE, TRIPLE_PARALLEL_CRANKS
+from mechanism_texts import SCOTCH_YOKE, TRIPLE_PARALLEL_CRANKS, four_bar_text
 
 
 def test_dyad_type_reads_either_way():
@@ -206,24 +206,8 @@ def test_piston_driven_engine_starts_from_the_block():
 
 
 def test_curved_slot_dyad():
-    text = """
-name = "crank and coupler with its end in a circular slot"
-[points]
-O2 = [0, 0]
-A  = [0, 10]
-B  = [30, 30]
-O4 = [40, 0]
-[links]
-frame   = ["O2", "O4"]
-crank   = ["O2", "A"]
-coupler = ["A", "B"]
-[joints]
-O2 = { type = "revolute", links = ["frame", "crank"] }
-A  = { type = "revolute", links = ["crank", "coupler"] }
-B  = { type = "circular-slot", links = ["frame", "coupler"], center = "O4" }
-[driver]
-joint = "O2"
-"""
+    text = four_bar_text(name="crank and coupler with its end in a circular slot",
+                         curved_slot=True)
     groups = assur_groups(linkwork.load_text(text))
     # the coupler alone is a group (2 + 1 constraints); with its die block unfolded: hinge on
     # the crank, hinge to the block, block sliding in the curved slot: R-R-P

@@ -11,7 +11,7 @@ import linkwork
 from linkwork.errors import StructureError
 from linkwork.kinematics.motion import input_limits, whole_motion
 from linkwork.structure import classify_four_bar, classify_slider_crank, four_bar_transmission, loops
-from mechanism_texts import SCOTCH_YOKE
+from mechanism_texts import SCOTCH_YOKE, four_bar_text, hinged_loop_text
 
 # ---------------------------------------------------------------------------- four-bar classes
 # (frame, input, coupler, output) → (Grashof, type); s + l against p + q worked by hand
@@ -81,7 +81,7 @@ def test_library_four_bars(name, grashof, kind, special):
 
 
 # ---------------------------------------------------------------------------- closed forms
-def four_bar_text(d, a, b, c, phi_deg, name="four-bar", driver="O2"):
+def four_bar_from_lengths(d, a, b, c, phi_deg, name="four-bar", driver="O2"):
     """A four-bar file: frame O2 (0,0)–O4 (d,0), input O2A of length a at φ, coupler AB = b,
     output O4B = c, B above the line A O4 (test setup, not an expectation)."""
     phi = math.radians(phi_deg)
@@ -92,26 +92,8 @@ def four_bar_text(d, a, b, c, phi_deg, name="four-bar", driver="O2"):
     h = math.sqrt(b * b - x * x)
     ex = (O4 - A) / D
     B = A + x * ex + h * np.array([-ex[1], ex[0]])
-    return f"""
-name = "{name}"
-[points]
-O2 = [0, 0]
-A  = [{float(A[0])!r}, {float(A[1])!r}]
-B  = [{float(B[0])!r}, {float(B[1])!r}]
-O4 = [{float(d)!r}, 0]
-[links]
-frame   = ["O2", "O4"]
-input   = ["O2", "A"]
-coupler = ["A", "B"]
-output  = ["B", "O4"]
-[joints]
-O2 = {{ type = "revolute", links = ["frame", "input"] }}
-A  = {{ type = "revolute", links = ["input", "coupler"] }}
-B  = {{ type = "revolute", links = ["coupler", "output"] }}
-O4 = {{ type = "revolute", links = ["output", "frame"] }}
-[driver]
-joint = "{driver}"
-"""
+    return four_bar_text(name=name, A=A, B=B, O4=(float(d), 0), driver=driver,
+                         links=("frame", "input", "coupler", "output"))
 
 
 def _angle_between(u, v):
@@ -124,7 +106,7 @@ def test_transmission_angle_of_a_crank_rocker():
     # cos μ = (b² + c² − f²)/(2bc) = (9 + 4 − 4)/12 = 3/4 and (9 + 4 − 16)/12 = −1/4
     lo, hi = math.acos(3 / 4), math.acos(-1 / 4)
     assert four_bar_transmission(30, 10, 30, 20) == pytest.approx((lo, hi))
-    mech = linkwork.load_text(four_bar_text(30, 10, 30, 20, 60))
+    mech = linkwork.load_text(four_bar_from_lengths(30, 10, 30, 20, 60))
     (lp,) = loops(mech)
     assert lp.transmission == pytest.approx((lo, hi))
     assert lp.min_transmission == pytest.approx(lo)  # min(μ_min, 180° − μ_max) = 41.4°
@@ -136,7 +118,7 @@ def test_transmission_angle_of_a_crank_rocker():
 
 
 def test_dead_positions_of_a_crank_rocker():
-    mech = linkwork.load_text(four_bar_text(30, 10, 30, 20, 60))
+    mech = linkwork.load_text(four_bar_from_lengths(30, 10, 30, 20, 60))
     (lp,) = loops(mech)
     dp = lp.dead_positions
     # rocker limits where crank and coupler are in line, |O2B| = b + a = 4 or b − a = 2: the
@@ -171,28 +153,9 @@ def test_input_limits_of_a_rocking_input():
 
 def test_input_limits_of_a_non_grashof_four_bar_match_bisection():
     # the base loop of the PMKS Stephenson III (non-Grashof: 12.2 + 21.9 > 17.1 + 15.1)
-    text = """
-name = "base loop"
-units = { length = "m" }
-frame = "ground"
-[points]
-A = [7, 4]
-B = [5, 16]
-C = [25, 25]
-D = [23, 10]
-[links]
-ground = ["A", "D"]
-AB = ["A", "B"]
-BC = ["B", "C"]
-CD = ["D", "C"]
-[joints]
-A = { type = "revolute", links = ["ground", "AB"] }
-B = { type = "revolute", links = ["AB", "BC"] }
-C = { type = "revolute", links = ["BC", "CD"] }
-D = { type = "revolute", links = ["CD", "ground"] }
-[driver]
-joint = "A"
-"""
+    text = hinged_loop_text(name="base loop", units="m", driver="A",
+                            hinges={"A": (7, 4), "B": (5, 16), "C": (25, 25), "D": (23, 10)},
+                            links=("ground", "AB", "BC", "CD"), link_points={"CD": ["D", "C"]})
     mech = linkwork.load_text(text)
     (lp,) = loops(mech)
     assert lp.grashof == "non-Grashof"
@@ -203,7 +166,7 @@ def test_rocker_driven_crank_rocker_limits():
     # the crank-rocker driven at its rocker (d 30, a 10, b 30, c 20 as above, driver O4 … here
     # the input is the output of the classification: rocker limits where crank and coupler
     # align, as in test_motion's closed form)
-    mech = linkwork.load_text(four_bar_text(30, 10, 30, 20, 60, driver="O4"))
+    mech = linkwork.load_text(four_bar_from_lengths(30, 10, 30, 20, 60, driver="O4"))
     (lp,) = loops(mech)
     assert lp.type == "rocker-crank" and lp.input_turns_fully is False
     assert lp.input_limits == pytest.approx(input_limits(mech), abs=1e-9)
@@ -376,24 +339,8 @@ def test_two_slider_chains_are_named():
     assert lp.chain == "two-slider" and "Scotch yoke" in lp.name
 
 
-KULISSE = """
-name = "four-bar with the rocker replaced by a curved slot"
-[points]
-O2 = [0, 0]
-A  = [0, 10]
-B  = [30, 30]
-O4 = [40, 0]
-[links]
-frame   = ["O2", "O4"]
-crank   = ["O2", "A"]
-coupler = ["A", "B"]
-[joints]
-O2 = { type = "revolute", links = ["frame", "crank"] }
-A  = { type = "revolute", links = ["crank", "coupler"] }
-B  = { type = "circular-slot", links = ["frame", "coupler"], center = "O4" }
-[driver]
-joint = "O2"
-"""
+KULISSE = four_bar_text(name="four-bar with the rocker replaced by a curved slot",
+                        curved_slot=True)
 
 
 def test_curved_slot_acts_as_the_rocker_it_replaces():

@@ -15,7 +15,7 @@ from linkwork.io.files import library_names
 from linkwork.structure import chain_counts, counts, mobility
 from linkwork.structure.mobility import (grubler_constrained, kutzbach, link_types,
                                          structure_report)
-from mechanism_texts import TRIPLE_PARALLEL_CRANKS
+from mechanism_texts import TRIPLE_PARALLEL_CRANKS, four_bar_text
 
 # ---------------------------------------------------------------------------- the seeds' counts
 # (name, counts, h + 2z − 3n + 4 − γ as the seed evaluates it, where it comes from)
@@ -202,24 +202,7 @@ def test_every_library_mechanism_moves_with_its_drivers(name):
 def test_curved_slot_counts_as_block_hinge_and_slider():
     # Rosenauer §4, Fig. 30: a four-bar whose rocker is a block in a circular slot has
     # 3 revolutes + 1 curved sliding pair and is still constrained
-    text = """
-name = "curved slot"
-[points]
-O2 = [0, 0]
-A  = [0, 10]
-B  = [30, 30]
-O4 = [40, 0]
-[links]
-frame   = ["O2", "O4"]
-crank   = ["O2", "A"]
-coupler = ["A", "B"]
-[joints]
-O2 = { type = "revolute", links = ["frame", "crank"] }
-A  = { type = "revolute", links = ["crank", "coupler"] }
-B  = { type = "circular-slot", links = ["frame", "coupler"], center = "O4" }
-[driver]
-joint = "O2"
-"""
+    text = four_bar_text(name="curved slot", curved_slot=True)
     m = mobility(linkwork.load_text(text))
     assert (m.counts.n, m.counts.g, m.counts.s) == (4, 3, 1)
     assert m.counts.constrained and m.real_mobility == 1 and m.constrained
@@ -358,28 +341,7 @@ def test_free_pantograph_needs_one_more_input():
     assert "needs 1 more input" in m.verdict()
 
 
-TWO_DRIVERS = """
-name = "four-bar with two drivers"
-[points]
-O2 = [0, 0]
-A  = [0, 10]
-B  = [30, 30]
-O4 = [40, 0]
-[links]
-frame   = ["O2", "O4"]
-crank   = ["O2", "A"]
-coupler = ["A", "B"]
-rocker  = ["B", "O4"]
-[joints]
-O2 = { type = "revolute", links = ["frame", "crank"] }
-A  = { type = "revolute", links = ["crank", "coupler"] }
-B  = { type = "revolute", links = ["coupler", "rocker"] }
-O4 = { type = "revolute", links = ["rocker", "frame"] }
-[[drivers]]
-joint = "O2"
-[[drivers]]
-joint = "O4"
-"""
+TWO_DRIVERS = four_bar_text(name="four-bar with two drivers", driver=("O2", "O4"))
 
 
 def test_a_driver_too_many_is_named():
@@ -390,26 +352,9 @@ def test_a_driver_too_many_is_named():
     assert m.inputs_needed == 0 and not m.constrained
 
 
-FLAT_PARALLELOGRAM = """
-name = "parallelogram drawn in its change position"
-[points]
-O2 = [0, 0]
-A  = [20, 0]
-B  = [60, 0]
-O4 = [40, 0]
-[links]
-frame    = ["O2", "O4"]
-crank    = ["O2", "A"]
-coupler  = ["A", "B"]
-follower = ["B", "O4"]
-[joints]
-O2 = { type = "revolute", links = ["frame", "crank"] }
-A  = { type = "revolute", links = ["crank", "coupler"] }
-B  = { type = "revolute", links = ["coupler", "follower"] }
-O4 = { type = "revolute", links = ["follower", "frame"] }
-[driver]
-joint = "O2"
-"""
+FLAT_PARALLELOGRAM = four_bar_text(name="parallelogram drawn in its change position",
+                                   A=(20, 0), B=(60, 0),
+                                   links=("frame", "crank", "coupler", "follower"))
 
 
 def test_change_position_is_a_singular_design_not_an_over_closure():
