@@ -316,6 +316,11 @@ class GroupSolver:
         self.kind, self.parts = _classify(mech, group)
         self.fast  # noqa: B018  (computed once here; `plan` keeps the solver per mechanism)
 
+    @property
+    def compiled(self) -> bool:
+        """Positions and rates of this group run in the compiled kernels (`kernels`)."""
+        return self.fast is not None
+
     @cached_property
     def fast(self) -> dict | None:
         """Per-group constants of the closed-form hot paths (None: the generic path)."""

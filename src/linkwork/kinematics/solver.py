@@ -102,10 +102,11 @@ def solve(mech: Mechanism, inputs=None, *, times=None, velocities=None, accelera
     condition = np.ones(N)
     T = np.empty((len(mech.links), 2, N))  # cos θ, sin θ of every link, rows contiguous
     T[frame, 0], T[frame, 1] = 1.0, 0.0
-    # Closed-form groups work sample by sample, so the samples are solved in blocks whose
-    # temporaries stay in the CPU cache (same operations per sample, same results); the
-    # Newton path keeps one batch.
-    block = max(N, 1) if generic else BLOCK
+    # Closed-form groups in NumPy work sample by sample, so the samples are solved in blocks
+    # whose temporaries stay in the CPU cache (same operations per sample, same results); the
+    # compiled kernels have no temporaries and the Newton path wants one batch.
+    one_batch = generic or all(s.compiled for s in solvers)
+    block = max(N, 1) if one_batch else BLOCK
     for lo in range(0, N, block):
         sl = slice(lo, lo + block)
         state = State(mech, Q[:, sl], {j: c[:, sl] for j, c in inputs.items()}, T=T[:, :, sl],
