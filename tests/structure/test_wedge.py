@@ -271,22 +271,11 @@ def test_wedge_whose_input_runs_along_the_face_is_not_an_error():
 
 
 # ---------------------------------------------------------------------------- the solve
-KINEMATICS_PENDING = pytest.mark.xfail(
-    strict=True, raises=(ValueError, np.linalg.LinAlgError),
-    reason="kinematics.groups._residuals evaluates both rows of every sliding pair. So the "
-           "wedge group (one link, pairs face and guide) has 4 equations for 3 unknowns, one "
-           "rotation row repeating the other. continuation._correct stores the Jacobian in an "
-           "(N, 3k, 3k) array (ValueError: shape mismatch), and derivatives_generic's "
-           "np.linalg.solve needs a square matrix. Fix: drop the rotation row of the pairs in "
-           "Group.wedge_pairs in _residuals.")
-
-
 def _solve(m, u, v, a):
     n = len(u)
     return linkwork.solve(m, u, velocities=np.full(n, v), accelerations=np.full(n, a))
 
 
-@KINEMATICS_PENDING
 @pytest.mark.parametrize("delta,alpha,beta", [(0, 20, 90), (10, 35, 100), (-15, 60, 120)])
 def test_solve_gives_the_wedge_closed_form(delta, alpha, beta):
     m = load(wedge_text(delta, alpha, beta))
@@ -310,7 +299,6 @@ def test_solve_gives_the_wedge_closed_form(delta, alpha, beta):
         np.testing.assert_allclose(sol.link(ln).omega, 0.0, atol=1e-12)
 
 
-@KINEMATICS_PENDING
 def test_solve_velocities_match_finite_differences():
     m = load(wedge_text(10, 35, 100))
     h = 1e-4
@@ -322,7 +310,6 @@ def test_solve_velocities_match_finite_differences():
         np.testing.assert_allclose(mid.point(p).velocity, fd, atol=1e-8)
 
 
-@KINEMATICS_PENDING
 def test_crank_driven_wedge_solves_against_its_closed_form():
     """The crank drives the wedge through an in-line slider-crank (crank r = 20, rod l = √6800,
     both from the drawing). The block's place along the stroke is x_B = r cos φ + √(l² − r² sin² φ),
@@ -337,7 +324,6 @@ def test_crank_driven_wedge_solves_against_its_closed_form():
     np.testing.assert_allclose(sol.point("C").position[:, 1], 30.0 + k * (xB - 80.0), atol=1e-9)
 
 
-@KINEMATICS_PENDING
 def test_structure_report_with_input_limits_does_not_crash():
     """A wedge's input has no limit position: the report says so instead of a limit range."""
     rep = structure_report(load(wedge_text()))

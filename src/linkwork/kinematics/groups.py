@@ -184,7 +184,10 @@ def _residuals(state: State, group: Group, U: np.ndarray, order: int) -> list[Je
     pose = _pose_fn(state, group.links, U, order)
     res: list[Jet] = []
     for jn in group.joints:
-        res.extend(joint_residuals(mech, mech.joint(jn), pose))
+        r = joint_residuals(mech, mech.joint(jn), pose)
+        # the sliding pair that closes a loop of sliding pairs (a wedge) keeps only its offset
+        # row: its "no turning" row repeats the loop's other pairs (Rosenauer §95)
+        res.extend(r[:1] if jn in group.wedge_pairs else r)
     for d in mech.drivers:
         if d.joint in group.drivers:
             value = Jet(state.inputs[d.joint][: order + 1, :, None])
