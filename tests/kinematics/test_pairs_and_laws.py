@@ -90,6 +90,25 @@ def test_polynomial_driver_law_gives_angular_acceleration():
     np.testing.assert_allclose(sol.point("B").acceleration, _fd(vel, t), rtol=1e-6, atol=1e-6)
 
 
+def test_fourth_derivatives_equal_finite_differences_of_jerks():
+    """`solve(..., order=4)` under a quartic law θ(t) = 90° + 30°t + 20°t² + 5°t³ + 2°t⁴
+    (θ⁗ = 48°/s⁴): the crank's fourth derivative is the law's, the rocker's equals the central
+    difference of its jerks in time."""
+    text = linkwork.io.resolve("library:crank-rocker")[1].replace(
+        'speed = "60 rpm"', 'law = { type = "polynomial", coefficients = [90, 30, 20, 5, 2], '
+                            'duration = 2 }')
+    mech = linkwork.load_text(text)
+    t = np.array([0.1, 0.7, 1.6])
+    sol = linkwork.solve(mech, times=t, order=4)
+    np.testing.assert_allclose(sol.pose_derivatives("crank")[4, :, 2], np.radians(48.0))
+    jerk = lambda tt: linkwork.solve(mech, times=tt, order=3).pose_derivatives("rocker")[3]
+    snap = sol.pose_derivatives("rocker")[4]
+    np.testing.assert_allclose(snap, _fd(jerk, t), rtol=1e-6, atol=1e-6 * np.abs(snap).max())
+    assert sol.point("B").jerk is not None  # points keep their motion up to the jerk
+    with pytest.raises(linkwork.errors.InputError, match="order must be"):
+        linkwork.solve(mech, times=t, order=5)
+
+
 INVERSE_SLIDER = """\
 name = "slider-crank driven by its piston"
 [points]

@@ -14,21 +14,18 @@ Owns:
   the path is straight to third order), on the ray e ⊥ (ω j_P − 3ω̇ b).
 * `burmester_points`: the instantaneous Burmester points, where the path's curvature is
   stationary to second order (five-point contact). They need the fourth derivative of the
-  motion: `fourth_order` extends a solution by one order with the core engine's own jet
-  solver (see its docstring).
+  motion: `fourth_order` solves a solution's inputs again with `solve(..., order=4)`.
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
-from math import factorial
 
 import numpy as np
 
 from ..errors import InputError
 from ..geometry import Point
-from ..kinematics import Solution
-from ..kinematics.solution import Status
+from ..kinematics import Solution, solve
 from .curvature import Local, euler_savary, local_invariants
 from .motion import (TOL, RelativeMotion, _c, dot, exp_derivatives, leibniz, make_point, norm, perp,
                      relative_motion)
@@ -172,44 +169,23 @@ def _input_derivatives(solution: Solution, driver) -> np.ndarray:
 
 
 def fourth_order(solution: Solution, input_snap=None) -> Solution:
-    """`solution` extended by the fourth time derivative of every link pose.
-
-    The public `solve` stops at jerks; this re-runs the engine's own jet solver
-    (`kinematics.groups.derivatives_generic`, one linear solve per order and group) at order 4
-    on the solved positions, so the fourth derivatives are exact, not differenced. The inputs'
-    first three derivatives are recovered from the driven links; their fourth derivative is
-    `input_snap` ((N,) or (N, drivers); default 0, right for uniform drives and cubic laws).
+    """`solution` solved again at order 4 (`solve(..., order=4)`): the fourth time derivative of
+    every link pose, exact, not differenced. The inputs' first three derivatives are recovered
+    from the driven links (so a solution at times, or with its own input speeds, keeps them);
+    their fourth derivative is `input_snap` ((N,) or (N, drivers); default 0, right for
+    uniform drives and cubic laws).
     """
-    from ..kinematics.groups import State, derivatives_generic
-    from ..kinematics.solver import plan
-
     if solution.order < 3:
         raise InputError("the fourth derivatives are built on the jerks: solve the mechanism "
                          f"with order=3 (this solution has order {solution.order})")
-    solution_ = solution
-    mech = solution_.mechanism
-    names = mech.link_names
-    N = len(solution_)
-    D = np.stack([solution_.pose_derivatives(ln) for ln in names], axis=2)
-    Q = np.zeros((5, N, len(names), 3))
-    Q[0] = D[0]
-    fact = np.array([factorial(k) for k in range(5)])
-    snap = np.zeros((N, len(mech.drivers))) if input_snap is None else \
-        np.asarray(input_snap, dtype=float).reshape(N, -1)
-    inputs = {}
-    for i, d in enumerate(mech.drivers):
-        der = np.zeros((5, N))
-        der[:4] = _input_derivatives(solution_, d)
-        der[4] = snap[:, i]
-        inputs[d.joint] = der / fact[:, None]
-    state = State(mech, Q, inputs)
-    ok = (solution_.status != Status.UNREACHABLE) & np.isfinite(Q[0]).all(axis=(1, 2))
-    with np.errstate(invalid="ignore", divide="ignore"):
-        for s in plan(mech):
-            derivatives_generic(state, s.group, ok)
-    state.Q[:, ~ok] = np.nan
-    return Solution(mech, solution_.inputs, solution_.time, state.Q, solution_.status,
-                    solution_.condition)
+    mech = solution.mechanism
+    N = len(solution)
+    rates = np.stack([_input_derivatives(solution, d) for d in mech.drivers], axis=-1)
+    snap = None if input_snap is None else np.asarray(input_snap, dtype=float).reshape(N, -1)
+    out = solve(mech, solution.inputs, velocities=rates[1], accelerations=rates[2],
+                jerks=rates[3], snaps=snap, order=4)
+    out.time = solution.time
+    return out
 
 
 def _poly_mul(p: np.ndarray, q: np.ndarray) -> np.ndarray:

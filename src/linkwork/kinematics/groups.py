@@ -140,14 +140,14 @@ class State:
 
 def input_coefficients(mech: Mechanism, values: np.ndarray, rates: np.ndarray | None,
                         accels: np.ndarray | None, jerks: np.ndarray | None,
-                        order: int) -> dict[str, np.ndarray]:
+                        order: int, snaps: np.ndarray | None = None) -> dict[str, np.ndarray]:
     """Per driver joint, the (order+1, N) Taylor coefficients of its input (values, rates,
-    accelerations and jerks given per sample; a constant-speed law supplies the rate)."""
+    accelerations, jerks and snaps given per sample; a constant-speed law supplies the rate)."""
     out = {}
     for i, d in enumerate(mech.drivers):
         der = np.zeros((order + 1, values.shape[0]))
         der[0] = values[:, i]
-        extra = [rates, accels, jerks]
+        extra = [rates, accels, jerks, snaps]
         for k in range(1, order + 1):
             given = extra[k - 1]
             if given is not None:

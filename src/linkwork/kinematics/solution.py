@@ -150,8 +150,10 @@ class Solution:
                 self._all_assembled:
             # a point of the frame stands still: its motion costs no memory
             zero = np.broadcast_to(0.0, (N, 2))
+            K = min(K, 3)
             return PointMotion(np.broadcast_to(s, (N, 2)), *([zero] * K + [None] * (3 - K)))
-        C = self._C[:, :, i]
+        K = min(K, 3)  # a point's motion is given up to its jerk
+        C = self._C[: K + 1, :, i]
         c, sn = self._trig(i)
         out = np.empty((K + 1, 2, N))  # out[k, x|y, n]; handed out as (N, 2) views
         sx, sy = (np.broadcast_to(s[..., j], (N,)) for j in (0, 1))

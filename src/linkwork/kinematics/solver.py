@@ -62,27 +62,30 @@ def _as_2d(a, n_drivers: int, name: str) -> np.ndarray | None:
 
 
 def solve(mech: Mechanism, inputs=None, *, times=None, velocities=None, accelerations=None,
-          jerks=None, order: int = 2) -> Solution:
+          jerks=None, snaps=None, order: int = 2) -> Solution:
     """Solve `mech` at the given input values (shape (N,) for one driver, (N, drivers) else) or
     at `times` (each driver's law evaluated at those times).
 
     Revolute inputs are in radians, prismatic ones in the file's length unit. Input speeds
     default to each driver's constant speed; give `velocities`/`accelerations` arrays to
     override them (for example the reversed speed of a rocker's return sweep).
-    `order` = 3 also computes jerks.
+    `order` = 3 also computes jerks, `order` = 4 the fourth derivatives (snaps) of the link
+    poses, which curvature theory of higher order (Burmester points) needs; `jerks` and `snaps`
+    give the inputs' third and fourth derivatives (default 0).
     """
-    if order not in (1, 2, 3):
-        raise InputError("order must be 1 (velocities), 2 (accelerations) or 3 (jerks)")
+    if order not in (1, 2, 3, 4):
+        raise InputError("order must be 1 (velocities), 2 (accelerations), 3 (jerks) or 4 "
+                         "(snaps)")
     nd = len(mech.drivers)
     t = None
     if times is not None:
         t = np.atleast_1d(np.asarray(times, dtype=float))
-        laws = np.stack([d.law.derivatives(t) for d in mech.drivers], axis=-1)  # (4, N, nd)
+        laws = np.stack([d.law.derivatives(t) for d in mech.drivers], axis=-1)  # (5, N, nd)
         if any(isinstance(d.law, ConstantSpeed) for d in mech.drivers):
             for i, d in enumerate(mech.drivers):
                 if isinstance(d.law, ConstantSpeed):
                     laws[0, :, i] += mech.driver_input_at_design(d)
-        values, velocities, accelerations, jerks = laws
+        values, velocities, accelerations, jerks, snaps = laws
     else:
         if inputs is None:
             inputs = [[mech.driver_input_at_design(d) for d in mech.drivers]]
@@ -90,11 +93,12 @@ def solve(mech: Mechanism, inputs=None, *, times=None, velocities=None, accelera
         velocities = _as_2d(velocities, nd, "velocities")
         accelerations = _as_2d(accelerations, nd, "accelerations")
         jerks = _as_2d(jerks, nd, "jerks")
+        snaps = _as_2d(snaps, nd, "snaps")
     N = values.shape[0]
     solvers = plan(mech)
     frame = mech.link_index[mech.frame]
     Q = _pose_array(order, N, len(mech.links), frame)
-    inputs = input_coefficients(mech, values, velocities, accelerations, jerks, order)
+    inputs = input_coefficients(mech, values, velocities, accelerations, jerks, order, snaps)
     generic = any(s.kind == "generic" for s in solvers)
     branches = {g: sch.signs(values[:, 0]) for g, sch in branch_schedule(mech).items()}
     guesses = continuation_guesses(mech, solvers, values) if generic else {}

@@ -37,7 +37,7 @@ class ConstantSpeed(MotionLaw):
 
     def derivatives(self, t: np.ndarray) -> np.ndarray:
         t = np.asarray(t, dtype=float)
-        out = np.zeros((4,) + t.shape)
+        out = np.zeros((5,) + t.shape)
         out[0] = self.start + self.speed * t
         out[1] = self.speed
         return out
@@ -53,7 +53,7 @@ class PolynomialLaw(MotionLaw):
     def derivatives(self, t: np.ndarray) -> np.ndarray:
         t = np.asarray(t, dtype=float)
         poly = np.polynomial.Polynomial(self.coefficients)
-        return np.stack([poly.deriv(k)(t) if k else poly(t) for k in range(4)])
+        return np.stack([poly.deriv(k)(t) if k else poly(t) for k in range(5)])
 
     @property
     def duration(self) -> float:
@@ -70,7 +70,7 @@ class TabulatedLaw(MotionLaw):
     def derivatives(self, t: np.ndarray) -> np.ndarray:
         spline = CubicSpline(np.asarray(self.times), np.asarray(self.values))
         t = np.asarray(t, dtype=float)
-        return np.stack([spline(t, k) for k in range(4)])
+        return np.stack([spline(t, k) for k in range(5)])
 
     @property
     def duration(self) -> float:
