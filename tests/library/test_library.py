@@ -429,3 +429,16 @@ def test_roemer_slide_velocity_by_rosenauers_construction_i():
     L, V, _ = _scales(m)
     np.testing.assert_allclose(got, vB, rtol=0, atol=1e-8 * V)
     assert np.ptp(vB) > 0.1 * V  # the check is not vacuous
+
+
+def test_crank_driven_wedge_lifts_by_the_tangent_of_its_face():
+    """The face, at 25° to the slide, lifts the vertically guided follower by tan 25° times the
+    wedge's travel against the slide (and so its speed and acceleration)."""
+    m, sol = mech("crank-driven-wedge"), motion("crank-driven-wedge")
+    B, C = sol.point("B"), sol.point("C")
+    k = np.tan(np.radians(25.0))
+    np.testing.assert_allclose(C.position[:, 1] - m.points["C"][1],
+                               -k * (B.position[:, 0] - m.points["B"][0]), atol=1e-9)
+    np.testing.assert_allclose(C.velocity[:, 1], -k * B.velocity[:, 0], atol=1e-9)
+    np.testing.assert_allclose(C.acceleration[:, 1], -k * B.acceleration[:, 0], atol=1e-7)
+    np.testing.assert_allclose(C.position[:, 0], m.points["C"][0], atol=1e-9)
