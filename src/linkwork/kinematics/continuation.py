@@ -1,29 +1,32 @@
 """Newton starting values for the groups without a closed form, by continuation.
 
-The input is marched from the design position by predictor–corrector continuation with
-adaptive step control, so that every generic group stays on the assembly branch of the design:
+The input is marched from the design position by predictor–corrector continuation with adaptive
+step control, so that every generic group stays on the assembly branch of the design:
 
 - predictor: Euler's, along the tangent dq/dλ of the solution path (the poses' velocities at
-  unit input rate, from the groups' velocity solve);
+  unit input rate, from the groups' velocity equations);
 - corrector: Newton's method on each generic group, which gives up as soon as its iterates stop
-  contracting (the predicted poses then lie outside the basin of the nearby solution);
-- step control: a step is accepted when every group assembled and the corrected poses lie
-  close to the predicted ones (the corrector distance is small against the predicted change):
-  the poses changed smoothly. Otherwise the step is halved, down to a floor; after a success
-  it is doubled again, up to `CONTINUATION_STEP`. The predicted change of the poses per step
-  is bounded too, so that the march resolves fast swings of the output in pose space.
+  contracting (the prediction then lies outside the basin of the nearby solution);
+- step control: a step is accepted when every group assembled and the poses changed smoothly:
+  the corrected poses lie close to the predicted ones, and the prediction back from the new
+  point along its tangent comes close to the old one (each within a quarter of the predicted
+  change). Otherwise the step is halved, down to a floor; after two successes in a row it is
+  doubled again, up to `CONTINUATION_STEP`. The predicted change of the poses per step is
+  bounded as well (`MAX_POSE_CHANGE`), so that fast swings are resolved in pose space.
 
-A fixed step jumps to the other assembly branch where the solution swings fast (a slotted
-lever whose slot passes close to its pivot, a dyad near its dead centre); the adaptive step
-shrinks there instead. Near a limit position (turning point of the path) the halving closes in
-on it, so the march ends within `MIN_STEP` of the limit.
+A fixed step jumps to the other assembly branch where the solution swings fast (a slotted lever
+whose slot passes close to its pivot, a dyad near its dead centre); the adaptive step shrinks
+there instead. At a limit position (a turning point of the path, where |dq/dλ| grows like
+1/√(λ* − λ)) the step closes in on λ*, extrapolated from the growth of the tangent, and the
+march ends within `MIN_STEP` of it.
 
 One driver: the march runs upwards and downwards from the design value. Its steps do not depend
-on the range asked for (the march goes on until it has passed it), so the marched points — the
-poses and tangents — are kept per mechanism and extended when a later solve asks for more: the
-whole motion (grid, bisection of the limits, then the samples) marches once. The samples get
-their guesses by cubic Hermite interpolation of the marched poses and tangents. Several drivers:
-the march goes through the samples in their order, subdividing adaptively between them.
+on the range asked for (the march goes on until it has passed it), so the marched points — poses
+and tangents — are kept per mechanism and extended when a later solve asks for more, and every
+solve gets the same starting values whether the march was kept or not: the limits, the grid and
+the samples of a whole motion march once. The samples get their starting values by cubic
+Hermite interpolation of the marched poses and tangents. Several drivers: the march goes through
+the samples in their order, subdividing adaptively between them.
 """
 
 from __future__ import annotations
@@ -36,14 +39,15 @@ from ..model import Mechanism
 from . import groups
 from .groups import State, input_coefficients
 
-CONTINUATION_STEP = np.radians(2.0)  # largest step of a revolute input (of a prismatic one: 1 % of L)
-MIN_STEP = 2.0 ** -42                # smallest step, relative to the largest (≈ 1e-14 rad)
+CONTINUATION_STEP = np.radians(2.0)  # largest step of a revolute input (prismatic: 1 % of L)
+MIN_STEP = 2.0 ** -36                # smallest step, relative to the largest (≈ 5e-13 rad)
 MAX_POSE_CHANGE = 0.1                # largest predicted change of any pose per step, in L (θ·L)
 PREDICTOR_TOLERANCE = 0.25           # largest corrector distance, relative to the predicted change
 SLACK = 1e-4                         # ... plus this, in L: the curvature allowed where dq/dλ ≈ 0
 CONTRACTION = 0.5                    # each Newton step must be at most this times the one before
 CORRECTOR_ITERATIONS = 12
 STEP_TOL = 1e-6                      # a Newton step this small (in L) ends the corrector
+FOLD_APPROACH = 0.9                  # fraction of the distance to a limit position ahead
 CACHE_SIZE = 32
 
 # (mechanism, its group solvers) -> {+1: lane upwards, -1: lane downwards}. Both are compared
@@ -72,6 +76,21 @@ def continuation_guesses(mech: Mechanism, solvers, values: np.ndarray) -> dict:
     lane = _Lane(gen, np.vstack([design[None], values]) * gen.weights)
     _march(mech, solvers, gen, [lane], {lane.sense: lane.knots[-1]})
     return gen.split(lane.at_vertices()[1:])
+
+
+def march_limit(mech: Mechanism, solvers, sense: int, span: float) -> float | None:
+    """The input value at which the march of the design's branch stops on one side (`sense`
+    +1: upwards, −1: downwards) — a limit position, closed in on to `MIN_STEP` by the step
+    halving — or None when it gets farther than `span` from the design value. One driver."""
+    gen = _Generic(mech, solvers)
+    design = np.array([mech.driver_input_at_design(d) for d in mech.drivers])
+    lane = _one_driver_lanes(mech, solvers, gen, design)[sense]
+    target = span * gen.weights[0]
+    _march(mech, solvers, gen, [lane], {sense: target})
+    end = lane.lam[-1] if lane.lam else 0.0
+    if not lane.stopped or end >= target:
+        return None
+    return float(design[0] + sense * end / gen.weights[0])
 
 
 def _one_driver_lanes(mech: Mechanism, solvers, gen: "_Generic", design: np.ndarray) -> dict:
@@ -146,6 +165,7 @@ class _Lane:
         self.knots = np.concatenate([[0.0], np.cumsum(length)])
         self.sense = sense
         self.h = CONTINUATION_STEP
+        self.halved = False
         self.stopped = n == 0
         self.started = False
         self.lam: list[float] = []
@@ -162,9 +182,10 @@ class _Lane:
         seg = j - 1
         return self.vertices[seg] + (lam - self.knots[seg]) * self.dirs[seg]
 
-    def direction_after(self, lam: float) -> np.ndarray:
-        """Direction of the segment a step from λ goes along (the next one at a vertex)."""
-        seg = np.searchsorted(self.knots, lam, side="right") - 1
+    def direction(self, lam: float, arriving: bool) -> np.ndarray:
+        """Unit direction (in λ) of the segment a step arrives at λ along, or leaves λ along
+        (they differ at a sample of several drivers)."""
+        seg = np.searchsorted(self.knots, lam, side="left" if arriving else "right") - 1
         return self.dirs[min(max(seg, 0), len(self.dirs) - 1)]
 
     def proposal(self, gen: _Generic) -> tuple[float, float, np.ndarray]:
@@ -176,6 +197,13 @@ class _Lane:
         tn = gen.norm(t)
         if np.isfinite(tn) and tn > 0:  # bound the predicted change of the poses
             h = min(h, max(MAX_POSE_CHANGE * gen.L / tn, MIN_STEP * CONTINUATION_STEP))
+        if len(self.lam) >= 2:  # a limit position ahead: close in on it
+            g1, g0 = gen.norm(t), gen.norm(self.T[-2])
+            lam0 = self.lam[-2]
+            # near a turning point of the path |dq/dλ|⁻² falls linearly to zero at it
+            if np.isfinite(g0) and np.isfinite(g1) and g1 > g0 > 0:
+                fold = lam + (lam - lam0) * g0 ** 2 / (g1 ** 2 - g0 ** 2)
+                h = min(h, max(FOLD_APPROACH * (fold - lam), MIN_STEP * CONTINUATION_STEP))
         nxt = self.knots[np.searchsorted(self.knots, lam, side="right")]
         to = lam + h
         if h >= nxt - lam:  # land on the next sample exactly
@@ -184,28 +212,33 @@ class _Lane:
         return h, to, pred
 
     def settle(self, gen: _Generic, h: float, lam: float, pred: np.ndarray, ok: bool,
-               q: np.ndarray, t: np.ndarray) -> None:
-        """Accept or reject the attempt at λ, adapt the step."""
+               q: np.ndarray, t: np.ndarray, t_leave: np.ndarray) -> None:
+        """Accept or reject the attempt at λ, adapt the step. `t` is the tangent along the
+        step, `t_leave` the one along the next (they differ where several drivers turn)."""
         if not self.started:
             self.started = True
             if ok:
-                self._append(lam, q, t)
+                self._append(lam, q, t_leave)
             else:
                 self.stopped = True  # the design position itself does not assemble
             return
         # the poses changed smoothly: the predictions from both ends, along their tangents,
         # come close to the other end (a step into a fast swing fails the one from the new end)
-        forward = gen.norm(q - pred) <= PREDICTOR_TOLERANCE * gen.norm(pred - self.P[-1]) + SLACK * gen.L
+        slack = SLACK * gen.L
+        forward = gen.norm(q - pred) <= PREDICTOR_TOLERANCE * gen.norm(pred - self.P[-1]) + slack
         back = q - h * t
-        backward = (not np.isfinite(back).all()
-                    or gen.norm(back - self.P[-1]) <= PREDICTOR_TOLERANCE * gen.norm(h * t) + SLACK * gen.L)
+        backward = (not np.isfinite(back).all()  # no tangent at the new point: singular there
+                    or gen.norm(back - self.P[-1]) <= PREDICTOR_TOLERANCE * gen.norm(h * t) + slack)
         smooth = forward and backward
         if ok and smooth:
-            self._append(lam, q, t)
-            if h >= self.h:
-                self.h = min(2 * h, CONTINUATION_STEP)
+            self._append(lam, q, t_leave)
+            # grow after two successes in a row: right after a halving the step that just
+            # failed would be tried again (and fail again, closing in on a limit position)
+            self.h = h if self.halved else min(2 * h, CONTINUATION_STEP)
+            self.halved = False
         else:
             self.h = h / 2
+            self.halved = True
             if self.h < MIN_STEP * CONTINUATION_STEP:
                 self.stopped = True  # a limit position (or a passage no step gets across)
 
@@ -262,6 +295,7 @@ class _Lane:
             out[:self.vertex_of.size] = marched[self.vertex_of]
         return out
 
+
 def _march(mech: Mechanism, solvers: tuple, gen: _Generic, lanes: list[_Lane], reach: dict) -> None:
     """Advance the lanes (together: one batched solve per round) until each has passed
     reach[lane.sense] or stopped. Every attempt solves all groups in order at the proposed
@@ -274,13 +308,15 @@ def _march(mech: Mechanism, solvers: tuple, gen: _Generic, lanes: list[_Lane], r
             return
         props = [ln.proposal(gen) for ln in todo]
         u = np.array([ln.point(p[1]) for ln, p in zip(todo, props)]) / gen.weights
-        rates = np.array([ln.direction_after(p[1]) for ln, p in zip(todo, props)]) / gen.weights
+        # input rates per unit λ: the tangents dq/dλ come out as velocities
+        arrive = np.array([ln.direction(p[1], True) for ln, p in zip(todo, props)]) / gen.weights
+        leave = np.array([ln.direction(p[1], False) for ln, p in zip(todo, props)]) / gen.weights
         pred = np.array([p[2] for p in props])
         N = len(todo)
         # second order, so that the driver and RRR dyads take their closed-form velocities;
         # the sample axis last in memory, as `solve` lays out Q for the compiled kernels
         state = State(mech, np.zeros((3, n_links, 3, N)).transpose(0, 3, 1, 2),
-                      input_coefficients(mech, u, rates, None, None, 2))
+                      input_coefficients(mech, u, arrive, None, None, 2))
         ok = np.ones(N, dtype=bool)
         jacobians = {}
         with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
@@ -290,16 +326,28 @@ def _march(mech: Mechanism, solvers: tuple, gen: _Generic, lanes: list[_Lane], r
                     ok &= conv
                 else:
                     ok &= s.positions(state)
-            # velocities of the groups up to the last generic one: the tangents
-            for s in solvers[:gen.last + 1]:
-                if s.kind == "generic":
-                    _tangent(state, s, jacobians[s.group], ok)
-                else:
-                    s.derivatives(state, ok)
+            t_arrive = t_leave = np.full((N, gen.size, 3), np.nan)
+            if ok.any():  # (all failed: nothing to settle with them)
+                t_arrive = t_leave = _tangents(state, solvers, gen, jacobians, ok)
+                if not np.allclose(arrive, leave, rtol=1e-12, atol=0.0):  # a sample turns
+                    for i, d in enumerate(mech.drivers):
+                        state.inputs[d.joint][1] = leave[:, i]
+                    t_leave = _tangents(state, solvers, gen, jacobians, ok)
         q = state.Q[0][:, gen.links]
-        t = state.Q[1][:, gen.links]
         for k, (ln, (h, lam, p)) in enumerate(zip(todo, props)):
-            ln.settle(gen, h, lam, p, bool(ok[k]), q[k].copy(), t[k].copy())
+            ln.settle(gen, h, lam, p, bool(ok[k]), q[k].copy(), t_arrive[k].copy(),
+                      t_leave[k].copy())
+
+
+def _tangents(state: State, solvers, gen: _Generic, jacobians: dict, ok: np.ndarray) -> np.ndarray:
+    """Velocities (N, G, 3) of the generic groups' links at the state's input rates, from the
+    velocities of all groups up to the last generic one."""
+    for s in solvers[:gen.last + 1]:
+        if s.kind == "generic":
+            _tangent(state, s, jacobians[s.group], ok)
+        else:
+            s.derivatives(state, ok)
+    return state.Q[1][:, gen.links]
 
 
 def _residual_and_jacobian(state: State, group) -> tuple[np.ndarray, np.ndarray]:
@@ -332,27 +380,27 @@ def _correct(state: State, solver, guess: np.ndarray) -> tuple[np.ndarray, np.nd
     idx = [state.li(ln) for ln in group.links]
     L = state.mech.length_scale
     tol = groups.NEWTON_TOL * L
-    N, m = guess.shape[0], 3 * group.size
+    N = guess.shape[0]
     q = guess.copy()
     alive = np.isfinite(q).all(axis=(1, 2)) & np.isfinite(state.Q[0]).all(axis=(1, 2))
     q[~alive] = 0.0
     converged = np.zeros(N, dtype=bool)
     last = np.full(N, np.inf)
-    J = np.full((N, m, m), np.nan)
+    J = None
     for _ in range(CORRECTOR_ITERATIONS):
         state.Q[0][:, idx, :] = q
         r, Jq = _residual_and_jacobian(state, group)
         converged |= alive & (np.abs(r).max(axis=1) <= tol)
+        if J is None:
+            J = np.full(Jq.shape, np.nan)
         J[alive] = Jq[alive]
         todo = alive & ~converged
         if not todo.any():
             break
-        try:
-            step = np.linalg.solve(Jq[todo], -r[todo][..., None])[..., 0]
-        except np.linalg.LinAlgError:  # a singular sample in the batch: least squares
-            step = (np.linalg.pinv(Jq[todo]) @ -r[todo][..., None])[..., 0]
+        step = _least_squares(Jq[todo], -r[todo])
         step = step.reshape(-1, group.size, 3)
-        size = np.maximum(np.abs(step[..., :2]).max(axis=(1, 2)), L * np.abs(step[..., 2]).max(axis=1))
+        size = np.maximum(np.abs(step[..., :2]).max(axis=(1, 2)),
+                          L * np.abs(step[..., 2]).max(axis=1))
         before = last[todo]
         # steps at rounding level carry no information on contraction
         failing = ~np.isfinite(size) | ((size > CONTRACTION * before) & (size > 1e3 * tol))
@@ -381,10 +429,17 @@ def _tangent(state: State, solver, J: np.ndarray, ok: np.ndarray) -> None:
     res = groups._residuals(state, group, U, 1)
     r = np.stack([x.c[1][:, 0] for x in res], axis=1)
     good = ok & np.isfinite(J).all(axis=(1, 2))
-    v = np.full(r.shape, np.nan)
+    v = np.full((r.shape[0], J.shape[2]), np.nan)
     if good.any():
-        try:
-            v[good] = np.linalg.solve(J[good], -r[good][..., None])[..., 0]
-        except np.linalg.LinAlgError:  # singular: no tangent (the predictor stands still)
-            pass
+        v[good] = _least_squares(J[good], -r[good])
     state.Q[1][:, idx, :] = v.reshape(-1, group.size, 3)
+
+
+def _least_squares(J: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """x with J·x = b, per sample: by LU when every J is square and regular, else in the least
+    squares sense (a singular sample in the batch, or more constraint rows than unknowns where
+    sliding pairs repeat a rotation row)."""
+    try:
+        return np.linalg.solve(J, b[..., None])[..., 0]
+    except np.linalg.LinAlgError:
+        return (np.linalg.pinv(J) @ b[..., None])[..., 0]

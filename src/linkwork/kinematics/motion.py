@@ -4,7 +4,8 @@ An input that can turn fully is sampled over one turn. An input that cannot (a r
 is driven from the design position to its limit position, back to the other limit and forward
 to the design position again, on the assembly branch of the design, with the input speed
 reversed on the way back (as in the Stephenson III reference sweeps). Limit positions are found
-by bisection to machine precision and included as samples.
+by bisection to machine precision (with Newton-solved groups: where the continuation of the
+design's branch stops, to ~1e-12) and included as samples.
 """
 
 from __future__ import annotations
@@ -13,8 +14,9 @@ import numpy as np
 
 from ..errors import InputError
 from ..model import ConstantSpeed, Mechanism
+from .continuation import march_limit
 from .solution import Solution, Status
-from .solver import solve
+from .solver import plan, solve
 
 BISECTIONS = 60
 
@@ -30,12 +32,15 @@ def input_limits(mech: Mechanism, *, resolution: float | None = None) -> tuple[f
     prismatic = mech.joint(d.joint).kind == "prismatic"
     u0 = mech.driver_input_at_design(d)
     span = 4 * mech.length_scale if prismatic else 2 * np.pi
+    solvers = plan(mech)
+    if any(s.kind == "generic" for s in solvers):
+        return _march_limits(mech, solvers, u0, span, prismatic)
     n = 1441
     res = resolution or span / (n - 1)
     grid = np.linspace(0.0, span, max(n, int(span / res) + 1))
     up = _assembles(mech, u0 + grid)
     if not prismatic and up.all():
-        return None  # a crank: the lower side is not needed (a march less for Newton groups)
+        return None  # a crank: the lower side is not needed
     down = _assembles(mech, u0 - grid)
     limits = []
     for sign, ok in ((-1.0, down), (1.0, up)):
@@ -52,6 +57,25 @@ def input_limits(mech: Mechanism, *, resolution: float | None = None) -> tuple[f
                 hi = mid
         limits.append(u0 + sign * lo)
     return limits[0], limits[1]
+
+
+def _march_limits(mech: Mechanism, solvers, u0: float, span: float,
+                  prismatic: bool) -> tuple[float, float] | None:
+    """`input_limits` of a mechanism with Newton-solved groups: where the continuation of the
+    design's branch stops. Its step control closes in on a limit position to ~1e-12 (where
+    Newton's residual tolerance blurs the turning point), which is where bisection on `solve`
+    ends too, since solve's Newton starts from that march and finds nothing beyond it; but the
+    bisection would take sixty solves next to the turning point, where Newton's method converges
+    slowly."""
+    d = mech.drivers[0]
+    upper = march_limit(mech, solvers, +1, span)
+    if upper is None and not prismatic:
+        return None
+    lower = march_limit(mech, solvers, -1, span)
+    if lower is None or upper is None:
+        raise InputError(f"driver '{d.joint}': no limit position within ±{span:g} of the design "
+                         "position; give --sweep explicitly")
+    return lower, upper
 
 
 def whole_motion(mech: Mechanism, *, step: float | None = None, speed: float | None = None,
