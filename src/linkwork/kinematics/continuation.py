@@ -350,23 +350,6 @@ def _tangents(state: State, solvers, gen: _Generic, jacobians: dict, ok: np.ndar
     return state.Q[1][:, gen.links]
 
 
-def _residual_and_jacobian(state: State, group) -> tuple[np.ndarray, np.ndarray]:
-    """Residuals (N, 3k) of the group's constraints and their Jacobian (N, 3k, 3k) with
-    respect to its link poses, from one evaluation on first-order jets (the residuals are the
-    jets' values; `groups.group_jacobian` evaluates the same jets)."""
-    N, k = state.Q.shape[1], group.size
-    m = 3 * k
-    U = np.zeros((2, N, m, k, 3))
-    U[0] = state.Q[0][:, [state.li(ln) for ln in group.links]][:, None]
-    U[1] = np.eye(m).reshape(m, k, 3)[None]
-    # only the unknowns' directions: known links and inputs held still
-    still = State(state.mech, np.stack([state.Q[0], np.zeros_like(state.Q[0])]),
-                  {j: np.stack([v[0], np.zeros_like(v[0])]) for j, v in state.inputs.items()})
-    res = groups._residuals(still, group, U, 1)
-    return (np.stack([x.c[0][:, 0] for x in res], axis=1),
-            np.stack([x.c[1] for x in res], axis=1))
-
-
 def _correct(state: State, solver, guess: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Newton's method on one generic group from the predicted poses `guess` (N, k, 3); fills
     the group's poses in Q[0] (NaN where it failed). Returns the convergence mask and the last
@@ -389,7 +372,7 @@ def _correct(state: State, solver, guess: np.ndarray) -> tuple[np.ndarray, np.nd
     J = None
     for _ in range(CORRECTOR_ITERATIONS):
         state.Q[0][:, idx, :] = q
-        r, Jq = _residual_and_jacobian(state, group)
+        r, Jq = groups.residual_and_jacobian(state, group)
         converged |= alive & (np.abs(r).max(axis=1) <= tol)
         if J is None:
             J = np.full(Jq.shape, np.nan)
@@ -424,10 +407,7 @@ def _tangent(state: State, solver, J: np.ndarray, ok: np.ndarray) -> None:
     jets of the residuals with the unknown velocities zero), J the corrector's last Jacobian."""
     group = solver.group
     idx = [state.li(ln) for ln in group.links]
-    U = state.Q[:, :, idx, :][:, :, None].copy()
-    U[1] = 0.0
-    res = groups._residuals(state, group, U, 1)
-    r = np.stack([x.c[1][:, 0] for x in res], axis=1)
+    r = groups.rate_residuals(state, group, 1)
     good = ok & np.isfinite(J).all(axis=(1, 2))
     v = np.full((r.shape[0], J.shape[2]), np.nan)
     if good.any():

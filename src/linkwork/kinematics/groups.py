@@ -195,8 +195,10 @@ def _residuals(state: State, group: Group, U: np.ndarray, order: int) -> list[Je
     return res
 
 
-def group_jacobian(state: State, group: Group) -> np.ndarray:
-    """(N, 3k, 3k) Jacobian of the group's constraints with respect to its link poses."""
+def residual_and_jacobian(state: State, group: Group) -> tuple[np.ndarray, np.ndarray]:
+    """Residuals (N, rows) of the group's constraints at the poses in Q[0] and their Jacobian
+    (N, rows, 3k) with respect to its link poses, from one evaluation on first-order jets (the
+    residuals are the jets' values). rows = 3k, less one per wedge pair."""
     N, k = state.Q.shape[1], group.size
     m = 3 * k
     U = np.zeros((2, N, m, k, 3))
@@ -204,9 +206,26 @@ def group_jacobian(state: State, group: Group) -> np.ndarray:
     U[1] = np.eye(m).reshape(m, k, 3)[None]
     # only the unknowns' directions are wanted: known links and inputs held still
     still = State(state.mech, np.stack([state.Q[0], np.zeros_like(state.Q[0])]),
-                  {k: np.stack([v[0], np.zeros_like(v[0])]) for k, v in state.inputs.items()})
+                  {j: np.stack([v[0], np.zeros_like(v[0])]) for j, v in state.inputs.items()})
     res = _residuals(still, group, U, 1)
-    return np.stack([r.c[1] for r in res], axis=1)
+    return (np.stack([x.c[0][:, 0] for x in res], axis=1),
+            np.stack([x.c[1] for x in res], axis=1))
+
+
+def group_jacobian(state: State, group: Group) -> np.ndarray:
+    """(N, rows, 3k) Jacobian of the group's constraints with respect to its link poses."""
+    return residual_and_jacobian(state, group)[1]
+
+
+def rate_residuals(state: State, group: Group, k: int) -> np.ndarray:
+    """(N, rows): the k-th Taylor coefficient of the group's constraint residuals with the
+    group's own k-th pose coefficients set to zero, the right-hand side −r_k of J·q⁽ᵏ⁾/k! = −r_k
+    (all lower coefficients as they stand in Q)."""
+    idx = [state.li(ln) for ln in group.links]
+    U = state.Q[: k + 1, :, idx, :][:, :, None].copy()
+    U[k] = 0.0
+    res = _residuals(state, group, U, k)
+    return np.stack([x.c[k][:, 0] for x in res], axis=1)
 
 
 def _scaled(J: np.ndarray, scale: float) -> np.ndarray:
@@ -233,11 +252,7 @@ def derivatives_generic(state: State, group: Group, ok: np.ndarray) -> np.ndarra
         cond[finite] = np.linalg.cond(_scaled(J[finite], state.mech.length_scale))
     good = finite & (cond < UNRELIABLE_CONDITION)
     for k in range(1, state.order + 1):
-        U = state.Q[:, :, idx, :][:, :, None].copy()
-        U[k] = 0.0
-        res = _residuals(state, group, U, k)
-        r = np.stack([x.c[k][:, 0] for x in res], axis=1)
-        sol = _solve(J, -r, good)
+        sol = _solve(J, -rate_residuals(state, group, k), good)
         state.Q[k][:, idx, :] = sol.reshape(-1, group.size, 3)
     return cond
 
@@ -504,9 +519,7 @@ class GroupSolver:
         q[~active] = 0.0
         for it in range(50):
             state.Q[0][:, idx, :] = q
-            U = q[None, :, None]
-            res = _residuals(state, self.group, U, 0)
-            r = np.stack([x.c[0][:, 0] for x in res], axis=1)
+            r, J = residual_and_jacobian(state, self.group)
             err = np.abs(r).max(axis=1)
             if it == 0:  # samples whose known links did not assemble upstream
                 active &= np.isfinite(err)
@@ -517,7 +530,6 @@ class GroupSolver:
             # a converged sample takes one more step: Newton's quadratic convergence then leaves
             # only rounding, which the acceleration solve needs (its error scales with it)
             polished |= converged
-            J = group_jacobian(state, self.group)
             try:
                 step = np.linalg.solve(J[todo], -r[todo][..., None])[..., 0]
             except np.linalg.LinAlgError:  # a singular sample in the batch: least squares
