@@ -101,3 +101,42 @@ def test_signs_count_the_change_points_passed():
     np.testing.assert_array_equal(turn.signs(u), [1, -1, 1, -1, 1, -1])
     slide = Schedule(-1.0, (3.0,), None, 0.0)
     np.testing.assert_array_equal(slide.signs(np.array([2.9, 3.0, 10.0, -5.0])), [-1, 1, 1, -1])
+
+
+ISOSCELES_SLIDER_CRANK = """name = "slider-crank with rod = crank"
+[points]
+O = [0, 0]
+A = [8.660254037844386, 5.0]
+B = [17.32050807568877, 0]
+[links]
+frame = ["O"]
+crank = ["O", "A"]
+rod = ["A", "B"]
+[joints]
+O = { type = "revolute", links = ["frame", "crank"] }
+A = { type = "revolute", links = ["crank", "rod"] }
+B = { type = "slot", links = ["frame", "rod"], axis = [1, 0] }
+[driver]
+joint = "O"
+speed = "1 rad/s"
+"""
+
+
+def test_isosceles_slider_crank_runs_through_its_change_points():
+    """Rod = crank = r: the rod's circle about A cuts the line of stroke at x = 2r cos θ and at
+    x = 0, which meet at θ = ±90° (change points). The motion drawn (B at 2r cos θ) goes on
+    through them: B = 2r cos θ, v = −2rω sin θ over the whole turn; keeping the drawing's side
+    of A's foot would leave B standing at O for half the turn."""
+    mech = linkwork.load_text(ISOSCELES_SLIDER_CRANK)
+    ((group, sch),) = branch_schedule(mech).items()
+    np.testing.assert_allclose(np.sort(np.mod(sch.change_points, 2 * np.pi)),
+                               [np.pi / 2, 3 * np.pi / 2], atol=1e-7)
+    th = np.radians(np.arange(30.0, 390.0, 1.0))
+    sol = linkwork.solve(mech, th)
+    ok = sol.status == Status.OK
+    assert (ok | (np.abs(np.cos(th)) < 1e-9)).all()
+    B = sol.point("B")
+    np.testing.assert_allclose(B.position[ok, 0], 20 * np.cos(th[ok]), atol=1e-9)
+    np.testing.assert_allclose(B.velocity[ok, 0], -20 * np.sin(th[ok]), atol=1e-9)
+    # at the change points the chord vanishes: its square root turns rounding ε into √ε
+    np.testing.assert_allclose(B.position[~ok, 0], 0.0, atol=20 * 1e-7)

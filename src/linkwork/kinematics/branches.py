@@ -7,13 +7,16 @@ its hinge B lies, taken from the design drawing. At a limit position the dyad st
 point h² only touches zero and the input goes on; the motion whose velocities stay continuous
 (the one the real mechanism follows, carried by its inertia) crosses AC there, so the sign
 flips. Keeping the design's sign would silently turn a parallelogram into an antiparallelogram
-after the change point.
+after the change point. The circle–line groups (RRP, rod in slot) choose the same way between
+the two points where the rod's circle cuts the guided point's track; their change points are
+where the circle touches the track without leaving it, as in the slider-crank whose rod is as
+long as its crank.
 
-For a mechanism with one driver, `branch_schedule` finds the change points of every RRR dyad
+For a mechanism with one driver, `branch_schedule` finds the change points of every such group
 along the input once per mechanism: a scan of the input over its period (one turn, or two when
-an upstream dyad flips an odd number of times per turn, so that the chain repeats only after
+an upstream group flips an odd number of times per turn, so that the chain repeats only after
 two), each touching minimum of h² refined by Brent's method and accepted when h vanishes there.
-`branch_signs` then gives the sign at any input value: the design's sign times −1 for every
+`Schedule.signs` then gives the sign at any input value: the design's sign times −1 for every
 change point passed between the design input and the sample. Mechanisms with several drivers
 keep the design's signs (their change points form curves in the input space).
 """
@@ -29,6 +32,7 @@ from scipy.optimize import minimize_scalar
 from ..model import Mechanism
 from .groups import GroupSolver, State, input_coefficients
 
+BRANCHING = ("RRR", "RRP", "rod-in-slot")  # closed forms that choose between two assemblies
 SCAN = 2048  # input samples per turn (or per 8 length scales of a prismatic input)
 TOUCH = 1e-3  # h²/L1² below which a local minimum is refined
 CHANGE = 1e-12  # h²/L1² at the refined minimum below which it is a change point (h < 1e-6 L1)
@@ -73,12 +77,13 @@ def _positions(mech: Mechanism, solvers: tuple[GroupSolver, ...], upto: GroupSol
 
 @lru_cache(maxsize=64)
 def branch_schedule(mech: Mechanism) -> dict:
-    """Group → `Schedule` for the RRR dyads of a one-driver mechanism that have change points
+    """Group → `Schedule` for the two-assembly groups of a one-driver mechanism that have change
+    points
     (groups not listed keep their design sign everywhere)."""
     from .solver import plan  # the solver imports this module
 
     solvers = plan(mech)
-    if len(mech.drivers) != 1 or not any(s.kind == "RRR" for s in solvers):
+    if len(mech.drivers) != 1 or not any(s.kind in BRANCHING for s in solvers):
         return {}
     d = mech.drivers[0]
     u0 = mech.driver_input_at_design(d)
@@ -86,9 +91,9 @@ def branch_schedule(mech: Mechanism) -> dict:
     found: dict = {}
     period = 2 * np.pi if revolute else None
     for k, s in enumerate(solvers):
-        if s.kind == "generic" and any(t.kind == "RRR" for t in solvers[k + 1:]):
+        if s.kind == "generic" and any(t.kind in BRANCHING for t in solvers[k + 1:]):
             break  # Newton groups upstream need continuation: keep the design signs below
-        if s.kind != "RRR":
+        if s.kind not in BRANCHING:
             continue
         span = period if revolute else 8 * mech.length_scale
         n = SCAN * (int(round(span / (2 * np.pi))) if revolute else 1)
@@ -109,7 +114,7 @@ def branch_schedule(mech: Mechanism) -> dict:
             if r.fun < CHANGE and not any(abs(r.x - p) < span / n for p in points):
                 points.append(float(r.x))
         if points:
-            found[s.group] = Schedule(s.fast["branch"], tuple(sorted(points)), period, u0)
+            found[s.group] = Schedule(s.design_sign, tuple(sorted(points)), period, u0)
             if revolute and len(points) % 2 == 1:
                 period *= 2  # downstream groups see the chain repeat after two turns
     return found

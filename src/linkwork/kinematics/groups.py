@@ -312,8 +312,9 @@ def _other(j, link: str) -> str:
 
 
 def _circle_line(state: State, centre: np.ndarray, radius: float, q: np.ndarray, e: np.ndarray,
-                 branch: float) -> np.ndarray:
-    """Point on the line q + λe (unit e) at distance `radius` from `centre`, on `branch`."""
+                 branch) -> np.ndarray:
+    """Point on the line q + λe (unit e) at distance `radius` from `centre`, on `branch` (±1,
+    or one sign per sample)."""
     w = q - centre
     b = np.einsum("ij,ij->i", e, w)
     disc = b * b - (np.einsum("ij,ij->i", w, w) - radius * radius)
@@ -428,9 +429,15 @@ class GroupSolver:
         return ok
 
     def discriminant(self, state: State) -> np.ndarray:
-        """h²/L1² of an RRR dyad whose neighbours are placed: the squared distance of its hinge
-        from the line AC, relative to |AB|² (negative: it cannot assemble; zero: a limit or
-        change position)."""
+        """Of a group with two assemblies whose neighbours are placed: RRR, h²/|AB|², the squared
+        distance of its hinge from the line AC; RRP and rod in slot, d²/|AP|², the squared half
+        chord the rod's circle cuts from the track. Negative: it cannot assemble; zero: a limit
+        or change position."""
+        if self.kind != "RRR":
+            _, _, Aw, q, e, r = self._track(state)
+            w = q - Aw
+            b = np.einsum("ij,ij->i", e, w)
+            return (b * b - (np.einsum("ij,ij->i", w, w) - r * r)) / (r * r)
         f = self.fast
         Q0 = state.Q[0]
         (ax, ay), (cx, cy) = ((Q0[:, i, 0] + state.rot(i, s)[0], Q0[:, i, 1] + state.rot(i, s)[1])
@@ -440,35 +447,45 @@ class GroupSolver:
             a = (f["diff"] + D2) / (2 * np.sqrt(D2))
         return 1.0 - a * a / f["L1sq"]
 
+    def _track(self, state: State) -> tuple:
+        """A circle–line group (RRP, rod in slot): the rod's pivot A and its guided point P
+        (design), A in the world, P's track (a point q on it and its unit direction e), |AP|."""
+        p, P = self.parts, self.mech.points
+        line = p["guide"] if self.kind == "RRP" else p["line"]
+        A = P[p["pivot"].point]
+        Pd = P[p["hinge"].point] if self.kind == "RRP" else P[line.point]
+        Aw = state.world(_other(p["pivot"], p["rod"]), A)
+        gl = line.links[0]
+        q = state.world(gl, Pd)  # the track: the line through P's design place, fixed in gl
+        e = _rot(state.Q[0, :, state.li(gl), 2], line.axis)
+        return A, Pd, Aw, q, e, np.hypot(*(Pd - A))
+
+    @cached_property
+    def design_sign(self) -> float:
+        """The assembly sign the drawing shows (RRR: side of AC on which B lies; circle–line:
+        side of the rod's foot on the track on which the guided point lies)."""
+        if self.kind == "RRR":
+            return self.fast["branch"]
+        p, P = self.parts, self.mech.points
+        line = p["guide"] if self.kind == "RRP" else p["line"]
+        Pd = P[p["hinge"].point] if self.kind == "RRP" else P[line.point]
+        return _design_branch(np.dot(line.axis, Pd - P[p["pivot"].point]))
+
+    def _circle_line_point(self, state: State) -> tuple:
+        A, Pd, Aw, q, e, r = self._track(state)
+        Pw = _circle_line(state, Aw, r, q, e, state.branches.get(self.group, self.design_sign))
+        state.set_pose(self.parts["rod"], Aw, A, _angle(Pw - Aw) - _angle(Pd - A))
+        return Pd, Pw
+
     def _pos_rod_in_slot(self, state: State) -> np.ndarray:
-        p = self.parts
-        P = self.mech.points
-        pivot, line, rod = p["pivot"], p["line"], p["rod"]
-        A, Cd = P[pivot.point], P[line.point]
-        Aw = state.world(_other(pivot, rod), A)
-        guide = line.links[0]
-        q = state.world(guide, Cd)
-        e = _rot(state.Q[0, :, state.li(guide), 2], line.axis)
-        Cw = _circle_line(state, Aw, np.hypot(*(Cd - A)), q, e,
-                          _design_branch(np.dot(line.axis, Cd - A)))
-        state.set_pose(rod, Aw, A, _angle(Cw - Aw) - _angle(Cd - A))
-        return np.isfinite(Cw).all(axis=1)
+        _, Pw = self._circle_line_point(state)
+        return np.isfinite(Pw).all(axis=1)
 
     def _pos_RRP(self, state: State) -> np.ndarray:
-        p = self.parts
-        P = self.mech.points
-        A, B = P[p["pivot"].point], P[p["hinge"].point]
-        rod, block, guide = p["rod"], p["block"], p["guide"]
-        Aw = state.world(_other(p["pivot"], rod), A)
-        gl = guide.links[0]
-        q = state.world(gl, B)  # B's track: the line through B's design place, fixed in the guide
-        th_g = state.Q[0, :, state.li(gl), 2]
-        e = _rot(th_g, guide.axis)
-        Bw = _circle_line(state, Aw, np.hypot(*(B - A)), q, e,
-                          _design_branch(np.dot(guide.axis, B - A)))
-        state.set_pose(rod, Aw, A, _angle(Bw - Aw) - _angle(B - A))
-        state.set_pose(block, Bw, B, th_g)
-        return np.isfinite(Bw).all(axis=1)
+        Pd, Pw = self._circle_line_point(state)
+        gl = self.parts["guide"].links[0]
+        state.set_pose(self.parts["block"], Pw, Pd, state.Q[0, :, state.li(gl), 2])
+        return np.isfinite(Pw).all(axis=1)
 
     def _lever_angle(self, state: State, pivot, lever: str, pin_w: np.ndarray, pin_d: np.ndarray,
                      axis: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
