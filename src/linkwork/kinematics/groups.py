@@ -319,7 +319,8 @@ def _circle_line(state: State, centre: np.ndarray, radius: float, q: np.ndarray,
     b = np.einsum("ij,ij->i", e, w)
     disc = b * b - (np.einsum("ij,ij->i", w, w) - radius * radius)
     disc = np.where((disc < 0) & (disc > -1e-12 * radius * radius), 0.0, disc)
-    lam = -b + branch * np.sqrt(disc)
+    with np.errstate(invalid="ignore"):  # no intersection: NaN marks the sample unassembled
+        lam = -b + branch * np.sqrt(disc)
     return q + lam[:, None] * e
 
 
