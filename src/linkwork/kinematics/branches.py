@@ -27,7 +27,6 @@ from dataclasses import dataclass
 from functools import lru_cache
 
 import numpy as np
-from scipy.optimize import minimize_scalar
 
 from ..model import Mechanism
 from .groups import GroupSolver, State, input_coefficients
@@ -107,6 +106,8 @@ def branch_schedule(mech: Mechanism) -> dict:
         touch = inner[(g[inner] <= g[inner - 1]) & (g[inner] <= g[inner + 1]) & (g[inner] < TOUCH)
                       & (g[inner - 1] > 0) & (g[inner + 1] > 0)]
         points = []
+        if len(touch):
+            from scipy.optimize import minimize_scalar  # rarely needed; slow to import
         for i in touch:
             r = minimize_scalar(lambda x: float(h2(np.array([x]))[0]), method="bounded",
                                 bounds=(grid[i - 1], grid[i + 1]),

@@ -10,7 +10,6 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 import numpy as np
-from scipy.interpolate import CubicSpline
 
 
 class MotionLaw:
@@ -68,6 +67,8 @@ class TabulatedLaw(MotionLaw):
     values: tuple[float, ...]
 
     def derivatives(self, t: np.ndarray) -> np.ndarray:
+        from scipy.interpolate import CubicSpline  # here: SciPy's import costs ~1 s of start-up
+
         spline = CubicSpline(np.asarray(self.times), np.asarray(self.values))
         t = np.asarray(t, dtype=float)
         return np.stack([spline(t, k) for k in range(5)])
