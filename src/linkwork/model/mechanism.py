@@ -183,12 +183,15 @@ class Mechanism:
 
     @cached_property
     def point_owner(self) -> Mapping[str, str]:
-        """For every point, the link whose motion reports it (the first link listing it,
-        preferring a moving link over the frame so that hinge points on the frame stay put)."""
+        """For every point, the link whose motion reports it: the first link listing it,
+        preferring a moving link over the frame (a slider's point moves with the slider) except
+        at the frame's own hinges, which stand still whatever the link on them does (also where
+        its rates are undefined, at a singular position)."""
+        hinges = {j.point for j in self.joints if isinstance(j, Revolute) and self.frame in j.links}
         owner: dict[str, str] = {}
         for link in self.links:
             for p in link.points:
-                if p not in owner or owner[p] == self.frame:
+                if p not in owner or (owner[p] == self.frame and p not in hinges):
                     owner[p] = link.name
         return MappingProxyType(owner)
 
