@@ -20,6 +20,7 @@ hartmann            Hartmann's construction: pole-transfer velocity, centres of 
 two-points          inflection and Bresse circles from v and a of two points (ch. XIV)
 klein               Klein's construction of the piston acceleration (seed 004)
 kennedy             Aronhold–Kennedy construction of all poles, line by line
+mohr                Mohr's construction of b_B from b_A, slider-crank and four-bar (Pöschl §47–48)
 ==================  ========================================================================
 """
 
@@ -35,6 +36,7 @@ from .euler_savary import euler_savary
 from .hartmann import hartmann
 from .kennedy import kennedy
 from .klein import klein
+from .mohr import mohr
 from .rotated_velocities import rotated_velocities
 from .two_points import inflection_from_two_points
 from .velocity_plan import velocity_plan
@@ -49,6 +51,7 @@ CONSTRUCTIONS: dict[str, Callable[..., Construction]] = {
     "two-points": inflection_from_two_points,
     "klein": klein,
     "kennedy": kennedy,
+    "mohr": mohr,
 }
 
 
@@ -63,5 +66,5 @@ def construct(name: str, mechanism, inputs, **options) -> Construction:
 
 
 __all__ = ["CONSTRUCTIONS", "acceleration_plan", "bobillier", "construct", "euler_savary",
-           "hartmann", "inflection_from_two_points", "kennedy", "klein", "rotated_velocities",
+           "hartmann", "inflection_from_two_points", "kennedy", "klein", "mohr", "rotated_velocities",
            "velocity_plan"]
