@@ -28,6 +28,7 @@ CASES = {
     "hartmann": FOUR_BARS + SLIDER_CRANKS + ["ellipsograph"],
     "two-points": FOUR_BARS + SLIDER_CRANKS + SIX_BARS + ["whitworth-quick-return"],
     "klein": SLIDER_CRANKS,
+    "mohr": FOUR_BARS + SLIDER_CRANKS,
     "kennedy": FOUR_BARS + SLIDER_CRANKS + SIX_BARS + SLOTTED + ["ellipsograph", "roemer-mechanism"],
 }
 
@@ -232,4 +233,4 @@ def test_two_points_on_a_pivoted_link_is_a_clear_error():
 
 def test_unknown_construction():
     with pytest.raises(linkwork.LinkworkError, match="unknown construction"):
-        construct("mohr", linkwork.load("library:crank-rocker"), [0.0])
+        construct("rittershaus", linkwork.load("library:crank-rocker"), [0.0])

@@ -110,16 +110,22 @@ class SliderCrank:
     axis: np.ndarray
 
 
-def slider_crank(mech: Mechanism) -> SliderCrank:
+class NotACrank(InputError):
+    """The mechanism is not driven by one crank on the frame (the construction's given)."""
+
+
+def slider_crank(mech: Mechanism, construction: str = "Klein's construction") -> SliderCrank:
     """Recognise a slider-crank: a driven crank on the frame, a rod hinged to it, and the rod's
-    other end guided straight on the frame (pin in a slot, or hinged to a block on a guide)."""
+    other end guided straight on the frame (pin in a slot, or hinged to a block on a guide).
+    Raises `NotACrank` (naming `construction`) when the driver is not such a crank, and
+    InputError when the rest is not a slider-crank."""
     if len(mech.drivers) != 1:
-        raise InputError("Klein's construction needs a slider-crank with one driver (the crank)")
+        raise NotACrank(f"{construction} needs one driver (the crank)")
     d = mech.drivers[0]
     j = mech.joint(d.joint)
     if not isinstance(j, Revolute) or mech.frame not in j.links:
-        raise InputError("Klein's construction needs the crank to be driven by a revolute pair "
-                         "on the frame")
+        raise NotACrank(f"{construction} needs the crank to be driven by a revolute pair on the "
+                        "frame")
     crank = d.driven
     for pin in mech.joints:
         if not isinstance(pin, Revolute) or crank not in pin.links or mech.frame in pin.links:

@@ -56,8 +56,8 @@ from ..drawing.construction import Builder, Construction, Role, mask_points, pt
 from ..errors import InputError
 from ..geometry import Point, Vector
 from ..model import Mechanism, Revolute
-from ._common import (as_solution, conjugate_pairs, cross, norm, perp, rotate, singular_positions,
-                      slider_crank)
+from ._common import (NotACrank, as_solution, conjugate_pairs, cross, norm, perp, rotate,
+                      singular_positions, slider_crank)
 
 SOURCE = "Pöschl §47–48 (seed 002): Mohr's construction, Abb. 51, 53, 54"
 
@@ -87,11 +87,12 @@ class _Given:
 def _given(mech: Mechanism) -> _Given:
     """Recognise the slider-crank or the four-bar (crank driven on the frame) in ``mech``."""
     try:
-        sc = slider_crank(mech)
+        sc = slider_crank(mech, "Mohr's construction")
         return _Given("slider-crank", sc.crank, sc.rod, sc.C, sc.P, sc.A, None, sc.axis)
-    except InputError as e:
-        if "Klein" in str(e):  # the driver is not a crank on the frame: the recogniser's words
-            raise InputError(str(e).replace("Klein's", "Mohr's")) from None
+    except NotACrank:
+        raise
+    except InputError:
+        pass  # not a slider-crank: perhaps a four-bar
     d = mech.drivers[0]  # one revolute driver on the frame (checked by the recogniser)
     j = mech.joint(d.joint)
     crank = d.driven
