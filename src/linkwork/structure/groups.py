@@ -151,25 +151,24 @@ def _check_slider_group(mech: Mechanism, group: Group, rot: _Rotations,
         return
     col = {ln: 2 * i for i, ln in enumerate(group.links)}
     rows, names = [], []
-    for j in pairs:
-        e = np.asarray(j.axis, dtype=float)
-        e = e / np.hypot(*e)
-        n = np.array([-e[1], e[0]])
+
+    def row(j, direction: np.ndarray) -> np.ndarray:
+        """The condition `direction`·(translation of links[1] − of links[0]) on the unknowns."""
         a, b = j.links
         r = np.zeros(2 * group.size)
         if b in col:
-            r[col[b]:col[b] + 2] += n
+            r[col[b]:col[b] + 2] += direction
         if a in col:
-            r[col[a]:col[a] + 2] -= n
-        rows.append(r)
+            r[col[a]:col[a] + 2] -= direction
+        return r
+
+    for j in pairs:
+        e = np.asarray(j.axis, dtype=float)
+        e = e / np.hypot(*e)
+        rows.append(row(j, np.array([-e[1], e[0]])))  # the offset across the guide
         names.append(j.name)
         if j.name in group.drivers:
-            r = np.zeros(2 * group.size)
-            if b in col:
-                r[col[b]:col[b] + 2] += e
-            if a in col:
-                r[col[a]:col[a] + 2] -= e
-            rows.append(r)
+            rows.append(row(j, e))  # the driven slide along it
             names.append(f"{j.name} (driver)")
     M = np.array(rows)
     U, sv, Vt = np.linalg.svd(M)
