@@ -33,13 +33,13 @@ from .groups import GroupSolver, State, input_coefficients
 
 BRANCHING = ("RRR", "RRP", "rod-in-slot")  # closed forms that choose between two assemblies
 SCAN = 2048  # input samples per turn (or per 8 length scales of a prismatic input)
-TOUCH = 1e-3  # h²/L1² below which a local minimum is refined
-CHANGE = 1e-12  # h²/L1² at the refined minimum below which it is a change point (h < 1e-6 L1)
+TOUCH = 1e-3  # relative discriminant (h²/L1²) below which a local minimum is refined
+CHANGE = 1e-12  # … at the refined minimum below which it is a change point (h < 1e-6 L1)
 
 
 @dataclass(frozen=True)
 class Schedule:
-    """The change points of one dyad: its design sign, the input values where the sign flips,
+    """The change points of one two-assembly group: its design sign, the input values where the sign flips,
     the period of the input (2π or 4π; None for a prismatic input) and the design input u0
     the flips are counted from."""
 
@@ -49,7 +49,7 @@ class Schedule:
     u0: float
 
     def signs(self, u: np.ndarray) -> np.ndarray:
-        """The dyad's sign at inputs u: flipped once per change point between u0 and u."""
+        """The group's sign at inputs u: flipped once per change point between u0 and u."""
         flips = np.zeros(u.shape, dtype=np.int64)
         for c in self.change_points:
             if self.period is None:
@@ -77,8 +77,7 @@ def _positions(mech: Mechanism, solvers: tuple[GroupSolver, ...], upto: GroupSol
 @lru_cache(maxsize=64)
 def branch_schedule(mech: Mechanism) -> dict:
     """Group → `Schedule` for the two-assembly groups of a one-driver mechanism that have change
-    points
-    (groups not listed keep their design sign everywhere)."""
+    points (groups not listed keep their design sign everywhere)."""
     from .solver import plan  # the solver imports this module
 
     solvers = plan(mech)
