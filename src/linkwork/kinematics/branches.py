@@ -62,15 +62,20 @@ class Schedule:
 
 def _positions(mech: Mechanism, solvers: tuple[GroupSolver, ...], upto: GroupSolver,
                u: np.ndarray, branches: dict) -> State:
-    """Positions of every group before and including `upto` at inputs u (one driver)."""
+    """Positions of every group before and including `upto` at inputs u (one driver); NaN
+    where a group cannot assemble (the closed forms leave finite values there)."""
     N = u.shape[0]
     Q = np.zeros((1, N, len(mech.links), 3))
     state = State(mech, Q, input_coefficients(mech, u[:, None], None, None, None, 0),
                   branches={g: s.signs(u) for g, s in branches.items()})
+    ok = np.ones(N, dtype=bool)
     for s in solvers:
-        s.positions(state)
+        ok &= s.positions(state)
         if s is upto:
             break
+    if not ok.all():
+        state.Q[:, ~ok] = np.nan
+        state.forget_trig()
     return state
 
 
