@@ -48,3 +48,8 @@ class AssemblyError(LinkworkError):
 
 class InputError(LinkworkError):
     """A bad input value: an unparsable quantity, a sweep with zero step, a wrong unit."""
+
+
+class LinkworkWarning(UserWarning):
+    """Something the user should know about their input that does not stop the work (the
+    command line prints it as one line on stderr)."""

@@ -4,6 +4,7 @@ turning user mistakes into one clear message with a non-zero exit status."""
 from __future__ import annotations
 
 import sys
+import warnings
 from contextlib import contextmanager
 from typing import Iterator
 
@@ -11,7 +12,7 @@ import numpy as np
 import typer
 from rich.console import Console
 
-from ..errors import InputError, LinkworkError
+from ..errors import InputError, LinkworkError, LinkworkWarning
 from ..io import load
 from ..model import ConstantSpeed, Driver, Mechanism
 from ..units import parse_quantity, unit_dimension
@@ -21,12 +22,24 @@ err_console = Console(stderr=True)
 
 @contextmanager
 def user_errors() -> Iterator[None]:
-    """Print a `LinkworkError` as one line on stderr and exit with status 2."""
-    try:
-        yield
-    except LinkworkError as exc:
-        err_console.print(f"[bold red]error:[/] {exc}", highlight=False, soft_wrap=True)
-        raise typer.Exit(2) from None
+    """Print a `LinkworkError` as one line on stderr and exit with status 2; print each
+    `LinkworkWarning` as one line on stderr and go on."""
+
+    def show(message, category, filename, lineno, file=None, line=None) -> None:
+        if issubclass(category, LinkworkWarning):
+            err_console.print(f"[bold yellow]warning:[/] {message}", highlight=False,
+                              soft_wrap=True)
+        else:
+            shown(message, category, filename, lineno, file, line)
+
+    with warnings.catch_warnings():
+        shown = warnings.showwarning
+        warnings.showwarning = show
+        try:
+            yield
+        except LinkworkError as exc:
+            err_console.print(f"[bold red]error:[/] {exc}", highlight=False, soft_wrap=True)
+            raise typer.Exit(2) from None
 
 
 def load_mechanism(spec: str) -> Mechanism:

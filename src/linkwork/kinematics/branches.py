@@ -23,11 +23,13 @@ keep the design's signs (their change points form curves in the input space).
 
 from __future__ import annotations
 
+import warnings
 from dataclasses import dataclass
 from functools import lru_cache
 
 import numpy as np
 
+from ..errors import LinkworkWarning
 from ..model import Mechanism
 from .groups import GroupSolver, State, input_coefficients
 
@@ -105,6 +107,12 @@ def branch_schedule(mech: Mechanism) -> dict:
         def h2(u: np.ndarray) -> np.ndarray:
             return s.discriminant(_positions(mech, solvers, s, u, found))
 
+        if abs(h2(np.array([u0]))[0]) < CHANGE:
+            warnings.warn(
+                f"mechanism '{mech.name}': the drawing has the group {', '.join(s.group.links)} "
+                "at a change or dead position (its pivots in line), so it does not define the "
+                "assembly branch there; linkwork takes one side and follows it continuously",
+                LinkworkWarning, stacklevel=2)
         g = h2(grid)
         inner = np.arange(1, n)
         touch = inner[(g[inner] <= g[inner - 1]) & (g[inner] <= g[inner + 1]) & (g[inner] < TOUCH)
