@@ -11,12 +11,16 @@ Configurations near a singular position (`sol.condition` large) are skipped.
 from __future__ import annotations
 
 import numpy as np
+import pytest
 from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 
 import linkwork
 from linkwork import Status
 from linkwork.model import Prismatic, Revolute, Slot
+
+# a random drawing may fall on a change or dead position: linkwork warns, `_check` skips it
+pytestmark = pytest.mark.filterwarnings("ignore::linkwork.errors.LinkworkWarning")
 
 # Five-point central differences f'(u) ≈ Σ c_k f(u + (k−2)h) / h. Near a singular position the
 # k-th derivatives grow like κ^k, with κ the largest of the condition number, |v|/(Lω), |a|/(Lω²)
