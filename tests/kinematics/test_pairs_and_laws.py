@@ -161,3 +161,12 @@ def test_generic_newton_group_matches_closed_form_dyad(monkeypatch):
         for attr in ("position", "velocity", "acceleration"):
             np.testing.assert_allclose(getattr(slow.point(p), attr), getattr(fast.point(p), attr),
                                        rtol=1e-9, atol=1e-9)
+
+
+def test_input_rates_must_match_the_inputs():
+    mech = linkwork.load("library:crank-rocker")
+    with pytest.raises(linkwork.errors.InputError, match="velocities: 3 samples for 2 inputs"):
+        linkwork.solve(mech, [0.1, 0.2], velocities=[1.0, 2.0, 3.0])
+    # one value serves every sample
+    np.testing.assert_array_equal(linkwork.solve(mech, [0.1, 0.2], velocities=3.0).link("crank").omega,
+                                  [3.0, 3.0])

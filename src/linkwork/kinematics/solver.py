@@ -47,7 +47,8 @@ def _finish_block(state: State) -> None:
         state.cs(i)
 
 
-def _as_2d(a, n_drivers: int, name: str) -> np.ndarray | None:
+def _as_2d(a, n_drivers: int, name: str, rows: int | None = None) -> np.ndarray | None:
+    """`a` as (samples, drivers); with `rows`, one row (the same for every sample) or `rows`."""
     if a is None:
         return None
     arr = np.asarray(a, dtype=float)
@@ -58,6 +59,9 @@ def _as_2d(a, n_drivers: int, name: str) -> np.ndarray | None:
     if arr.shape[1] != n_drivers:
         raise InputError(f"{name}: the mechanism has {n_drivers} driver(s), got {arr.shape[1]} "
                          "values per sample")
+    if rows is not None and arr.shape[0] not in (1, rows):
+        raise InputError(f"{name}: {arr.shape[0]} samples for {rows} inputs (give one per input, "
+                         "or one for all)")
     return arr
 
 
@@ -90,10 +94,10 @@ def solve(mech: Mechanism, inputs=None, *, times=None, velocities=None, accelera
         if inputs is None:
             inputs = [[mech.driver_input_at_design(d) for d in mech.drivers]]
         values = _as_2d(inputs, nd, "inputs")
-        velocities = _as_2d(velocities, nd, "velocities")
-        accelerations = _as_2d(accelerations, nd, "accelerations")
-        jerks = _as_2d(jerks, nd, "jerks")
-        snaps = _as_2d(snaps, nd, "snaps")
+        velocities, accelerations, jerks, snaps = (
+            _as_2d(a, nd, name, rows=values.shape[0]) for a, name in (
+                (velocities, "velocities"), (accelerations, "accelerations"), (jerks, "jerks"),
+                (snaps, "snaps")))
     N = values.shape[0]
     solvers = plan(mech)
     frame = mech.link_index[mech.frame]
