@@ -1,16 +1,17 @@
 """Solving one group (see `linkwork.structure.groups`) for all samples at once.
 
 Positions: the dyads and one-link groups in closed form (circle–circle, circle–line, line through
-a point), keeping the branch of the design position; any other group (triads, gear groups, the
+a point), on the branch of the design position (flipped past change points: `branches`); any
+other group (triads, gear groups, the
 Heusinger group) by Newton's method on that group alone, batched over samples.
 
 Derivatives: for every group, by linear solves on the group's constraint Jacobian. The k-th
 Taylor coefficient of the unknown poses enters the k-th coefficient of the constraint residuals
 linearly, J·q⁽ᵏ⁾/k! = −r_k, where r_k comes from evaluating the constraints on jets with the
 unknown coefficient set to zero; so one code path gives velocities, accelerations and jerks.
-The RRR dyad and the revolute driver have hand-written fast paths for velocities and
-accelerations (the hot path of four-bars, six-bars and Jansen's linkage); they work on x and y
-arrays and evaluate each link's cos θ, sin θ and rotated design vectors once (`State.trig`).
+The RRR dyad and the revolute driver, the hot path of four-bars, six-bars and Jansen's linkage,
+run as compiled loops (`kernels`): positions at any order, velocities and accelerations at
+order 2. Every link's cos θ and sin θ are kept once in `State.T`.
 """
 
 from __future__ import annotations
@@ -32,10 +33,6 @@ SINGULAR_CONDITION = 1e8
 # above this the linear solve for the rates loses every digit (condition × ε ~ 1): the rates of
 # such samples are NaN, not invented (the sample is singular either way)
 UNRELIABLE_CONDITION = 1e14
-
-
-def _perp(v: np.ndarray) -> np.ndarray:
-    return np.stack([-v[..., 1], v[..., 0]], axis=-1)
 
 
 def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
