@@ -11,69 +11,28 @@ from typer.testing import CliRunner
 
 import linkwork
 from linkwork.cli import app
+from mechanism_texts import joint, mechanism_text, revolute, two_crank_five_bar_text
 
 runner = CliRunner()
 
 # Two cranks on the frame, O2 (|O2A| = 10) and O5 (|O5B| = 15), joined by the dyad A–P–B:
 # two freedoms (3·4 − 2·5), both driven.
-FIVE_BAR = """
-name = "five-bar with two cranks"
-units = { length = "mm" }
-[points]
-O2 = [0, 0]
-A  = [0, 10]
-P  = [20, 30]
-B  = [40, 15]
-O5 = [40, 0]
-[links]
-frame  = ["O2", "O5"]
-crank2 = ["O2", "A"]
-left   = ["A", "P"]
-right  = ["B", "P"]
-crank5 = ["O5", "B"]
-[joints]
-O2 = { type = "revolute", links = ["frame", "crank2"] }
-A  = { type = "revolute", links = ["crank2", "left"] }
-P  = { type = "revolute", links = ["left", "right"] }
-B  = { type = "revolute", links = ["right", "crank5"] }
-O5 = { type = "revolute", links = ["crank5", "frame"] }
-[[drivers]]
-joint = "O2"
-speed = "2 rad/s"
-[[drivers]]
-joint = "O5"
-speed = "-1 rad/s"
-"""
+FIVE_BAR = two_crank_five_bar_text(units="mm")
 
-# A crank (revolute driver O2, |O2A| = 10) and a block sliding on the frame along x (prismatic
-# driver `slide`, input = displacement of S from its design position), joined by A–P–S.
-CRANK_AND_SLIDER = """
-name = "crank and slider driving a dyad"
-units = { length = "UNIT" }
-[points]
-O2 = [0, 0]
-A  = [0, 10]
-P  = [25, 30]
-S  = [40, 0]
-[links]
-frame = ["O2"]
-crank = ["O2", "A"]
-upper = ["A", "P"]
-rod   = ["P", "S"]
-block = ["S"]
-[joints]
-O2    = { type = "revolute", links = ["frame", "crank"] }
-A     = { type = "revolute", links = ["crank", "upper"] }
-P     = { type = "revolute", links = ["upper", "rod"] }
-S     = { type = "revolute", links = ["rod", "block"] }
-slide = { type = "prismatic", links = ["frame", "block"], axis = [1, 0], point = "S" }
-[[drivers]]
-joint = "O2"
-speed = "1 rad/s"
-[[drivers]]
-joint = "slide"
-speed = 3
-"""
+
+def crank_and_slider_text(unit: str) -> str:
+    """A crank (revolute driver O2, |O2A| = 10) and a block sliding on the frame along x
+    (prismatic driver `slide`, input = displacement of S from its design position), joined by
+    A–P–S; lengths in `unit`."""
+    return mechanism_text(
+        name="crank and slider driving a dyad", units=unit,
+        points={"O2": (0, 0), "A": (0, 10), "P": (25, 30), "S": (40, 0)},
+        links={"frame": ["O2"], "crank": ["O2", "A"], "upper": ["A", "P"], "rod": ["P", "S"],
+               "block": ["S"]},
+        joints=[revolute("O2", "frame", "crank"), revolute("A", "crank", "upper"),
+                revolute("P", "upper", "rod"), revolute("S", "rod", "block"),
+                joint("slide", "prismatic", "frame", "block", axis=[1, 0], point="S")],
+        driver=("O2", "slide"), speed=("1 rad/s", 3))
 
 
 @pytest.fixture
@@ -85,7 +44,7 @@ def five_bar(tmp_path):
 
 def crank_and_slider(tmp_path, unit="mm"):
     f = tmp_path / f"crank-slider-{unit}.toml"
-    f.write_text(CRANK_AND_SLIDER.replace("UNIT", unit))
+    f.write_text(crank_and_slider_text(unit))
     return str(f)
 
 

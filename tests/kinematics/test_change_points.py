@@ -12,36 +12,13 @@ import pytest
 import linkwork
 from linkwork.kinematics.branches import Schedule, branch_schedule
 from linkwork.kinematics.solution import Status
+from mechanism_texts import four_bar_from_lengths, joint, mechanism_text, revolute
 
 
-def _four_bar(crank: float, coupler: float, follower: float, frame: float, theta: float) -> str:
-    """A four-bar drawn with the crank at θ and the hinge B left of A→O4."""
-    A = (crank * math.cos(theta), crank * math.sin(theta))
-    O4 = (frame, 0.0)
-    d = math.dist(A, O4)
-    a = (coupler ** 2 - follower ** 2 + d * d) / (2 * d)
-    h = math.sqrt(coupler ** 2 - a * a)
-    ex, ey = (O4[0] - A[0]) / d, (O4[1] - A[1]) / d
-    B = (A[0] + a * ex - h * ey, A[1] + a * ey + h * ex)
-    pts = "\n".join(f"{k} = [{x!r}, {y!r}]" for k, (x, y) in
-                    dict(O2=(0.0, 0.0), A=A, B=B, O4=O4).items())
-    return f"""name = "four-bar"
-[points]
-{pts}
-[links]
-frame = ["O2", "O4"]
-crank = ["O2", "A"]
-coupler = ["A", "B"]
-follower = ["B", "O4"]
-[joints]
-O2 = {{ type = "revolute", links = ["frame", "crank"] }}
-A = {{ type = "revolute", links = ["crank", "coupler"] }}
-B = {{ type = "revolute", links = ["coupler", "follower"] }}
-O4 = {{ type = "revolute", links = ["follower", "frame"] }}
-[driver]
-joint = "O2"
-speed = "1 rad/s"
-"""
+def _four_bar(crank: float, coupler: float, follower: float, frame: float, theta_deg: float) -> str:
+    """A four-bar drawn with the crank at θ (degrees) and the hinge B left of A→O4."""
+    return four_bar_from_lengths(frame, crank, coupler, follower, theta_deg, speed="1 rad/s",
+                                 links=("frame", "crank", "coupler", "follower"))
 
 
 KITE = (20.0, 20.0, 40.0, 40.0)  # crank = coupler, follower = frame: s + l = p + q
@@ -59,7 +36,7 @@ def test_change_points_are_where_the_pivots_are_collinear(name):
 
 
 def test_kite_change_points_and_continuous_motion_over_two_turns():
-    mech = linkwork.load_text(_four_bar(*KITE, theta=math.radians(60)))
+    mech = linkwork.load_text(_four_bar(*KITE, theta_deg=60))
     ((_, sch),) = branch_schedule(mech).items()
     np.testing.assert_allclose(np.sort(np.mod(np.array(sch.change_points) + 1e-6, 2 * np.pi)) - 1e-6,
                                [0.0, np.pi], atol=1e-7)
@@ -82,7 +59,7 @@ def test_kite_change_points_and_continuous_motion_over_two_turns():
 def test_kite_keeps_its_branch_where_the_design_sign_would_switch():
     """Past the change point at crank angle π the hinge B lies on the other side of AO4 than in
     the drawing: the design's sign alone would have switched to the other assembly there."""
-    mech = linkwork.load_text(_four_bar(*KITE, theta=math.radians(60)))
+    mech = linkwork.load_text(_four_bar(*KITE, theta_deg=60))
     sol = linkwork.solve(mech, np.radians([60.0, 200.0, 300.0, 420.0]))
     B, A = sol.point("B").position, sol.point("A").position
     O4 = mech.points["O4"]
@@ -103,23 +80,13 @@ def test_signs_count_the_change_points_passed():
     np.testing.assert_array_equal(slide.signs(np.array([2.9, 3.0, 10.0, -5.0])), [-1, 1, 1, -1])
 
 
-ISOSCELES_SLIDER_CRANK = """name = "slider-crank with rod = crank"
-[points]
-O = [0, 0]
-A = [8.660254037844386, 5.0]
-B = [17.32050807568877, 0]
-[links]
-frame = ["O"]
-crank = ["O", "A"]
-rod = ["A", "B"]
-[joints]
-O = { type = "revolute", links = ["frame", "crank"] }
-A = { type = "revolute", links = ["crank", "rod"] }
-B = { type = "slot", links = ["frame", "rod"], axis = [1, 0] }
-[driver]
-joint = "O"
-speed = "1 rad/s"
-"""
+ISOSCELES_SLIDER_CRANK = mechanism_text(
+    name="slider-crank with rod = crank",
+    points={"O": (0, 0), "A": (8.660254037844386, 5.0), "B": (17.32050807568877, 0)},
+    links={"frame": ["O"], "crank": ["O", "A"], "rod": ["A", "B"]},
+    joints=[revolute("O", "frame", "crank"), revolute("A", "crank", "rod"),
+            joint("B", "slot", "frame", "rod", axis=[1, 0])],
+    driver="O", speed="1 rad/s")
 
 
 def test_isosceles_slider_crank_runs_through_its_change_points():

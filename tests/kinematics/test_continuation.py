@@ -17,6 +17,7 @@ import linkwork
 from linkwork import Status
 from linkwork.kinematics import groups, solver
 from linkwork.kinematics.motion import input_limits
+from mechanism_texts import four_bar_text, joint, mechanism_text, revolute, two_crank_five_bar_text
 
 
 def _generic_kind(mech, group):
@@ -36,10 +37,6 @@ def newton(monkeypatch):
 
     yield load
     solver.plan.cache_clear()
-
-
-def _pt(v) -> str:
-    return f"[{float(v[0])!r}, {float(v[1])!r}]"
 
 
 def _wrap(a: np.ndarray) -> np.ndarray:
@@ -64,36 +61,18 @@ TAIL = B + [30.0, 50.0]  # the lever's second point
 def _slotted_lever(kind: str) -> str:
     """'slot': the pin runs in the lever's slot (one-link group); 'prismatic': a block pinned at
     A slides along the lever (RPR dyad)."""
-    head = f"""name = "slotted lever swinging past its pivot"
-[points]
-O = [0, 0]
-A = {_pt(A_D)}
-B = {_pt(B)}
-T = {_pt(TAIL)}
-"""
+    points = {"O": (0, 0), "A": A_D, "B": B, "T": TAIL}
+    block = {} if kind == "slot" else {"block": ["A"]}
+    links = {"frame": ["O", "B"], "crank": ["O", "A"]} | block | {"lever": ["B", "T"]}
     if kind == "slot":
-        body = f"""[links]
-frame = ["O", "B"]
-crank = ["O", "A"]
-lever = ["B", "T"]
-[joints]
-O = {{ type = "revolute", links = ["frame", "crank"] }}
-slot = {{ type = "slot", links = ["lever", "crank"], axis = {_pt(AXIS)}, point = "A" }}
-B = {{ type = "revolute", links = ["lever", "frame"] }}
-"""
+        pairs = [joint("slot", "slot", "lever", "crank", axis=AXIS, point="A")]
     else:
-        body = f"""[links]
-frame = ["O", "B"]
-crank = ["O", "A"]
-block = ["A"]
-lever = ["B", "T"]
-[joints]
-O = {{ type = "revolute", links = ["frame", "crank"] }}
-A = {{ type = "revolute", links = ["crank", "block"] }}
-slot = {{ type = "prismatic", links = ["lever", "block"], axis = {_pt(AXIS)}, point = "A" }}
-B = {{ type = "revolute", links = ["lever", "frame"] }}
-"""
-    return head + body + '[driver]\njoint = "O"\nspeed = "1 rad/s"\n'
+        pairs = [revolute("A", "crank", "block"),
+                 joint("slot", "prismatic", "lever", "block", axis=AXIS, point="A")]
+    return mechanism_text(name="slotted lever swinging past its pivot", points=points,
+                          links=links, driver="O", speed="1 rad/s",
+                          joints=[revolute("O", "frame", "crank"), *pairs,
+                                  revolute("B", "lever", "frame")])
 
 
 def _lever_angle(turn: np.ndarray) -> np.ndarray:
@@ -127,27 +106,8 @@ def test_lever_swinging_past_its_pivot_stays_on_the_design_branch(kind, newton):
 
 
 # ---------------------------------------------------------------------------- limit positions
-ROCKER_DRIVEN = """\
-name = "four-bar driven by its rocker"
-[points]
-O2 = [0, 0]
-A  = [0, 10]
-B  = [30, 30]
-O4 = [40, 0]
-[links]
-frame   = ["O2", "O4"]
-crank   = ["O2", "A"]
-coupler = ["A", "B"]
-rocker  = ["O4", "B"]
-[joints]
-O2 = { type = "revolute", links = ["frame", "crank"] }
-A  = { type = "revolute", links = ["crank", "coupler"] }
-B  = { type = "revolute", links = ["coupler", "rocker"] }
-O4 = { type = "revolute", links = ["rocker", "frame"] }
-[driver]
-joint = "O4"
-speed = "1 rad/s"
-"""
+ROCKER_DRIVEN = four_bar_text(name="four-bar driven by its rocker", rocker_points=("O4", "B"),
+                              driver="O4", speed="1 rad/s")
 
 
 def _rocker_angle_for(dist_o2b: float) -> float:
@@ -199,33 +159,7 @@ def test_a_solve_does_not_depend_on_what_was_marched_before(kind, newton):
 
 
 # ---------------------------------------------------------------------------- several drivers
-FIVE_BAR = """
-name = "five-bar with two cranks"
-[points]
-O2 = [0, 0]
-A  = [0, 10]
-P  = [20, 30]
-B  = [40, 15]
-O5 = [40, 0]
-[links]
-frame  = ["O2", "O5"]
-crank2 = ["O2", "A"]
-left   = ["A", "P"]
-right  = ["B", "P"]
-crank5 = ["O5", "B"]
-[joints]
-O2 = { type = "revolute", links = ["frame", "crank2"] }
-A  = { type = "revolute", links = ["crank2", "left"] }
-P  = { type = "revolute", links = ["left", "right"] }
-B  = { type = "revolute", links = ["right", "crank5"] }
-O5 = { type = "revolute", links = ["crank5", "frame"] }
-[[drivers]]
-joint = "O2"
-speed = "2 rad/s"
-[[drivers]]
-joint = "O5"
-speed = "-1 rad/s"
-"""
+FIVE_BAR = two_crank_five_bar_text()
 
 
 def test_several_drivers_march_through_far_apart_samples_on_the_design_branch(newton):

@@ -11,7 +11,7 @@ import linkwork
 from linkwork.errors import StructureError
 from linkwork.kinematics.motion import input_limits, whole_motion
 from linkwork.structure import classify_four_bar, classify_slider_crank, four_bar_transmission, loops
-from mechanism_texts import SCOTCH_YOKE, four_bar_text, hinged_loop_text
+from mechanism_texts import SCOTCH_YOKE, four_bar_from_lengths, four_bar_text, hinged_loop_text
 
 # ---------------------------------------------------------------------------- four-bar classes
 # (frame, input, coupler, output) → (Grashof, type); s + l against p + q worked by hand
@@ -81,21 +81,6 @@ def test_library_four_bars(name, grashof, kind, special):
 
 
 # ---------------------------------------------------------------------------- closed forms
-def four_bar_from_lengths(d, a, b, c, phi_deg, name="four-bar", driver="O2"):
-    """A four-bar file: frame O2 (0,0)–O4 (d,0), input O2A of length a at φ, coupler AB = b,
-    output O4B = c, B above the line A O4 (test setup, not an expectation)."""
-    phi = math.radians(phi_deg)
-    A = np.array([a * math.cos(phi), a * math.sin(phi)])
-    O4 = np.array([d, 0.0])
-    D = np.hypot(*(O4 - A))
-    x = (b * b - c * c + D * D) / (2 * D)
-    h = math.sqrt(b * b - x * x)
-    ex = (O4 - A) / D
-    B = A + x * ex + h * np.array([-ex[1], ex[0]])
-    return four_bar_text(name=name, A=A, B=B, O4=(float(d), 0), driver=driver,
-                         links=("frame", "input", "coupler", "output"))
-
-
 def _angle_between(u, v):
     cos = np.einsum("ij,ij->i", u, v) / (np.hypot(*u.T) * np.hypot(*v.T))
     return np.arccos(np.clip(cos, -1, 1))

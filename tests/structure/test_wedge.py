@@ -38,6 +38,7 @@ from linkwork.errors import StructureError
 from linkwork.structure import constraint_count, mobility, solution_order
 from linkwork.structure.groups import slider_loop
 from linkwork.structure.mobility import slider_groups, structure_report
+from mechanism_texts import joint, mechanism_text, revolute
 
 C0 = np.array([40.0, 30.0])
 W0 = np.array([0.0, 0.0])
@@ -47,102 +48,55 @@ def wedge_text(delta: float = 0.0, alpha: float = 20.0, beta: float = 90.0,
                driver: str = "slide") -> str:
     """A wedge in the README's file format. Angles are in degrees: δ for the input slide, α for
     the wedge's face and β for the follower's guide."""
-    return f"""
-name = "Wedge δ={delta} α={alpha} β={beta}"
-description = "Three-link slider chain (wedge, Rosenauer Figs. 273-274)"
-units = {{ length = "mm" }}
-
-[points]
-O = [0, 0]
-W = [{W0[0]}, {W0[1]}]
-C = [{C0[0]}, {C0[1]}]
-
-[links]
-frame    = ["O"]
-wedge    = ["W"]
-follower = ["C"]
-
-[joints]
-slide = {{ type = "prismatic", links = ["frame", "wedge"], axis = {delta}, point = "W" }}
-face  = {{ type = "prismatic", links = ["wedge", "follower"], axis = {alpha}, point = "C" }}
-guide = {{ type = "prismatic", links = ["frame", "follower"], axis = {beta}, point = "C" }}
-
-[driver]
-joint = "{driver}"
-speed = 10
-"""
+    return mechanism_text(
+        name=f"Wedge δ={delta} α={alpha} β={beta}", units="mm",
+        description="Three-link slider chain (wedge, Rosenauer Figs. 273-274)",
+        points={"O": (0, 0), "W": W0, "C": C0},
+        links={"frame": ["O"], "wedge": ["W"], "follower": ["C"]},
+        joints=[joint("slide", "prismatic", "frame", "wedge", axis=delta, point="W"),
+                joint("face", "prismatic", "wedge", "follower", axis=alpha, point="C"),
+                joint("guide", "prismatic", "frame", "follower", axis=beta, point="C")],
+        driver=driver, speed=10)
 
 
 # A slider-crank pushes the wedge: n = 5 links (frame, crank, rod, wedge, follower), z = 6 lower
 # pairs (3 hinges, 3 sliders), γ = 1. This is Rosenauer's Fig. 276 count,
 # 2·6 − 3·5 + 4 = 1 = γ, so the chain is constrained.
-CRANK_WEDGE = """
-name = "Crank-driven wedge"
-[points]
-O = [0, 0]
-A = [0, 20]
-B = [80, 0]
-C = [120, 30]
-[links]
-frame    = ["O"]
-crank    = ["O", "A"]
-rod      = ["A", "B"]
-wedge    = ["B"]
-follower = ["C"]
-[joints]
-O     = { type = "revolute", links = ["frame", "crank"] }
-A     = { type = "revolute", links = ["crank", "rod"] }
-B     = { type = "revolute", links = ["rod", "wedge"] }
-slide = { type = "prismatic", links = ["frame", "wedge"], axis = [1, 0], point = "B" }
-face  = { type = "prismatic", links = ["wedge", "follower"], axis = 25, point = "C" }
-guide = { type = "prismatic", links = ["frame", "follower"], axis = 90, point = "C" }
-[driver]
-joint = "O"
-"""
+CRANK_WEDGE = mechanism_text(
+    name="Crank-driven wedge",
+    points={"O": (0, 0), "A": (0, 20), "B": (80, 0), "C": (120, 30)},
+    links={"frame": ["O"], "crank": ["O", "A"], "rod": ["A", "B"], "wedge": ["B"],
+           "follower": ["C"]},
+    joints=[revolute("O", "frame", "crank"), revolute("A", "crank", "rod"),
+            revolute("B", "rod", "wedge"),
+            joint("slide", "prismatic", "frame", "wedge", axis=[1, 0], point="B"),
+            joint("face", "prismatic", "wedge", "follower", axis=25, point="C"),
+            joint("guide", "prismatic", "frame", "follower", axis=90, point="C")],
+    driver="O")
 
 # Rosenauer Fig. 270: four sliders in a loop are not constrained. The count gives
 # 2·4 − 3·4 + 4 = 0 ≠ γ = 1, so one more input is needed.
-FOUR_SLIDERS = """
-name = "four sliders"
-[points]
-O  = [0, 0]
-p1 = [10, 0]
-p2 = [10, 10]
-p3 = [0, 12]
-[links]
-frame = ["O"]
-s1 = ["p1"]
-s2 = ["p2"]
-s3 = ["p3"]
-[joints]
-a = { type = "prismatic", links = ["frame", "s1"], axis = [1, 0], point = "p1" }
-b = { type = "prismatic", links = ["s1", "s2"], axis = [0, 1], point = "p2" }
-c = { type = "prismatic", links = ["s2", "s3"], axis = [1, 1], point = "p3" }
-d = { type = "prismatic", links = ["frame", "s3"], axis = [1, -2], point = "p3" }
-[driver]
-joint = "a"
-"""
+FOUR_SLIDERS = mechanism_text(
+    name="four sliders",
+    points={"O": (0, 0), "p1": (10, 0), "p2": (10, 10), "p3": (0, 12)},
+    links={"frame": ["O"], "s1": ["p1"], "s2": ["p2"], "s3": ["p3"]},
+    joints=[joint("a", "prismatic", "frame", "s1", axis=[1, 0], point="p1"),
+            joint("b", "prismatic", "s1", "s2", axis=[0, 1], point="p2"),
+            joint("c", "prismatic", "s2", "s3", axis=[1, 1], point="p3"),
+            joint("d", "prismatic", "frame", "s3", axis=[1, -2], point="p3")],
+    driver="a")
 
 # Not a wedge: a block sliding both on the frame and on a turning crank. The two links it slides
 # on turn against each other, so its two "no turning" conditions contradict each other rather
 # than repeat one another. The block stays over-constrained.
-BLOCK_ON_TWO_TURNING_GUIDES = """
-name = "block on two guides"
-[points]
-O = [0, 0]
-A = [30, 0]
-P = [20, 0]
-[links]
-frame = ["O"]
-crank = ["O", "A"]
-block = ["P"]
-[joints]
-O  = { type = "revolute", links = ["frame", "crank"] }
-g1 = { type = "prismatic", links = ["frame", "block"], axis = [1, 0], point = "P" }
-g2 = { type = "prismatic", links = ["crank", "block"], axis = [1, 0], point = "P" }
-[driver]
-joint = "O"
-"""
+BLOCK_ON_TWO_TURNING_GUIDES = mechanism_text(
+    name="block on two guides",
+    points={"O": (0, 0), "A": (30, 0), "P": (20, 0)},
+    links={"frame": ["O"], "crank": ["O", "A"], "block": ["P"]},
+    joints=[revolute("O", "frame", "crank"),
+            joint("g1", "prismatic", "frame", "block", axis=[1, 0], point="P"),
+            joint("g2", "prismatic", "crank", "block", axis=[1, 0], point="P")],
+    driver="O")
 
 
 def load(text: str):
