@@ -87,3 +87,16 @@ def test_bad_file_message_names_key(tmp_path):
                  '[driver]\njoint = "A"\nsped = "1 rpm"\n')
     r = run("analyze", str(f))
     assert r.exit_code == 2 and "driver.sped" in r.output and "Traceback" not in r.output
+
+
+def test_drawing_at_a_change_point_prints_one_warning_line(tmp_path):
+    from mechanism_texts import four_bar_text
+
+    f = tmp_path / "flat.toml"
+    f.write_text(four_bar_text(name="flat parallelogram (CLI warning test)", O2=(0, 0),
+                               A=(20, 0), B=(60, 0), O4=(40, 0), speed="1 rad/s"))
+    r = run("analyze", str(f), "--at", "30", "--format", "json")
+    assert r.exit_code == 0, r.output
+    lines = [ln for ln in r.stderr.splitlines() if ln.strip()]
+    assert len(lines) == 1 and lines[0].startswith("warning: mechanism 'flat parallelogram")
+    assert "coupler, rocker" in lines[0] and "Traceback" not in r.output

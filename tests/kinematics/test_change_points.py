@@ -10,9 +10,10 @@ import numpy as np
 import pytest
 
 import linkwork
+from linkwork.errors import LinkworkWarning
 from linkwork.kinematics.branches import Schedule, branch_schedule
 from linkwork.kinematics.solution import Status
-from mechanism_texts import four_bar_from_lengths, joint, mechanism_text, revolute
+from mechanism_texts import four_bar_from_lengths, four_bar_text, joint, mechanism_text, revolute
 
 
 def _four_bar(crank: float, coupler: float, follower: float, frame: float, theta_deg: float) -> str:
@@ -107,3 +108,14 @@ def test_isosceles_slider_crank_runs_through_its_change_points():
     np.testing.assert_allclose(B.velocity[ok, 0], -20 * np.sin(th[ok]), atol=1e-9)
     # at the change points the chord vanishes: its square root turns rounding ε into √ε
     np.testing.assert_allclose(B.position[~ok, 0], 0.0, atol=20 * 1e-7)
+
+
+def test_a_drawing_at_a_change_point_is_warned_about():
+    """All four pivots drawn on one line: the drawing cannot tell the parallelogram from the
+    antiparallelogram, and says so once, naming the group; the CLI prints it as a warning."""
+    text = four_bar_text(name="flat parallelogram (warning test)", O2=(0, 0), A=(20, 0),
+                         B=(60, 0), O4=(40, 0), links=("frame", "crank", "coupler", "follower"),
+                         rocker_points=("B", "O4"), speed="1 rad/s")
+    with pytest.warns(LinkworkWarning, match="group coupler, follower at a change or dead"):
+        sol = linkwork.solve(linkwork.load_text(text), [0.5])
+    assert sol.status[0] == Status.OK
