@@ -189,7 +189,7 @@ def test_cli_draw_layers_png(tmp_path):
     (["library:parallelogram", "--at", "30", "--construction", "euler-savary"], "infinity"),
     (["library:crank-rocker", "--construction", "klein"], "not a slider-crank"),
     (["library:crank-rocker", "--show", "nope"], "unknown layer"),
-    (["library:crank-rocker", "--construction", "mohr"], "unknown construction"),
+    (["library:crank-rocker", "--construction", "rittershaus"], "unknown construction"),
     (["library:crank-rocker", "--steps"], "need a --construction"),
 ])
 def test_cli_draw_clear_errors(tmp_path, args, msg):
