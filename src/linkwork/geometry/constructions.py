@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ._base import batch_shape, cross2, dot, norm, where_
+from ._base import batch_shape, dot, norm, where_
 from .circle import Circle
 from .errors import GeometryError
 from .line import Line
