@@ -158,15 +158,8 @@ def task_I(b: Builder, key: str, P: Point, A: Point, Cx: Point, ray: Line, *, na
     b.step(f"Euler\u2013Savary, Task I on the ray P{nA}: through {nA} draw any line (a) and take K on it; "
            f"through P draw the parallel to {nC}K, it meets (a) in S; through S the parallel to KP "
            f"meets the ray in the inflection point {nW}.")
-    at_pole(b, P, A, nA)
-    a_line, K = _arbitrary(b, key, P, A, tag)
-    KC = b.join(key + ".KC", K, Cx)
-    KP = b.join(key + ".KP", K, P)
-    PB = b.parallel(key + ".PB", P, KC)
-    Bp = b.meet(key + ".B", PB, a_line, label=f"S_{tag}", k1=key + ".PB", k2=key + ".a", finite=False)
-    BW = b.parallel(key + ".BW", Bp, KP)
-    W = b.meet(key + ".W", BW, ray, Role.RESULT, label, k1=key + ".BW", k2=ray_key, finite=False)
-    return W
+    return _through_S(b, key, P, A, Cx, ray, given="C", found="W", ray_key=ray_key, label=label,
+                      tag=tag, nA=nA)
 
 
 def task_II(b: Builder, key: str, P: Point, A: Point, W: Point, ray: Line, *, names: tuple[str, str, str],
@@ -176,14 +169,25 @@ def task_II(b: Builder, key: str, P: Point, A: Point, W: Point, ray: Line, *, na
     b.step(f"Euler\u2013Savary, Task II on the ray P{nA}: through {nA} draw any line (a) and take K on it; "
            f"through P draw the parallel to {nW}K, it meets (a) in S; through S the parallel to KP "
            f"meets the ray in the centre of curvature {nC}.")
+    return _through_S(b, key, P, A, W, ray, given="W", found="C", ray_key=ray_key, label=label,
+                      tag=tag, nA=nA)
+
+
+def _through_S(b: Builder, key: str, P: Point, A: Point, X: Point, ray: Line, *, given: str,
+               found: str, ray_key: str, label: str, tag: str, nA: str) -> Point:
+    """Tasks I and II share their lines: any line (a) through A with K on it; the parallel to
+    XK through P meets (a) in S; the parallel to KP through S meets the ray in the point sought
+    (X the centre of curvature gives the inflection point, and the reverse). `given`/`found`
+    name the element keys (…KC/…BW/…W for Task I, …KW/…BC/…C for Task II)."""
     at_pole(b, P, A, nA)
     a_line, K = _arbitrary(b, key, P, A, tag)
-    KW = b.join(key + ".KW", K, W)
+    KX = b.join(f"{key}.K{given}", K, X)
     KP = b.join(key + ".KP", K, P)
-    PB = b.parallel(key + ".PB", P, KW)
+    PB = b.parallel(key + ".PB", P, KX)
     Bp = b.meet(key + ".B", PB, a_line, label=f"S_{tag}", k1=key + ".PB", k2=key + ".a", finite=False)
-    BC = b.parallel(key + ".BC", Bp, KP)
-    return b.meet(key + ".C", BC, ray, Role.RESULT, label, k1=key + ".BC", k2=ray_key, finite=False)
+    BY = b.parallel(f"{key}.B{found}", Bp, KP)
+    return b.meet(f"{key}.{found}", BY, ray, Role.RESULT, label, k1=f"{key}.B{found}", k2=ray_key,
+                  finite=False)
 
 
 def task_III(b: Builder, key: str, P: Point, W: Point, Cx: Point, ray: Line, *, names: tuple[str, str, str],
