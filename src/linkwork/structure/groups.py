@@ -77,15 +77,15 @@ def constraint_count(joints: list[Joint], driver_joints: set[str],
 
 
 # ---------------------------------------------------------------------------- rotation classes
-class _Rotations:
+class RotationClasses:
     """Links that cannot turn against each other because sliding pairs join them (a union-find
     over the straight sliding pairs taken so far)."""
 
     def __init__(self, links, parent: dict[str, str] | None = None) -> None:
         self.parent = dict(parent) if parent is not None else {ln: ln for ln in links}
 
-    def copy(self) -> "_Rotations":
-        return _Rotations((), self.parent)
+    def copy(self) -> "RotationClasses":
+        return RotationClasses((), self.parent)
 
     def find(self, v: str) -> str:
         while self.parent[v] != v:
@@ -103,7 +103,7 @@ class _Rotations:
         return True
 
 
-def _wedge_pairs(js: list[Joint], rotations: _Rotations) -> tuple[tuple[str, ...], _Rotations]:
+def _wedge_pairs(js: list[Joint], rotations: RotationClasses) -> tuple[tuple[str, ...], RotationClasses]:
     """The sliding pairs of `js` that close a loop of sliding pairs, given the classes of the
     pairs solved before, and the classes with `js` added."""
     rot = rotations.copy()
@@ -132,7 +132,7 @@ def slider_loop(mech: Mechanism, pair: str, among: set[str] | None = None) -> tu
     return tuple(names)
 
 
-def _check_slider_group(mech: Mechanism, group: Group, rot: _Rotations,
+def _check_slider_group(mech: Mechanism, group: Group, rot: RotationClasses,
                         solved_pairs: set[str]) -> None:
     """Refuse a group of sliding pairs only (prismatic drivers allowed) whose guides cannot fix
     its links' positions.
@@ -213,7 +213,7 @@ def solution_order(mech: Mechanism) -> tuple[Group, ...]:
     known = {mech.frame}
     unknown = [n for n in mech.link_names if n != mech.frame]
     remaining = list(mech.joints)
-    rotations = _Rotations(mech.link_names)
+    rotations = RotationClasses(mech.link_names)
     solved: set[str] = set()
     groups: list[Group] = []
     while unknown:

@@ -45,6 +45,7 @@ import numpy as np
 
 from ..errors import InputError
 from ..model import Mechanism
+from .groups import RotationClasses, slider_loop
 
 # ---------------------------------------------------------------------------- the counts
 
@@ -201,25 +202,11 @@ def hinge_groups(mech: Mechanism) -> list[tuple[str, tuple[str, ...], tuple[str,
 
 def slider_groups(mech: Mechanism) -> int:
     """γ: independent closed loops made of straight sliding pairs only (Rosenauer §95: the
-    3-link slider chain, the wedge, moves although the count says it should not)."""
-    edges = [tuple(j.links) for j in mech.joints if j.kind == "prismatic"]
-    nodes = {ln for e in edges for ln in e}
-    parent = {v: v for v in nodes}
-
-    def find(v):
-        while parent[v] != v:
-            parent[v] = parent[parent[v]]
-            v = parent[v]
-        return v
-
-    cycles = 0
-    for a, b in edges:
-        ra, rb = find(a), find(b)
-        if ra == rb:
-            cycles += 1
-        else:
-            parent[ra] = rb
-    return cycles
+    3-link slider chain, the wedge, moves although the count says it should not): the sliding
+    pairs that join two links already in one rotation class."""
+    pris = [j for j in mech.joints if j.kind == "prismatic"]
+    classes = RotationClasses({ln for j in pris for ln in j.links})
+    return sum(not classes.join(*j.links) for j in pris)
 
 
 def counts(mech: Mechanism) -> PairCounts:
@@ -374,27 +361,7 @@ class Mobility:
 
 def _on_slider_loop(mech: Mechanism) -> set[str]:
     """Prismatic joints lying on a loop of prismatic joints only."""
-    pris = [j for j in mech.joints if j.kind == "prismatic"]
-    out = set()
-    for j in pris:
-        others = [o for o in pris if o is not j]
-        # is there a path between j's links through the other prismatic pairs?
-        adj: dict[str, set[str]] = defaultdict(set)
-        for o in others:
-            a, b = o.links
-            adj[a].add(b)
-            adj[b].add(a)
-        start, goal = j.links
-        seen, todo = {start}, [start]
-        while todo:
-            v = todo.pop()
-            for w in adj[v]:
-                if w not in seen:
-                    seen.add(w)
-                    todo.append(w)
-        if goal in seen:
-            out.add(j.name)
-    return out
+    return {j.name for j in mech.joints if j.kind == "prismatic" and slider_loop(mech, j.name)}
 
 
 def _greedy_dependent(M: np.ndarray, ref: np.ndarray, order: list[int], tol: float) -> list[int]:
