@@ -380,7 +380,7 @@ def _correct(state: State, solver, guess: np.ndarray) -> tuple[np.ndarray, np.nd
         todo = alive & ~converged
         if not todo.any():
             break
-        step = _least_squares(Jq[todo], -r[todo])
+        step = groups.least_squares(Jq[todo], -r[todo])
         step = step.reshape(-1, group.size, 3)
         size = np.maximum(np.abs(step[..., :2]).max(axis=(1, 2)),
                           L * np.abs(step[..., 2]).max(axis=1))
@@ -411,15 +411,5 @@ def _tangent(state: State, solver, J: np.ndarray, ok: np.ndarray) -> None:
     good = ok & np.isfinite(J).all(axis=(1, 2))
     v = np.full((r.shape[0], J.shape[2]), np.nan)
     if good.any():
-        v[good] = _least_squares(J[good], -r[good])
+        v[good] = groups.least_squares(J[good], -r[good])
     state.Q[1][:, idx, :] = v.reshape(-1, group.size, 3)
-
-
-def _least_squares(J: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """x with J·x = b, per sample: by LU when every J is square and regular, else in the least
-    squares sense (a singular sample in the batch, or more constraint rows than unknowns where
-    sliding pairs repeat a rotation row)."""
-    try:
-        return np.linalg.solve(J, b[..., None])[..., 0]
-    except np.linalg.LinAlgError:
-        return (np.linalg.pinv(J) @ b[..., None])[..., 0]

@@ -225,6 +225,16 @@ def rate_residuals(state: State, group: Group, k: int) -> np.ndarray:
     return np.stack([x.c[k][:, 0] for x in res], axis=1)
 
 
+def least_squares(J: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """x with J·x = b, per sample: by LU when every J is square and regular, else in the least
+    squares sense (a singular sample in the batch, or more constraint rows than unknowns where
+    sliding pairs repeat a rotation row)."""
+    try:
+        return np.linalg.solve(J, b[..., None])[..., 0]
+    except np.linalg.LinAlgError:
+        return (np.linalg.pinv(J) @ b[..., None])[..., 0]
+
+
 def _scaled(J: np.ndarray, scale: float) -> np.ndarray:
     """Jacobian with angle columns in length units, so its condition number is unit-free."""
     Js = J.copy()
@@ -545,10 +555,7 @@ class GroupSolver:
             # a converged sample takes one more step: Newton's quadratic convergence then leaves
             # only rounding, which the acceleration solve needs (its error scales with it)
             polished |= converged
-            try:
-                step = np.linalg.solve(J[todo], -r[todo][..., None])[..., 0]
-            except np.linalg.LinAlgError:  # a singular sample in the batch: least squares
-                step = (np.linalg.pinv(J[todo]) @ -r[todo][..., None])[..., 0]
+            step = least_squares(J[todo], -r[todo])
             # damp steps that would turn a link by more than a radian: keeps the branch
             big = np.abs(step[:, 2::3]).max(axis=1, initial=0.0)
             step *= np.minimum(1.0, 1.0 / np.maximum(big, 1e-300))[:, None]
