@@ -345,7 +345,7 @@ class GroupSolver:
 
     @property
     def compiled(self) -> bool:
-        """Positions and rates of this group run in the compiled kernels (`kernels`)."""
+        """Positions (and at order 2 the rates) of this group run in the compiled kernels."""
         return self.fast is not None
 
     @cached_property

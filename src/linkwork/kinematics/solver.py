@@ -112,8 +112,9 @@ def solve(mech: Mechanism, inputs=None, *, times=None, velocities=None, accelera
     T[frame, 0], T[frame, 1] = 1.0, 0.0
     # Closed-form groups in NumPy work sample by sample, so the samples are solved in blocks
     # whose temporaries stay in the CPU cache (same operations per sample, same results); the
-    # compiled kernels have no temporaries and the Newton path wants one batch.
-    one_batch = generic or all(s.compiled for s in solvers)
+    # compiled kernels (positions at any order, rates at order 2) have no temporaries and the
+    # Newton path wants one batch.
+    one_batch = generic or (order == 2 and all(s.compiled for s in solvers))
     block = max(N, 1) if one_batch else BLOCK
     for lo in range(0, N, block):
         sl = slice(lo, lo + block)
