@@ -9,6 +9,7 @@ from __future__ import annotations
 import numpy as np
 
 import linkwork
+from mechanism_texts import joint, mechanism_text, revolute
 
 
 def _pts(points: dict) -> str:
@@ -72,39 +73,17 @@ def slider_crank(r: float, l: float, offset: float, theta: float, *, slot: bool 
     (a block on a prismatic guide, or with `slot` the rod's pin in a straight slot)."""
     A = r * np.array([np.cos(theta), np.sin(theta)])
     B = np.array([A[0] + np.sqrt(l ** 2 - (offset - A[1]) ** 2), offset])
+    links = {"frame": ["C1"], "crank": ["C1", "A"], "rod": ["A", "B"]}
+    joints = [revolute("C1", "frame", "crank"), revolute("A", "crank", "rod")]
     if slot:
-        return f"""
-name = "slider-crank (slot)"
-[points]
-{_pts({"C1": (0, 0), "A": A, "B": B})}
-[links]
-frame = ["C1"]
-crank = ["C1", "A"]
-rod = ["A", "B"]
-[joints]
-C1 = {{ type = "revolute", links = ["frame", "crank"] }}
-A = {{ type = "revolute", links = ["crank", "rod"] }}
-B = {{ type = "slot", links = ["frame", "rod"], axis = [1, 0] }}
-[driver]
-joint = "C1"
-"""
-    return f"""
-name = "slider-crank"
-[points]
-{_pts({"C1": (0, 0), "A": A, "B": B})}
-[links]
-frame = ["C1"]
-crank = ["C1", "A"]
-rod = ["A", "B"]
-slider = ["B"]
-[joints]
-C1 = {{ type = "revolute", links = ["frame", "crank"] }}
-A = {{ type = "revolute", links = ["crank", "rod"] }}
-B = {{ type = "revolute", links = ["rod", "slider"] }}
-guide = {{ type = "prismatic", links = ["frame", "slider"], axis = [1, 0], point = "B" }}
-[driver]
-joint = "C1"
-"""
+        joints.append(joint("B", "slot", "frame", "rod", axis=[1, 0]))
+    else:
+        links["slider"] = ["B"]
+        joints += [revolute("B", "rod", "slider"),
+                   joint("guide", "prismatic", "frame", "slider", axis=[1, 0], point="B")]
+    return mechanism_text(name="slider-crank (slot)" if slot else "slider-crank",
+                          points={"C1": (0.0, 0.0), "A": A, "B": B}, links=links, joints=joints,
+                          driver="C1")
 
 
 def swinging_block(r: float, pivot, theta: float, *, slot: bool = False) -> str:
@@ -116,39 +95,17 @@ def swinging_block(r: float, pivot, theta: float, *, slot: bool = False) -> str:
     B = np.asarray(pivot, dtype=float)
     u = (B - A) / np.hypot(*(B - A))
     E = B + 0.5 * np.hypot(*(B - A)) * u
+    links = {"frame": ["O", "B"], "crank": ["O", "A"], "rod": ["A", "R", "E"]}
+    joints = [revolute("O", "frame", "crank"), revolute("A", "crank", "rod")]
     if slot:
-        return f"""
-name = "swinging block (slot)"
-[points]
-{_pts({"O": (0, 0), "A": A, "B": B, "R": B, "E": E})}
-[links]
-frame = ["O", "B"]
-crank = ["O", "A"]
-rod = ["A", "R", "E"]
-[joints]
-O = {{ type = "revolute", links = ["frame", "crank"] }}
-A = {{ type = "revolute", links = ["crank", "rod"] }}
-B = {{ type = "slot", links = ["rod", "frame"], axis = [{float(u[0])!r}, {float(u[1])!r}] }}
-[driver]
-joint = "O"
-"""
-    return f"""
-name = "swinging block"
-[points]
-{_pts({"O": (0, 0), "A": A, "B": B, "R": B, "E": E})}
-[links]
-frame = ["O", "B"]
-crank = ["O", "A"]
-rod = ["A", "R", "E"]
-sleeve = ["B"]
-[joints]
-O = {{ type = "revolute", links = ["frame", "crank"] }}
-A = {{ type = "revolute", links = ["crank", "rod"] }}
-B = {{ type = "revolute", links = ["frame", "sleeve"] }}
-slide = {{ type = "prismatic", links = ["sleeve", "rod"], axis = [{float(u[0])!r}, {float(u[1])!r}], point = "R" }}
-[driver]
-joint = "O"
-"""
+        joints.append(joint("B", "slot", "rod", "frame", axis=u))
+    else:
+        links["sleeve"] = ["B"]
+        joints += [revolute("B", "frame", "sleeve"),
+                   joint("slide", "prismatic", "sleeve", "rod", axis=u, point="R")]
+    return mechanism_text(name="swinging block (slot)" if slot else "swinging block",
+                          points={"O": (0.0, 0.0), "A": A, "B": B, "R": B, "E": E}, links=links,
+                          joints=joints, driver="O")
 
 
 def slotted_lever(r: float, pivot, theta: float, *, slot: bool = True) -> str:
@@ -159,39 +116,18 @@ def slotted_lever(r: float, pivot, theta: float, *, slot: bool = True) -> str:
     B = np.asarray(pivot, dtype=float)
     u = (A - B) / np.hypot(*(A - B))
     T = B + 1.5 * np.hypot(*(A - B)) * u
+    links = {"frame": ["C", "B"], "crank": ["C", "A"]}
+    joints = [revolute("C", "frame", "crank")]
     if slot:
-        return f"""
-name = "crank-slotted lever (slot)"
-[points]
-{_pts({"C": (0, 0), "A": A, "B": B, "T": T})}
-[links]
-frame = ["C", "B"]
-crank = ["C", "A"]
-lever = ["B", "T"]
-[joints]
-C = {{ type = "revolute", links = ["frame", "crank"] }}
-B = {{ type = "revolute", links = ["frame", "lever"] }}
-A = {{ type = "slot", links = ["lever", "crank"], axis = [{float(u[0])!r}, {float(u[1])!r}] }}
-[driver]
-joint = "C"
-"""
-    return f"""
-name = "crank-slotted lever (block)"
-[points]
-{_pts({"C": (0, 0), "A": A, "B": B, "T": T})}
-[links]
-frame = ["C", "B"]
-crank = ["C", "A"]
-block = ["A"]
-lever = ["B", "T"]
-[joints]
-C = {{ type = "revolute", links = ["frame", "crank"] }}
-A = {{ type = "revolute", links = ["crank", "block"] }}
-B = {{ type = "revolute", links = ["frame", "lever"] }}
-slide = {{ type = "prismatic", links = ["lever", "block"], axis = [{float(u[0])!r}, {float(u[1])!r}], point = "A" }}
-[driver]
-joint = "C"
-"""
+        links["lever"] = ["B", "T"]
+        joints += [revolute("B", "frame", "lever"), joint("A", "slot", "lever", "crank", axis=u)]
+    else:
+        links |= {"block": ["A"], "lever": ["B", "T"]}
+        joints += [revolute("A", "crank", "block"), revolute("B", "frame", "lever"),
+                   joint("slide", "prismatic", "lever", "block", axis=u, point="A")]
+    return mechanism_text(name="crank-slotted lever (slot)" if slot else "crank-slotted lever (block)",
+                          points={"C": (0.0, 0.0), "A": A, "B": B, "T": T}, links=links,
+                          joints=joints, driver="C")
 
 
 def ellipsograph(l: float, phi: float, point_fraction: float = 0.25) -> str:
