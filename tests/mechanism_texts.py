@@ -183,6 +183,23 @@ def four_bar_from_lengths(d, a, b, c, phi_deg, name="four-bar", driver="O2",
                          speed=speed)
 
 
+def slider_crank_text(*, name: str, A, B, O=(0, 0), slot: bool = False, pivot: str = "O",
+                      block: str = "block", driver: str | None = None, speed=None,
+                      units: str | None = None) -> str:
+    """Crank `pivot`–A on the frame, rod A–B, B guided along the x-axis direction: the rod's
+    pin in a slot of the frame (`slot`), or hinged to `block` on a prismatic guide."""
+    links = {"frame": [pivot], "crank": [pivot, "A"], "rod": ["A", "B"]}
+    joints = [revolute(pivot, "frame", "crank"), revolute("A", "crank", "rod")]
+    if slot:
+        joints.append(joint("B", "slot", "frame", "rod", axis=[1, 0]))
+    else:
+        links[block] = ["B"]
+        joints += [revolute("B", "rod", block),
+                   joint("guide", "prismatic", "frame", block, axis=[1, 0], point="B")]
+    return mechanism_text(name=name, points={pivot: O, "A": A, "B": B}, links=links,
+                          joints=joints, driver=driver or pivot, speed=speed, units=units)
+
+
 def two_crank_five_bar_text(*, units: str | None = None) -> str:
     """Two cranks on the frame, O2 (|O2A| = 10) and O5 (|O5B| = 15), joined by the dyad A–P–B:
     two freedoms (3·4 − 2·5), both driven, O2 at 2 rad/s and O5 at −1 rad/s."""

@@ -9,7 +9,7 @@ from __future__ import annotations
 import numpy as np
 
 import linkwork
-from mechanism_texts import joint, mechanism_text, revolute
+from mechanism_texts import joint, mechanism_text, revolute, slider_crank_text
 
 
 def _pts(points: dict) -> str:
@@ -73,17 +73,8 @@ def slider_crank(r: float, l: float, offset: float, theta: float, *, slot: bool 
     (a block on a prismatic guide, or with `slot` the rod's pin in a straight slot)."""
     A = r * np.array([np.cos(theta), np.sin(theta)])
     B = np.array([A[0] + np.sqrt(l ** 2 - (offset - A[1]) ** 2), offset])
-    links = {"frame": ["C1"], "crank": ["C1", "A"], "rod": ["A", "B"]}
-    joints = [revolute("C1", "frame", "crank"), revolute("A", "crank", "rod")]
-    if slot:
-        joints.append(joint("B", "slot", "frame", "rod", axis=[1, 0]))
-    else:
-        links["slider"] = ["B"]
-        joints += [revolute("B", "rod", "slider"),
-                   joint("guide", "prismatic", "frame", "slider", axis=[1, 0], point="B")]
-    return mechanism_text(name="slider-crank (slot)" if slot else "slider-crank",
-                          points={"C1": (0.0, 0.0), "A": A, "B": B}, links=links, joints=joints,
-                          driver="C1")
+    return slider_crank_text(name="slider-crank (slot)" if slot else "slider-crank",
+                             O=(0.0, 0.0), A=A, B=B, slot=slot, pivot="C1", block="slider")
 
 
 def swinging_block(r: float, pivot, theta: float, *, slot: bool = False) -> str:

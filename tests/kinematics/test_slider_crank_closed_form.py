@@ -17,6 +17,7 @@ import pytest
 from scipy.optimize import brentq, minimize_scalar
 
 import linkwork
+from mechanism_texts import slider_crank_text
 
 ARCMIN = np.radians(1 / 60)
 
@@ -25,42 +26,9 @@ def slider_crank(r: float, l: float, e: float = 0.0, *, kind: str = "block", rpm
     """Crank O (pivot) – A, rod A – B, piston B on the line y = e; drawn at the crank angle 0, so
     the input is the crank angle from the x-axis (the outer dead centre when e = 0)."""
     xb = r + np.sqrt(l * l - e * e)
-    if kind == "block":
-        tail = f"""
-[links]
-frame = ["O"]
-crank = ["O", "A"]
-rod   = ["A", "B"]
-block = ["B"]
-[joints]
-O     = {{ type = "revolute", links = ["frame", "crank"] }}
-A     = {{ type = "revolute", links = ["crank", "rod"] }}
-B     = {{ type = "revolute", links = ["rod", "block"] }}
-guide = {{ type = "prismatic", links = ["frame", "block"], axis = [1, 0], point = "B" }}
-"""
-    else:
-        tail = f"""
-[links]
-frame = ["O"]
-crank = ["O", "A"]
-rod   = ["A", "B"]
-[joints]
-O = {{ type = "revolute", links = ["frame", "crank"] }}
-A = {{ type = "revolute", links = ["crank", "rod"] }}
-B = {{ type = "slot", links = ["frame", "rod"], axis = [1, 0] }}
-"""
-    text = f"""
-name = "slider-crank r={r} l={l} e={e}"
-units = {{ length = "mm" }}
-[points]
-O = [0, 0]
-A = [{float(r)!r}, 0]
-B = [{float(xb)!r}, {float(e)!r}]
-{tail}
-[driver]
-joint = "O"
-speed = "{rpm} rpm"
-"""
+    text = slider_crank_text(name=f"slider-crank r={r} l={l} e={e}", A=(float(r), 0),
+                             B=(float(xb), float(e)), slot=kind == "slot", speed=f"{rpm} rpm",
+                             units="mm")
     return linkwork.load_text(text)
 
 

@@ -11,7 +11,8 @@ import linkwork
 from linkwork.errors import StructureError
 from linkwork.kinematics.motion import input_limits, whole_motion
 from linkwork.structure import classify_four_bar, classify_slider_crank, four_bar_transmission, loops
-from mechanism_texts import SCOTCH_YOKE, four_bar_from_lengths, four_bar_text, hinged_loop_text
+from mechanism_texts import (SCOTCH_YOKE, four_bar_from_lengths, four_bar_text, hinged_loop_text,
+                             slider_crank_text)
 
 # ---------------------------------------------------------------------------- four-bar classes
 # (frame, input, coupler, output) → (Grashof, type); s + l against p + q worked by hand
@@ -249,23 +250,6 @@ def test_centric_slider_crank_transmission_angle():
     assert (math.pi / 2 - beta).min() == pytest.approx(lp.transmission[0], abs=1e-5)
 
 
-SWINGING_CRANK = """
-name = "slider-crank whose crank only swings"
-[points]
-O = [0, 0]
-A = [{ax!r}, {ay!r}]
-B = [{bx!r}, 0]
-[links]
-frame = ["O"]
-crank = ["O", "A"]
-rod   = ["A", "B"]
-[joints]
-O = {{ type = "revolute", links = ["frame", "crank"] }}
-A = {{ type = "revolute", links = ["crank", "rod"] }}
-B = {{ type = "slot", links = ["frame", "rod"], axis = [1, 0] }}
-[driver]
-joint = "O"
-"""
 
 
 def test_swinging_crank_limits():
@@ -273,7 +257,9 @@ def test_swinging_crank_limits():
     # swings between ±asin(2/3); drawn at φ = 20°
     phi = math.radians(20)
     ax, ay = 30 * math.cos(phi), 30 * math.sin(phi)
-    mech = linkwork.load_text(SWINGING_CRANK.format(ax=ax, ay=ay, bx=ax + math.sqrt(400 - ay * ay)))
+    mech = linkwork.load_text(slider_crank_text(
+        name="slider-crank whose crank only swings", A=(ax, ay), B=(ax + math.sqrt(400 - ay * ay), 0),
+        O=(0, 0), slot=True))
     (lp,) = loops(mech)
     # l + e = 20 < 30: the chain's fully turning link is the rod, whose neighbour is the die
     # block; the frame, the other sliding link, is then Rosenauer's link 3: type IV (the pump
