@@ -24,7 +24,6 @@ import numpy as np
 
 from ..model import ConstantSpeed, Driver, Mechanism, Prismatic, Revolute, Slot
 from ..structure import Group
-from . import kernels
 from .constraints import driver_residual, joint_residuals
 from .jet import Jet
 
@@ -413,6 +412,7 @@ class GroupSolver:
         else:
             f = self.fast
             state.cs(f["b"])
+            from . import kernels  # numba loads on the first solve, not on import
             kernels.driver_positions(state.Qm[0], state.T, f["b"], f["i"], f["H"], u, f["u0"])
             state.placed(f["i"])
         return np.isfinite(u) & np.isfinite(base).all(axis=1)
@@ -429,6 +429,7 @@ class GroupSolver:
         branch = state.branches.get(self.group)
         if branch is None:  # the design's side everywhere
             branch = np.broadcast_to(f["branch"], (N,))
+        from . import kernels
         kernels.rrr_positions(Q0, state.T, f["iA"], f["A"], f["iC"], f["C"], f["i1"], f["i2"],
                               f["diff"], f["L1sq"], f["tol"], branch, f["k1"], f["k2"], r, ok)
         for i, (x, y), phi in ((f["i1"], r[:2], f["phi1"]), (f["i2"], r[2:], f["phi2"])):
@@ -578,6 +579,7 @@ class GroupSolver:
         """Revolute driver (`kernels.driver_rates`); its condition number is the design one."""
         f = self.fast
         u = state.inputs[f["joint"]]
+        from . import kernels
         kernels.driver_rates(state.Qm, state.T, f["b"], f["i"], f["H"], u[1], u[2])
         return np.full(state.Q.shape[1], f["cond"])
 
@@ -585,6 +587,7 @@ class GroupSolver:
         """Velocities and accelerations of an RRR dyad (`kernels.rrr_rates`)."""
         f = self.fast
         cond = np.ones(state.Q.shape[1])
+        from . import kernels
         kernels.rrr_rates(state.Qm, state.T, f["iA"], f["A"], f["iC"], f["C"], f["i1"], f["i2"],
                           f["BA"], f["BC"], f["mid"], f["hd2"], UNRELIABLE_CONDITION, cond)
         return cond

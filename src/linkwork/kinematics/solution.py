@@ -17,7 +17,6 @@ import numpy as np
 
 from ..errors import ModelError
 from ..model import CircularSlot, Gear, Mechanism, Prismatic, Slot
-from . import kernels
 
 
 _FACTORIALS = np.array([factorial(k) for k in range(8)], dtype=float)
@@ -157,6 +156,7 @@ class Solution:
         c, sn = self._trig(i)
         out = np.empty((K + 1, 2, N))  # out[k, x|y, n]; handed out as (N, 2) views
         sx, sy = (np.broadcast_to(s[..., j], (N,)) for j in (0, 1))
+        from . import kernels  # numba loads on the first solve, not on import
         kernels.point_motion(C, c, sn, sx, sy, out)
         out.setflags(write=False)  # like the rest of a solution
         return PointMotion(*([out[k].T for k in range(K + 1)] + [None] * (3 - K)))
