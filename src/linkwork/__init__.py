@@ -5,8 +5,8 @@
     >>> sol = linkwork.solve(mech, np.radians([0, 30, 60]))
     >>> sol.point("B").velocity
 
-Layers: `model` (the mechanism), `io` (files), `structure` (groups, mobility), `kinematics`
-(solutions), `cli`. See docs/ARCHITECTURE.md.
+Layers: `model` (the mechanism), `io` (files), `topology` (solution order), `kinematics`
+(solutions), `structure` (mobility), `instant` (poles, curvature), `cli`. See docs/ARCHITECTURE.md.
 """
 
 from .errors import LinkworkError

@@ -10,7 +10,7 @@ from typer.testing import CliRunner
 import linkwork
 from linkwork.cli import app
 from linkwork.constructions import construct
-from linkwork.drawing.construction import DegenerateConstruction
+from linkwork.constructions.construction import DegenerateConstruction
 
 
 @pytest.mark.parametrize("mech_name", FOUR_BARS + SLIDER_CRANKS)

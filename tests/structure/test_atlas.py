@@ -29,8 +29,8 @@ from networkx.algorithms.isomorphism import GraphMatcher
 from typer.testing import CliRunner
 
 from linkwork.cli.atlas_cmd import register
-from linkwork.structure import atlas
-from linkwork.structure.atlas import (
+from linkwork.topology import atlas
+from linkwork.topology.atlas import (
     Chain,
     canonical_form,
     certificate,

@@ -3,7 +3,7 @@
 Rosenauer §95 (seed digest 001c, "§95. Rules for introducing prismatic pairs", Figs. 273–274)
 gives the exception to the count. The three-link slider chain, the wedge or cotter joint, is
 constrained although 2z − 3n + 4 = 2·3 − 9 + 4 = 1 ≠ 0. Its criterion is 2z − 3n + 4 = γ, with
-γ the closed slider groups. `structure.groups.solution_order` therefore counts a sliding pair
+γ the closed slider groups. `topology.groups.solution_order` therefore counts a sliding pair
 that closes such a loop once, not twice. These tests check that the order finds the wedge's
 groups, that it refuses wedges whose guides cannot transmit motion with one message naming the
 pairs, and that `linkwork.solve` gives the wedge's closed form.
@@ -36,7 +36,7 @@ import pytest
 import linkwork
 from linkwork.errors import StructureError
 from linkwork.structure import constraint_count, mobility, solution_order
-from linkwork.structure.groups import slider_loop
+from linkwork.topology.groups import slider_loop
 from linkwork.structure.mobility import slider_groups, structure_report
 from mechanism_texts import joint, mechanism_text, revolute
 

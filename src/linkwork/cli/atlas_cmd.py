@@ -1,6 +1,6 @@
 """The ``linkwork atlas`` command: list the planar one-degree-of-freedom hinge chains.
 
-This module owns only the command line face of :mod:`linkwork.structure.atlas`
+This module owns only the command line face of :mod:`linkwork.topology.atlas`
 (option parsing, the Rich table, the JSON document and the SVG switch); all
 structural work is done by the library functions.
 """
@@ -16,7 +16,7 @@ import typer
 from rich.console import Console
 from rich.table import Table
 
-from linkwork.structure.atlas import SUPPORTED_LINK_COUNTS, TYPE_NAMES, Chain, enumerate_chains, write_atlas_svg
+from linkwork.topology.atlas import SUPPORTED_LINK_COUNTS, TYPE_NAMES, Chain, enumerate_chains, write_atlas_svg
 
 
 class AtlasFormat(str, Enum):

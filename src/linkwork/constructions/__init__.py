@@ -28,7 +28,7 @@ from __future__ import annotations
 
 from typing import Callable
 
-from ..drawing.construction import Construction
+from .construction import Construction
 from ..errors import InputError
 from .acceleration_plan import acceleration_plan
 from .bobillier import bobillier

@@ -25,7 +25,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..drawing.construction import Builder, Role, pt
+from .construction import Builder, Role, pt
 from ..errors import InputError
 from ..geometry import Line, Point, Vector
 from ..kinematics import Solution

@@ -35,7 +35,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..drawing.construction import Builder, Role, pt
+from .construction import Builder, Role, pt
 from ..errors import InputError
 from ..geometry import Point
 from ..kinematics import Solution

@@ -15,7 +15,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..drawing.construction import Builder, Construction, Role, pt
+from .construction import Builder, Construction, Role, pt
 from ..model import Mechanism
 from ._common import as_solution, singular_positions, norm
 from ._plan import AccelerationConstruction, VelocityConstruction

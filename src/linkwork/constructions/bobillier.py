@@ -27,7 +27,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..drawing.construction import Builder, Construction, Role
+from .construction import Builder, Construction, Role
 from ..geometry import Point
 from ..instant import collineation_axis, curvature_centre, instant
 from ..model import Mechanism

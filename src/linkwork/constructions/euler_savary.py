@@ -21,7 +21,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..drawing.construction import Builder, Construction, Role, pt
+from .construction import Builder, Construction, Role, pt
 from ..instant import curvature_centre, instant
 from ..model import Mechanism
 from ._common import as_solution, dot, singular_positions

@@ -28,7 +28,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..drawing.construction import Builder, Construction, Role, pt
+from .construction import Builder, Construction, Role, pt
 from ..instant import curvature_centre, instant
 from ..model import Mechanism, Revolute
 from ._common import as_solution, cross, norm, perp, singular_positions

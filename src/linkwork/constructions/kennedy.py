@@ -21,7 +21,7 @@ from itertools import combinations
 
 import numpy as np
 
-from ..drawing.construction import Builder, Construction, Role, safe_join
+from .construction import Builder, Construction, Role, safe_join
 from ..geometry import Point
 from ..instant import pole_schedule, poles
 from ..instant.poles import gear_pitch_point, pole_label

@@ -36,7 +36,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..drawing.construction import Builder, Construction, Role
+from .construction import Builder, Construction, Role
 from ..errors import InputError
 from ..geometry import Point
 from ..geometry.constructions import midpoint

@@ -52,7 +52,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..drawing.construction import Builder, Construction, Role, mask_points, pt
+from .construction import Builder, Construction, Role, mask_points, pt
 from ..errors import InputError
 from ..geometry import Point, Vector
 from ..model import Mechanism, Revolute

@@ -19,8 +19,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..drawing.construction import Builder, Construction, Role, pt
-from ..drawing.scales import Scale, Scales, nice_ceil
+from .construction import Builder, Construction, Role, pt
+from .scales import Scale, Scales, nice_ceil
 from ..model import Mechanism, Revolute
 from ._common import singular_positions, as_solution
 from ._plan import VelocityConstruction

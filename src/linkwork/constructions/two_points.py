@@ -29,7 +29,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..drawing.construction import Builder, Construction, Role, pt
+from .construction import Builder, Construction, Role, pt
 from ..geometry import Point
 from ..instant import instant
 from ..model import Mechanism
@@ -175,7 +175,7 @@ def _default_link(mech: Mechanism) -> str:
 
 
 def _bisector(P: Point, G: Point):
-    from ..drawing.construction import safe_join
+    from .construction import safe_join
     M = (P.xy + G.xy) / 2
     d = G.xy - P.xy
     line, _ = safe_join(pt(M), Point(np.concatenate([-d[:, 1:2], d[:, :1], np.zeros((len(d), 1))], 1)))

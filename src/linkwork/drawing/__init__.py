@@ -1,10 +1,10 @@
 """Drawings as the textbooks draw them: SVG (and PNG/PDF from it), layers, scales, symbols,
 the step-by-step construction model, and Matplotlib plots over the whole motion."""
 
-from .construction import (Arrow, Builder, Construction, ConstructionMismatch,
+from ..constructions.construction import (Arrow, Builder, Construction, ConstructionMismatch,
                            DegenerateConstruction, Element, Polygon, Result, Role, Segment, Step)
 from .layers import LAYERS, Scene, draw_construction, scene_at, scene_figure
-from .scales import Scale, Scales, nice_ceil
+from ..constructions.scales import Scale, Scales, nice_ceil
 from .svg import Figure
 
 __all__ = ["Arrow", "Builder", "Construction", "ConstructionMismatch", "DegenerateConstruction",

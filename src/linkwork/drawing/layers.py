@@ -29,8 +29,8 @@ from ..errors import InputError, LinkworkError
 from ..geometry import Circle, Line, Point
 from ..kinematics import Solution, solve, whole_motion
 from ..model import CircularSlot, Gear, Mechanism, Prismatic, Revolute, Slot
-from .construction import Arrow, Construction, Element, Polygon, Segment
-from .scales import SHEET_MM, Scale, Scales, nice_ceil
+from ..constructions.construction import Arrow, Construction, Element, Polygon, Segment
+from ..constructions.scales import SHEET_MM, Scale, Scales, nice_ceil
 from .svg import COLOURS, Figure, Style, plain, style_for
 
 MECHANISM_LAYERS = ("mechanism", "paths", "velocities", "accelerations")

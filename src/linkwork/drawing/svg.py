@@ -24,7 +24,7 @@ import numpy as np
 
 from ..errors import InputError
 from . import symbols as sym
-from .scales import Scale, Scales
+from ..constructions.scales import Scale, Scales
 
 FONT = "DejaVu Serif, 'Times New Roman', Times, serif"
 LABEL_SIZE = 3.4  # mm

@@ -1,4 +1,4 @@
-"""Solving one group (see `linkwork.structure.groups`) for all samples at once.
+"""Solving one group (see `linkwork.topology.groups`) for all samples at once.
 
 Positions: the dyads and one-link groups in closed form (circle–circle, circle–line, line through
 a point), on the branch of the design position (flipped past change points: `branches`); any
@@ -23,7 +23,7 @@ from math import factorial
 import numpy as np
 
 from ..model import ConstantSpeed, Driver, Mechanism, Prismatic, Revolute, Slot
-from ..structure import Group
+from ..topology import Group
 from .constraints import driver_residual, joint_residuals
 from .jet import Jet
 

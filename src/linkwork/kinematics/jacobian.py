@@ -17,7 +17,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..model import Joint, Mechanism
-from ..structure import Group
+from ..topology import Group
 from .constraints import joint_residuals
 from .groups import State, _pose_fn, group_jacobian
 

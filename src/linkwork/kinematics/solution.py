@@ -242,7 +242,7 @@ class Solution:
     # ------------------------------------------------------------------ exports
     def to_pandas(self):
         """A wide DataFrame: one row per sample, columns like 'B.vx', 'coupler.omega'."""
-        from ..io.export import to_dataframe
+        from .export import to_dataframe
         return to_dataframe(self)
 
     def to_csv(self, path) -> None:
@@ -253,5 +253,5 @@ class Solution:
 
     def to_document(self) -> dict:
         """The JSON document of `linkwork analyze --format json`."""
-        from ..io.export import to_document
+        from .export import to_document
         return to_document(self)

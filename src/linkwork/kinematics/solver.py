@@ -1,6 +1,6 @@
 """`solve`: positions, velocities and accelerations of a mechanism for N inputs at once.
 
-The solution order comes from `linkwork.structure.solution_order`; each group is solved for the
+The solution order comes from `linkwork.topology.solution_order`; each group is solved for the
 whole batch by `groups.GroupSolver`. Groups without a closed form get their Newton starting
 values from `continuation` (a short sequential march on a coarse grid from the design position,
 then one batched Newton solve at the samples).
@@ -14,7 +14,7 @@ import numpy as np
 
 from ..errors import InputError
 from ..model import ConstantSpeed, Mechanism
-from ..structure import solution_order
+from ..topology import solution_order
 from .branches import branch_schedule
 from .continuation import continuation_guesses
 from .groups import SINGULAR_CONDITION, GroupSolver, State, input_coefficients

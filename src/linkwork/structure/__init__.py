@@ -1,7 +1,7 @@
-"""Structure of mechanisms: the graph of links and pairs, groups and their solution order,
-mobility (counts and the real mobility), Assur groups, and Grashof's classification."""
+"""Structure analyses that use the solver: mobility (counts and the real mobility), Assur groups,
+Grashof's classification. The graph-only part (solution order, chain atlas) is `linkwork.topology`."""
 
-from .groups import Group, constraint_count, solution_order
+from ..topology import Group, constraint_count, solution_order  # re-exported: the order lives below kinematics
 from .assur import AssurGroup, assur_groups, mechanism_class
 from .grashof import (LoopReport, classify_four_bar, classify_slider_crank, four_bar_transmission,
                       loops)

@@ -1,5 +1,5 @@
 """Assur groups (*Assursche Gruppen*, *Zweischläge* for dyads): the names and classes of the
-groups that `structure.groups.solution_order` finds, in its order.
+groups that `topology.groups.solution_order` finds, in its order.
 
 There is one decomposition, `solution_order`; this module only names its groups. Each group is
 first *unfolded* into lower pairs the way the seeds draw it:
@@ -27,7 +27,7 @@ from dataclasses import dataclass
 import networkx as nx
 
 from ..model import Mechanism
-from .groups import Group, solution_order
+from ..topology.groups import Group, solution_order
 
 ROMAN = {1: "I", 2: "II", 3: "III", 4: "IV", 5: "V", 6: "VI", 7: "VII", 8: "VIII"}
 

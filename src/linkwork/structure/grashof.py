@@ -42,7 +42,7 @@ import numpy as np
 
 from ..errors import StructureError
 from ..model import Mechanism
-from .groups import Group, solution_order
+from ..topology.groups import Group, solution_order
 
 TOL = 1e-9  # relative, for the Grashof equality
 

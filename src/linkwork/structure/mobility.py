@@ -45,7 +45,8 @@ import numpy as np
 
 from ..errors import InputError
 from ..model import Mechanism
-from .groups import RotationClasses, slider_loop
+from ..topology.counts import kutzbach
+from ..topology.groups import RotationClasses, slider_loop
 
 # ---------------------------------------------------------------------------- the counts
 
@@ -172,11 +173,6 @@ def grubler_constrained(n: int, g: int) -> bool:
     """Pöschl's form of Grübler's condition (97): a hinge chain of n links and g hinges (a
     hinge of k links counted k − 1 times) is constrained when 3n − 2g = 4."""
     return 3 * n - 2 * g == 4
-
-
-def kutzbach(n: int, lower: int = 0, higher: int = 0) -> int:
-    """Kutzbach's count for plane chains: F = 3(n − 1) − 2·lower − higher."""
-    return 3 * (n - 1) - 2 * lower - higher
 
 
 # ---------------------------------------------------------------------------- a mechanism's counts

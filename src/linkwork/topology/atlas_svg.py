@@ -1,6 +1,6 @@
 """SVG sketches of atlas chains: links as bars and plates, hinges as small circles.
 
-This module owns the drawing of a :class:`linkwork.structure.atlas.Chain`.  It
+This module owns the drawing of a :class:`linkwork.topology.atlas.Chain`.  It
 writes plain SVG text (no drawing dependency): every binary link is a ``<line>``
 (a bar), every link with three or more hinges a ``<polygon>`` (triangle,
 quadrilateral, …) through its hinges, and every hinge a ``<circle>``.  Nothing
@@ -26,7 +26,7 @@ import networkx as nx
 import numpy as np
 
 if TYPE_CHECKING:
-    from linkwork.structure.atlas import Chain
+    from linkwork.topology.atlas import Chain
 
 _MARGIN = 28.0
 _CAPTION = 22.0

@@ -14,9 +14,9 @@ This module owns the public, data-level API of the structural atlas:
 * the structural checks (:func:`mobility`, :func:`find_rigid_subchain`,
   :func:`is_constrained_chain`).
 
-The combinatorial engine is in :mod:`linkwork.structure.atlas_contracted`, the
-rigidity test in :mod:`linkwork.structure.atlas_rigidity` and the drawings in
-:mod:`linkwork.structure.atlas_svg` (:func:`write_atlas_svg` is re-exported
+The combinatorial engine is in :mod:`linkwork.topology.atlas_contracted`, the
+rigidity test in :mod:`linkwork.topology.atlas_rigidity` and the drawings in
+:mod:`linkwork.topology.atlas_svg` (:func:`write_atlas_svg` is re-exported
 here).  See ``docs/atlas.md`` for the method and its sources.
 """
 
@@ -31,10 +31,10 @@ from typing import Any, Union
 
 import networkx as nx
 
-from linkwork.structure.atlas_contracted import RawChain, expand_unit, link_type_mixes, work_units
-from linkwork.structure.atlas_rigidity import rigid_subchain
-from linkwork.structure.atlas_svg import write_atlas_svg  # re-exported
-from linkwork.structure.mobility import kutzbach
+from linkwork.topology.atlas_contracted import RawChain, expand_unit, link_type_mixes, work_units
+from linkwork.topology.atlas_rigidity import rigid_subchain
+from linkwork.topology.atlas_svg import write_atlas_svg  # re-exported
+from linkwork.topology.counts import kutzbach
 
 __all__ = [
     "SUPPORTED_LINK_COUNTS",
@@ -211,7 +211,7 @@ def mobility(x: ChainLike) -> int:
 def find_rigid_subchain(x: ChainLike) -> frozenset[Hashable] | None:
     """A set of links forming a sub-chain of mobility <= 0 (a structure), or ``None``.
 
-    Uses the pebble game (see :mod:`linkwork.structure.atlas_rigidity`), so it
+    Uses the pebble game (see :mod:`linkwork.topology.atlas_rigidity`), so it
     stays fast for chains with many links.
     """
     g = _as_graph(x)

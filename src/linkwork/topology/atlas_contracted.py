@@ -1,6 +1,6 @@
 """Generation engine of the chain atlas: link-type mixes, contracted graphs, binary strings.
 
-This module owns the combinatorics behind :func:`linkwork.structure.atlas.enumerate_chains`.
+This module owns the combinatorics behind :func:`linkwork.topology.atlas.enumerate_chains`.
 The method is the classical *contracted-graph* number synthesis (Yan and Hwang
 1990; Tsai 2001, ch. 3):
 
@@ -18,7 +18,7 @@ The method is the classical *contracted-graph* number synthesis (Yan and Hwang
    isomorphic chains exactly when an automorphism of the contracted graph maps
    one onto the other, so only the lexicographically greatest labelling of each
    orbit is kept (Yan and Hwang's use of permutation groups).  The rigidity
-   filter (:mod:`linkwork.structure.atlas_rigidity`) then removes chains with a
+   filter (:mod:`linkwork.topology.atlas_rigidity`) then removes chains with a
    rigid sub-chain.
 
 The automorphisms of the contracted graph that fix a labelling are exactly the
@@ -37,7 +37,7 @@ import networkx as nx
 import numpy as np
 from networkx.algorithms.isomorphism import GraphMatcher
 
-from linkwork.structure.atlas_rigidity import rigid_subchain
+from linkwork.topology.atlas_rigidity import rigid_subchain
 
 
 def hinge_count(n_links: int) -> int:

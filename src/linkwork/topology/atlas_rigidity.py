@@ -14,7 +14,7 @@ the general ``(k, l)`` form of Lee and Streinu (2008), decides in polynomial
 time instead of looking at all ``2**n`` link sets.
 
 Links are the integers ``0 .. n-1`` here; the public wrappers in
-:mod:`linkwork.structure.atlas` translate arbitrary link labels.
+:mod:`linkwork.topology.atlas` translate arbitrary link labels.
 """
 
 from __future__ import annotations
