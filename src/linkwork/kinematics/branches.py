@@ -31,6 +31,7 @@ import numpy as np
 
 from ..errors import LinkworkWarning
 from ..model import Mechanism
+from .contact import rows
 from .groups import GroupSolver, State, input_coefficients
 
 BRANCHING = ("RRR", "RRP", "rod-in-slot")  # closed forms that choose between two assemblies
@@ -67,7 +68,7 @@ def _positions(mech: Mechanism, solvers: tuple[GroupSolver, ...], upto: GroupSol
     """Positions of every group before and including `upto` at inputs u (one driver); NaN
     where a group cannot assemble (the closed forms leave finite values there)."""
     N = u.shape[0]
-    Q = np.zeros((1, N, len(mech.links), 3))
+    Q = np.zeros((1, N, len(rows(mech)), 3))
     state = State(mech, Q, input_coefficients(mech, u[:, None], None, None, None, 0),
                   branches={g: s.signs(u) for g, s in branches.items()})
     ok = np.ones(N, dtype=bool)

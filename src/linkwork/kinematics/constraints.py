@@ -13,6 +13,7 @@ from typing import Callable
 import numpy as np
 
 from ..model import CircularSlot, Driver, Gear, Joint, Mechanism, Prismatic, Revolute, Slot
+from . import contact
 from .jet import Jet
 
 # pose(link) -> (x, y, θ, cos θ, sin θ) jets
@@ -31,6 +32,8 @@ def rotate(pose: PoseFn, link: str, v: np.ndarray) -> tuple[Jet, Jet]:
 
 def joint_residuals(mech: Mechanism, j: Joint, pose: PoseFn) -> list[Jet]:
     """Residuals (zero when the pair is closed), each in units of length."""
+    if contact.is_higher(j):
+        return contact.residuals(mech, j, pose, point, rotate)
     if isinstance(j, Gear):
         return [_gear(mech, j, pose)]
     P = mech.points[j.point]

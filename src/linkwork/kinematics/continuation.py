@@ -37,6 +37,7 @@ import numpy as np
 
 from ..model import Mechanism
 from . import groups
+from .contact import row_index
 from .groups import State, input_coefficients
 
 CONTINUATION_STEP = np.radians(2.0)  # largest step of a revolute input (prismatic: 1 % of L)
@@ -121,7 +122,7 @@ class _Generic:
             self.slices[s.group] = slice(start, start + s.group.size)
             start += s.group.size
         self.size = start
-        self.links = [mech.link_index[ln] for s in self.solvers for ln in s.group.links]
+        self.links = [row_index(mech)[ln] for s in self.solvers for ln in s.group.links]
         self.L = mech.length_scale
         # λ, the distance marched in input space, counts a slide of 1 % of L like a turn of
         # CONTINUATION_STEP, so that one largest step serves revolute and prismatic inputs
@@ -301,7 +302,7 @@ def _march(mech: Mechanism, solvers: tuple, gen: _Generic, lanes: list[_Lane], r
     reach[lane.sense] or stopped. Every attempt solves all groups in order at the proposed
     input — the generic ones by `_correct` from the predicted poses — then their velocities at
     unit input rate along the lane: the tangent for the next prediction."""
-    n_links = len(mech.links)
+    n_links = len(row_index(mech))  # links and contact rows
     while True:
         todo = [ln for ln in lanes if not ln.reached(reach[ln.sense])]
         if not todo:

@@ -16,7 +16,7 @@ order 2. Every link's cos θ and sin θ are kept once in `State.T`.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from functools import cached_property
 from math import factorial
 
@@ -24,6 +24,7 @@ import numpy as np
 
 from ..model import ConstantSpeed, Driver, Mechanism, Prismatic, Revolute, Slot
 from ..topology import Group
+from . import contact
 from .constraints import driver_residual, joint_residuals
 from .jet import Jet
 
@@ -68,7 +69,7 @@ class State:
 
     def __post_init__(self) -> None:
         if self.T is None:
-            self.T = np.empty((len(self.mech.links), 2, self.Q.shape[1]))
+            self.T = np.empty((len(contact.rows(self.mech)), 2, self.Q.shape[1]))
 
     @property
     def order(self) -> int:
@@ -80,7 +81,8 @@ class State:
         return self.Q.transpose(0, 2, 3, 1)
 
     def li(self, link: str) -> int:
-        return self.mech.link_index[link]
+        """Row of a link (or of a higher pair's contact coordinates, `contact.rows`) in Q."""
+        return contact.row_index(self.mech)[link]
 
     def cs(self, i: int) -> tuple[np.ndarray, np.ndarray]:
         """(cos θ, sin θ), each (N,), of link index i's angle (computed once)."""
@@ -338,7 +340,10 @@ class GroupSolver:
     """Solves one group: positions (closed form or Newton) and derivatives."""
 
     def __init__(self, mech: Mechanism, group: Group) -> None:
-        self.mech, self.group = mech, group
+        # a group's higher pairs bring their contact coordinates as rows of their own
+        extra = tuple(contact.row_name(mech.joint(j)) for j in group.joints
+                      if contact.is_higher(mech.joint(j)))
+        self.mech, self.group = mech, replace(group, links=group.links + extra) if extra else group
         self.kind, self.parts = _classify(mech, group)
         self.fast  # noqa: B018  (computed once here; `plan` keeps the solver per mechanism)
 
@@ -383,7 +388,7 @@ class GroupSolver:
         # The group's Jacobian (hinge rows, driver row) scaled as in `derivatives_generic`:
         # its singular values depend on |H| only, not on the pose, so the condition number
         # is the same at every sample: the one at the design position.
-        state = State(mech, np.zeros((2, 1, len(mech.links), 3)),
+        state = State(mech, np.zeros((2, 1, len(contact.rows(mech)), 3)),
                       {dd.joint: np.zeros((2, 1)) for dd in mech.drivers})
         J = group_jacobian(state, self.group)
         cond = float(np.linalg.cond(_scaled(J, mech.length_scale))[0])

@@ -90,3 +90,40 @@ class Jet:
             c[k] = -acc_c / k
             s[k] = acc_s / k
         return Jet(c), Jet(s)
+
+    def reciprocal(self) -> "Jet":
+        """1/f, by the recurrence of f·g = 1 (f must not vanish)."""
+        K = self.order
+        g = np.empty_like(self.c)
+        g[0] = 1.0 / self.c[0]
+        for k in range(1, K + 1):
+            g[k] = -sum(self.c[i] * g[k - i] for i in range(1, k + 1)) * g[0]
+        return Jet(g)
+
+    def sqrt(self) -> "Jet":
+        """√f, by the recurrence of g·g = f (f must be positive)."""
+        K = self.order
+        g = np.empty_like(self.c)
+        g[0] = np.sqrt(self.c[0])
+        for k in range(1, K + 1):
+            g[k] = (self.c[k] - sum(g[i] * g[k - i] for i in range(1, k))) / (2 * g[0])
+        return Jet(g)
+
+    def compose(self, derivatives: np.ndarray) -> "Jet":
+        """F(f) for a function F whose derivatives at f's value are given: derivatives[m] =
+        F⁽ᵐ⁾(f₀) for m = 0 … order, with any trailing shape (e.g. (…, 2) for a plane curve).
+        Taylor's formula in δ = f − f₀, whose powers start at δᵐ (so m ≤ order suffices)."""
+        K = self.order
+        extra = derivatives.ndim - self.c.ndim  # trailing axes of F beyond the batch
+        delta = Jet(self.c.copy())
+        delta.c[0] = 0.0
+        lift = (slice(None),) + (...,) + (None,) * extra
+        out = np.zeros(np.broadcast_shapes(self.c.shape + (1,) * extra,
+                                           (K + 1,) + derivatives.shape[1:]))
+        out[0] = derivatives[0]
+        power = Jet(np.ones_like(self.c[:1]).repeat(K + 1, axis=0))
+        power.c[1:] = 0.0
+        for m in range(1, K + 1):
+            power = power * delta
+            out += power.c[lift] * (derivatives[m] / factorial(m))
+        return Jet(out)

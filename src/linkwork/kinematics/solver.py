@@ -16,6 +16,7 @@ from ..errors import InputError
 from ..model import ConstantSpeed, Mechanism
 from ..topology import solution_order
 from .branches import branch_schedule
+from .contact import rows
 from .continuation import continuation_guesses
 from .groups import SINGULAR_CONDITION, GroupSolver, State, input_coefficients
 from .solution import Solution, Status
@@ -101,14 +102,15 @@ def solve(mech: Mechanism, inputs=None, *, times=None, velocities=None, accelera
     N = values.shape[0]
     solvers = plan(mech)
     frame = mech.link_index[mech.frame]
-    Q = _pose_array(order, N, len(mech.links), frame)
+    n_rows = len(rows(mech))  # the links, then the contact coordinates of higher pairs
+    Q = _pose_array(order, N, n_rows, frame)
     inputs = input_coefficients(mech, values, velocities, accelerations, jerks, order, snaps)
     generic = any(s.kind == "generic" for s in solvers)
     branches = {g: sch.signs(values[:, 0]) for g, sch in branch_schedule(mech).items()}
     guesses = continuation_guesses(mech, solvers, values) if generic else {}
     assembled = np.ones(N, dtype=bool)
     condition = np.ones(N)
-    T = np.empty((len(mech.links), 2, N))  # cos θ, sin θ of every link, rows contiguous
+    T = np.empty((n_rows, 2, N))  # cos θ, sin θ of every link, rows contiguous
     T[frame, 0], T[frame, 1] = 1.0, 0.0
     # Closed-form groups in NumPy work sample by sample, so the samples are solved in blocks
     # whose temporaries stay in the CPU cache (same operations per sample, same results); the

@@ -3,6 +3,7 @@
 Nothing here computes motion; `linkwork.kinematics` solves a `Mechanism` into a `Solution`.
 """
 
+from .higher_pairs import CamContact, DesignContact, HigherPair, RollingContact, design_contact
 from .laws import ConstantSpeed, MotionLaw, PolynomialLaw, TabulatedLaw
 from .mechanism import (
     CircularSlot,
@@ -17,6 +18,7 @@ from .mechanism import (
 )
 
 __all__ = [
-    "CircularSlot", "ConstantSpeed", "Driver", "Gear", "Joint", "Link", "Mechanism", "MotionLaw",
+    "CamContact", "CircularSlot", "ConstantSpeed", "DesignContact", "HigherPair", "RollingContact",
+    "design_contact", "Driver", "Gear", "Joint", "Link", "Mechanism", "MotionLaw",
     "PolynomialLaw", "Prismatic", "Revolute", "Slot", "TabulatedLaw",
 ]

@@ -9,7 +9,8 @@ coordinates in its link.
 Pairs (German *Elementenpaare*, Latvian *kinēmatiskie pāri*):
 `Revolute` (hinge, *Drehpaar*), `Prismatic` (block on a guide, *Schubpaar*), `Slot` (pin in a
 straight slot, turning and sliding), `CircularSlot` (pin in a curved slot, *Kulisse*),
-`Gear` (pitch circles rolling, *Zahnräderpaar*).
+`Gear` (pitch circles rolling, *Zahnräderpaar*); the higher pairs `CamContact` and
+`RollingContact` (`higher_pairs`) keep profiles (`geometry.profiles`) in contact.
 """
 
 from __future__ import annotations
@@ -22,6 +23,8 @@ from typing import Mapping, Union
 import numpy as np
 
 from ..errors import ModelError
+from ..geometry.profiles import Profile
+from .higher_pairs import CamContact, RollingContact, validate_higher_pair
 from .laws import ConstantSpeed, MotionLaw
 
 _TOL = 1e-9
@@ -106,7 +109,7 @@ class Gear:
     kind = "gear"
 
 
-Joint = Union[Revolute, Prismatic, Slot, CircularSlot, Gear]
+Joint = Union[Revolute, Prismatic, Slot, CircularSlot, Gear, CamContact, RollingContact]
 
 
 @dataclass(frozen=True)
@@ -139,12 +142,14 @@ class Mechanism:
     drivers: tuple[Driver, ...]
     frame: str
     description: str = ""
+    profiles: Mapping[str, Profile] = field(default_factory=lambda: MappingProxyType({}))
 
     # ------------------------------------------------------------------ construction
     @classmethod
     def build(cls, *, name: str, points: Mapping[str, object], links: Mapping[str, list[str]],
               joints: list[Joint], drivers: list[dict] | list[Driver], frame: str = "frame",
-              length_unit: str = "mm", description: str = "") -> "Mechanism":
+              length_unit: str = "mm", description: str = "",
+              profiles: Mapping[str, Profile] | None = None) -> "Mechanism":
         pts = {k: _ro(v) for k, v in points.items()}
         link_objs = tuple(Link(n, tuple(p)) for n, p in links.items())
         joint_objs = tuple(joints)
@@ -152,7 +157,7 @@ class Mechanism:
                              for d in drivers)
         mech = cls(name=name, length_unit=length_unit, points=MappingProxyType(pts),
                    links=link_objs, joints=joint_objs, drivers=mech_drivers, frame=frame,
-                   description=description)
+                   description=description, profiles=MappingProxyType(dict(profiles or {})))
         mech._validate()
         return mech
 
@@ -265,6 +270,9 @@ class Mechanism:
         return point in self.link(link).points
 
     def _validate_joint(self, j: Joint) -> None:
+        if isinstance(j, (CamContact, RollingContact)):
+            validate_higher_pair(self, j)
+            return
         if isinstance(j, Gear):
             if j.carrier not in self.link_index:
                 raise ModelError(f"gear '{j.name}': carrier '{j.carrier}' is not a link")

@@ -41,8 +41,10 @@ import numpy as np
 from ..errors import StructureError
 from ..model import Gear, Joint, Mechanism
 
-#: degrees of freedom each pair removes (Grübler's g₁ pairs count 2, point contact pairs 1)
-PAIR_CONSTRAINTS = {"revolute": 2, "prismatic": 2, "slot": 1, "circular-slot": 1, "gear": 1}
+#: degrees of freedom each pair removes (Grübler's g₁ pairs count 2, point contact pairs 1; a
+#: cam contact h = 1, a rolling contact, self-closed, h = 2 as Rosenauer §110 counts it)
+PAIR_CONSTRAINTS = {"revolute": 2, "prismatic": 2, "slot": 1, "circular-slot": 1, "gear": 1,
+                    "cam": 1, "rolling": 2}
 
 
 @dataclass(frozen=True)
