@@ -147,3 +147,95 @@ def contact_row_count(j) -> int:
 def design_offsets(mech: Mechanism, name: str) -> tuple[float, float]:
     d = _design(mech, name)
     return d.u0, d.v0
+
+
+# ---------------------------------------------------------------------------- the report
+def _unit(v: np.ndarray) -> np.ndarray:
+    with np.errstate(invalid="ignore", divide="ignore"):
+        return v / np.hypot(v[:, 0], v[:, 1])[:, None]
+
+
+def _perp(v: np.ndarray) -> np.ndarray:
+    return np.stack([-v[:, 1], v[:, 0]], axis=1)
+
+
+def _rotate(theta: np.ndarray, v: np.ndarray) -> np.ndarray:
+    c, s = np.cos(theta), np.sin(theta)
+    return np.stack([c * v[..., 0] - s * v[..., 1], s * v[..., 0] + c * v[..., 1]], axis=-1)
+
+
+def report(sol, name: str) -> dict[str, np.ndarray]:
+    """The contact of higher pair `name` at every sample (arrays, sample axis first):
+
+    `u`, `v`: contact parameters on the profile of links[0] and on the follower's element (the
+    mate profile; the place along a flat face from its point; 0 for a roller or knife);
+    `point`: the contact point; `normal`: the unit common normal, from links[0]'s profile
+    towards the follower; `curvature`: the signed curvature of links[0]'s profile at the contact
+    (positive where it turns left with increasing u); `profile_speed` and `follower_speed`: how
+    fast the contact point runs along each element, relative to the link carrying it;
+    `sliding_velocity`: the follower's material point at the contact relative to the profile's,
+    along the common tangent (zero for rolling); `roller_spin` (rollers): the angular velocity
+    relative to the follower with which a roller turning freely rolls without slip;
+    `pressure_angle`: between the common normal (the line of action of the contact force) and
+    the velocity of the follower's point (a roller's centre, else the contact point), in [0, π/2].
+    """
+    mech = sol.mechanism
+    j = mech.joint(name)
+    d = _design(mech, name)
+    row = row_index(mech)[row_name(j)]
+    C = sol._C
+    u = C[0, :, row, 0] + d.u0
+    u_dot = C[1, :, row, 0]
+    a, b = j.links
+    prof = mech.profiles[j.profile if isinstance(j, CamContact) else j.profiles[0]]
+    D = prof.derivatives(u, 2)
+    Pa = sol.pose_derivatives(a)
+    th_a, w_a = Pa[0, :, 2], Pa[1, :, 2]
+    point = Pa[0, :, :2] + _rotate(th_a, D[0])
+    t_local = D[1]
+    speed = np.hypot(t_local[:, 0], t_local[:, 1])
+    tangent = _unit(_rotate(th_a, t_local))
+    kappa = (t_local[:, 0] * D[2][:, 1] - t_local[:, 1] * D[2][:, 0]) / speed**3
+    normal = _perp(tangent) * d.sign if not (isinstance(j, CamContact) and j.follower == "flat") \
+        else _perp(tangent) * np.sign(np.einsum("ij,ij->i", _perp(tangent), _normal_flat(sol, j, d)))[:, None]
+    out = {"u": u, "point": point, "normal": normal, "curvature": kappa,
+           "profile_speed": speed * u_dot}
+    # velocities of the two links' material points at the contact
+    vb_point = sol.point_on(b, sol.local(b, point)).velocity
+    va_point = sol.point_on(a, sol.local(a, point)).velocity
+    out["sliding_velocity"] = np.einsum("ij,ij->i", vb_point - va_point, tangent)
+    follower = j.follower if isinstance(j, CamContact) else "rolling"
+    w_b = sol.pose_derivatives(b)[1, :, 2]
+    if follower in ("roller", "knife"):
+        out["v"] = np.zeros_like(u)
+        # the normal turns with links[0] and with the contact's run along the profile
+        turn = w_a + kappa * speed * u_dot
+        out["follower_speed"] = j.radius * (turn - w_b) * d.sign
+        if follower == "roller":
+            out["roller_spin"] = -(out["sliding_velocity"]) / j.radius
+        v_f = sol.point(j.point).velocity
+    elif follower == "flat":
+        Pw = sol.point(j.point)
+        ew = _rotate(sol.pose_derivatives(b)[0, :, 2], j.axis)
+        lam = np.einsum("ij,ij->i", point - Pw.position, ew)
+        out["v"] = lam
+        # d/dt of (contact − P)·e in the follower: the contact point's speed along the face
+        rel = va_point + tangent * (speed * u_dot)[:, None] - Pw.velocity
+        out["follower_speed"] = np.einsum("ij,ij->i", rel, ew) - w_b * np.einsum(
+            "ij,ij->i", point - Pw.position, _perp(ew))
+        v_f = vb_point
+    else:
+        mate = mech.profiles[j.mate if isinstance(j, CamContact) else j.profiles[1]]
+        v = C[0, :, row, 1] + d.v0
+        out["v"] = v
+        out["follower_speed"] = np.hypot(*mate.derivatives(v, 1)[1].T) * C[1, :, row, 1]
+        v_f = vb_point
+    with np.errstate(invalid="ignore", divide="ignore"):
+        cos_a = np.abs(np.einsum("ij,ij->i", normal, v_f)) / np.hypot(v_f[:, 0], v_f[:, 1])
+    out["pressure_angle"] = np.arccos(np.clip(cos_a, 0.0, 1.0))
+    return out
+
+
+def _normal_flat(sol, j, d) -> np.ndarray:
+    """The face's normal towards the follower, in the frame, at every sample."""
+    return _rotate(sol.pose_derivatives(j.links[1])[0, :, 2], d.normal[None, :])

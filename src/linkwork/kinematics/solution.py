@@ -17,6 +17,7 @@ import numpy as np
 
 from ..errors import ModelError
 from ..model import CircularSlot, Gear, Mechanism, Prismatic, Slot
+from . import contact
 
 
 _FACTORIALS = np.array([factorial(k) for k in range(8)], dtype=float)
@@ -196,9 +197,12 @@ class Solution:
     def joint(self, name: str) -> dict[str, np.ndarray]:
         """Relative motion in pair `name`: relative angle, ω and α of links[1] to links[0]; for
         sliding pairs the slide, sliding velocity and acceleration along the guide (scalar and
-        vector) and the Coriolis acceleration 2ω×v_rel of the guiding link."""
+        vector) and the Coriolis acceleration 2ω×v_rel of the guiding link; for higher pairs the
+        contact (`contact.report`: contact point, common normal, pressure angle, sliding)."""
         mech = self.mechanism
         j = mech.joint(name)
+        if contact.is_higher(j):
+            return contact.report(self, name)
         if isinstance(j, Gear):
             c = self.link(j.carrier)
             w1, w2 = self.link(j.links[0]), self.link(j.links[1])

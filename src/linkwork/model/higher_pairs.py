@@ -82,6 +82,10 @@ class DesignContact:
     sign: float
 
 
+def _cross(a: np.ndarray, b: np.ndarray) -> float:
+    return float(a[0] * b[1] - a[1] * b[0])
+
+
 def _unit_normal(t: np.ndarray) -> np.ndarray:
     n = np.array([-t[1], t[0]])
     return n / np.hypot(*n)
@@ -148,7 +152,7 @@ def design_contact(mech: "Mechanism", pair: HigherPair) -> DesignContact:
                 break
         d = prof.derivatives(np.array(u), 1)
         gap = abs(float((d[0] - P) @ n_face))
-        parallel = abs(float(np.cross(d[1], e))) / np.hypot(*d[1])
+        parallel = abs(_cross(d[1], e)) / np.hypot(*d[1])
         if not np.isfinite(gap) or gap > tol or parallel > 1e-6:
             raise ModelError(f"{what}: the flat face through '{pair.point}' does not touch profile "
                              f"'{pair.profile}' in the drawing (gap {gap:.6g} {mech.length_unit}); "
@@ -178,10 +182,10 @@ def design_contact(mech: "Mechanism", pair: HigherPair) -> DesignContact:
     gap = float(np.hypot(*(d2[0] - d1[0])))
     t1, t2 = d1[1] / np.hypot(*d1[1]), d2[1] / np.hypot(*d2[1])
     names = (pair.profile, pair.mate) if isinstance(pair, CamContact) else pair.profiles
-    if not np.isfinite(gap) or gap > tol or abs(float(np.cross(t1, t2))) > 1e-5:
+    if not np.isfinite(gap) or gap > tol or abs(_cross(t1, t2)) > 1e-5:
         raise ModelError(f"{what}: profiles '{names[0]}' and '{names[1]}' do not touch in the "
                          f"drawing (gap {gap:.6g} {mech.length_unit}, tangents "
-                         f"{np.degrees(np.arcsin(min(1.0, abs(float(np.cross(t1, t2)))))):.3g}° "
+                         f"{np.degrees(np.arcsin(min(1.0, abs(_cross(t1, t2))))):.3g}° "
                          "apart); draw them tangent")
     # which side of profile 1 the mate's body lies on: its curvature centre's side, or the
     # side its points leave to
