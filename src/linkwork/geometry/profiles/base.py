@@ -264,10 +264,11 @@ class BaseProfile:
         q = p.reshape(-1, 2)
         grid, pts, step = self._coarse
         u0 = np.empty(len(q))
-        for lo in range(0, len(q), 2048):  # chunks bound the (points × samples) distance table
-            c = q[lo:lo + 2048]
+        chunk = max(1, 2_000_000 // len(grid))  # bounds the (points × samples) distance table
+        for lo in range(0, len(q), chunk):
+            c = q[lo:lo + chunk]
             d2 = (c[:, None, 0] - pts[None, :, 0]) ** 2 + (c[:, None, 1] - pts[None, :, 1]) ** 2
-            u0[lo:lo + 2048] = grid[np.argmin(np.where(np.isnan(d2), np.inf, d2), axis=1)]
+            u0[lo:lo + chunk] = grid[np.argmin(np.where(np.isnan(d2), np.inf, d2), axis=1)]
         u = _newton_nearest(self, u0, q, step)
         u = np.where(np.all(np.isfinite(q), axis=1), u, np.nan)
         return u.reshape(p.shape[:-1])
