@@ -21,31 +21,12 @@ import pytest
 
 import linkwork
 from linkwork.errors import ModelError
+from higher_pair_mechanisms import (E, R, RHO, ROLL_CRANK, ROLL_O2, ROLL_R, ROLL_R0, ROLL_ROD,
+                                    eccentric, rolling_disc)
 from linkwork.geometry.profiles import CircleProfile
-from linkwork.model import CamContact, Mechanism, Prismatic, Revolute, RollingContact
+from linkwork.model import CamContact, Mechanism, Prismatic, Revolute
 
-E, R, RHO = 10.0, 30.0, 5.0
 PHI = np.radians(np.arange(0.0, 360.0, 7.5) + 0.3)
-
-
-def eccentric(follower: str, *, offset: float = 0.0, radius: float = RHO) -> Mechanism:
-    """Disc of radius R about E = (e, 0) on a cam turning about O; a follower translating along
-    the vertical line x = offset carries a roller (radius ρ), a knife edge, or a horizontal flat
-    face touching the disc from above."""
-    reach = (R + radius) if follower == "roller" else R
-    if follower == "flat":
-        C = np.array([offset, R])
-    else:
-        C = np.array([offset, np.sqrt(reach**2 - (offset - E) ** 2)])
-    joint = CamContact("K", ("cam", "follower"), "disc", follower, point="C",
-                       radius=radius if follower == "roller" else 0.0,
-                       axis=np.array([1.0, 0.0]) if follower == "flat" else None)
-    return Mechanism.build(
-        name=f"eccentric, {follower}", points={"O": [0, 0], "E": [E, 0], "C": C, "F": [offset, -20.0]},
-        links={"frame": ["O"], "cam": ["O", "E"], "follower": ["C", "F"]},
-        joints=[Revolute("O", "O", ("frame", "cam")),
-                Prismatic("F", "F", ("frame", "follower"), np.array([0.0, 1.0])), joint],
-        drivers=[{"joint": "O"}], profiles={"disc": CircleProfile((E, 0.0), R)})
 
 
 def slider_crank_closed_form(phi, rod, offset=0.0):
@@ -181,24 +162,9 @@ def test_disc_rolling_on_a_fixed_circle():
     led by a rod from a crank. Independent of the pair: W lies on the circle of radius R0 + r
     about O and at |AW| from the crank pin A (circle–circle), and the disc turns by
     (R0 + r)/r times W's polar angle."""
-    R0, r = 40.0, 10.0
-    O2, crank, rod = np.array([70.0, 0.0]), 15.0, 45.0
-    A = O2 + [0.0, crank]
-    # W on both circles, the upper intersection
-    d = np.hypot(*A)
-    a = ((R0 + r) ** 2 - rod**2 + d * d) / (2 * d)
-    ex = A / d
-    W = a * ex + np.sqrt((R0 + r) ** 2 - a * a) * np.array([-ex[1], ex[0]])
-    T = W * R0 / (R0 + r)  # the touching point
-    mech = Mechanism.build(
-        name="rolling disc", points={"O": [0, 0], "O2": O2, "A": A, "W": W, "M": W + [r, 0]},
-        links={"frame": ["O", "O2"], "crank": ["O2", "A"], "rod": ["A", "W"], "disc": ["W", "M"]},
-        joints=[Revolute("O2", "O2", ("frame", "crank")), Revolute("A", "A", ("crank", "rod")),
-                Revolute("W", "W", ("rod", "disc")),
-                RollingContact("T", ("frame", "disc"), ("track", "rim"))],
-        drivers=[{"joint": "O2"}],
-        profiles={"track": CircleProfile((0.0, 0.0), R0), "rim": CircleProfile(tuple(W), r)})
-    assert np.hypot(*T) == pytest.approx(R0)
+    R0, r, O2, crank, rod = ROLL_R0, ROLL_R, ROLL_O2, ROLL_CRANK, ROLL_ROD
+    mech = rolling_disc()
+    W = mech.points["W"]
     phi = np.radians(np.linspace(60.0, 120.0, 13))
     sol = linkwork.solve(mech, phi, order=2)
     assert (sol.status == linkwork.Status.OK).all()

@@ -30,7 +30,7 @@ import numpy as np
 from ..errors import ModelError
 from ..geometry import Line, Point
 from ..kinematics import Solution
-from ..model import CircularSlot, Gear, Mechanism, Prismatic, Revolute, Slot
+from ..model import CamContact, CircularSlot, Gear, Mechanism, Prismatic, Revolute, RollingContact, Slot
 from .motion import TOL, make_point, perp, rotate
 
 Pair = tuple[str, str]
@@ -148,6 +148,10 @@ class PoleLineSource:
         return f"n({self.joint})"
 
 
+#: the rules of poles read off a pair directly (the others are intersections of lines)
+PRIMARY_RULES = ("hinge", "slider", "gear", "rolling", "common hinge")
+
+
 @dataclass(frozen=True)
 class PoleStep:
     """How one pole is found. `rule` is 'hinge' (the hinge point), 'slider' (at infinity
@@ -167,6 +171,8 @@ class PoleStep:
             return f"{lab} = ∞ normal to the guide of {self.joint}"
         if self.rule == "gear":
             return f"{lab} = pitch point of gear {self.joint}"
+        if self.rule == "rolling":
+            return f"{lab} = contact point of rolling pair {self.joint}"
         if self.rule == "common hinge":
             return f"{lab} = hinge {self.joint} (common to three links)"
         a, b = self.lines[:2]
@@ -186,7 +192,7 @@ class PoleSchedule:
 
     @property
     def primary(self) -> tuple[PoleStep, ...]:
-        return tuple(s for s in self.steps if s.rule in ("hinge", "slider", "gear", "common hinge"))
+        return tuple(s for s in self.steps if s.rule in PRIMARY_RULES)
 
     @property
     def derived(self) -> tuple[PoleStep, ...]:
@@ -249,7 +255,12 @@ def pole_schedule(mechanism: Mechanism) -> PoleSchedule:
         elif isinstance(j, Gear):
             if p not in known:
                 add(PoleStep(p, "gear", j.name))
-        elif isinstance(j, (Slot, CircularSlot)):
+        elif isinstance(j, RollingContact):
+            if p not in known:  # rolling without slip: the contact point is the pole
+                add(PoleStep(p, "rolling", j.name))
+        elif isinstance(j, (Slot, CircularSlot, CamContact)):
+            # the relative pole lies on the contact normal (Rosenauer §65; for higher pairs the
+            # common normal of the profiles, Reuleaux, Pöschl §45)
             normals.setdefault(p, []).append(PoleLineSource(joint=j.name))
     # links sharing one hinge point (a multiple joint drawn as several revolutes)
     changed = True
@@ -302,6 +313,8 @@ def _normal_points(mechanism: Mechanism, joint: str, hinge_point: dict[Pair, str
     line of those hinges."""
     j = mechanism.joint(joint)
     slot_link, pin_link = j.links
+    if isinstance(j, CamContact) and j.follower not in ("roller", "knife"):
+        return []  # a face or profile: no point of the follower stays on the normal
     on = [(j.point, pin_link)]
     if isinstance(j, CircularSlot):
         on.append((j.center, slot_link))
@@ -436,6 +449,8 @@ def _primary_pole(solution: Solution, step: PoleStep) -> np.ndarray:
         return np.concatenate([perp(g), np.zeros((N, 1))], axis=1)
     if isinstance(j, Gear):
         return np.concatenate([gear_pitch_point(solution, j), np.ones((N, 1))], axis=1)
+    if isinstance(j, RollingContact):
+        return np.concatenate([solution.joint(j.name)["point"], np.ones((N, 1))], axis=1)
     raise TypeError(j)  # pragma: no cover
 
 
@@ -459,10 +474,16 @@ def gear_pitch_point(solution: Solution, g: Gear) -> np.ndarray:
 
 
 def _normal_line(solution: Solution, joint: str, L: float) -> np.ndarray:
-    """Scaled homogeneous line (N, 3): the contact normal of a pin in a slot."""
+    """Scaled homogeneous line (N, 3): the contact normal of a pin in a slot or of a cam."""
     mech = solution.mechanism
     j = mech.joint(joint)
     a, b = j.links
+    if isinstance(j, CamContact):
+        rep = solution.joint(joint)
+        g, X = perp(rep["normal"]), rep["point"]  # the normal through the contact point
+        line = np.concatenate([g, -(g * X).sum(1, keepdims=True) / L], axis=1)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            return line / np.linalg.norm(line, axis=1, keepdims=True)
     X = solution.point_on(b, mech.points[j.point]).position
     N = len(solution)
     if isinstance(j, Slot):
@@ -490,7 +511,7 @@ def kennedy_poles(solution: Solution, schedule: PoleSchedule | None = None) -> P
     N = len(solution)
     scaled: dict[Pair, np.ndarray] = {}
     for step in schedule.steps:
-        if step.rule in ("hinge", "slider", "gear", "common hinge"):
+        if step.rule in PRIMARY_RULES:
             scaled[step.pair] = _scaled(_primary_pole(solution, step), L)
             continue
         lines = []

@@ -17,10 +17,11 @@ import numpy as np
 from pydantic import ValidationError
 
 from ..errors import InputError, MechanismFileError, ModelError, UnknownMechanismError
-from ..model import (CircularSlot, ConstantSpeed, Gear, Mechanism, PolynomialLaw, Prismatic,
-                     Revolute, Slot, TabulatedLaw)
+from ..model import (CamContact, CircularSlot, ConstantSpeed, Gear, Mechanism, PolynomialLaw,
+                     Prismatic, Revolute, RollingContact, Slot, TabulatedLaw)
 from ..units import check_length_unit, parse_quantity
 from . import schema
+from .profiles import build_profile
 
 LIBRARY_PREFIX = "library:"
 
@@ -48,9 +49,11 @@ def resolve(spec: str | Path) -> tuple[str, str]:
 
 
 def load(spec: str | Path) -> Mechanism:
-    """Load a mechanism from a file path or `library:NAME`."""
+    """Load a mechanism from a file path or `library:NAME` (profiles read from CSV files are
+    looked up beside the mechanism file)."""
     source, text = resolve(spec)
-    return load_text(text, source=source)
+    base = None if str(spec).startswith(LIBRARY_PREFIX) else Path(spec).resolve().parent
+    return load_text(text, source=source, base_dir=base)
 
 
 def _line_of(text: str, loc: tuple) -> int | None:
@@ -71,8 +74,9 @@ def _line_of(text: str, loc: tuple) -> int | None:
     return found
 
 
-def load_text(text: str, *, source: str = "<text>") -> Mechanism:
-    """Validate mechanism-file `text` and build the `Mechanism`."""
+def load_text(text: str, *, source: str = "<text>", base_dir: Path | None = None) -> Mechanism:
+    """Validate mechanism-file `text` and build the `Mechanism`; `base_dir` is where profile
+    CSV files are read from (the working directory if None)."""
     try:
         raw = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
@@ -84,19 +88,25 @@ def load_text(text: str, *, source: str = "<text>") -> Mechanism:
     except ValidationError as exc:
         raise _file_error(exc, text, source) from None
     try:
-        return _build(spec, text, source)
+        return _build(spec, text, source, base_dir)
     except (ModelError, InputError) as exc:
         raise MechanismFileError(str(exc), source=source) from None
 
 
-_TAGS = {"revolute", "prismatic", "slot", "circular-slot", "gear", "polynomial", "table", "float",
-         "int", "str"}
+_TAGS = {"revolute", "prismatic", "slot", "circular-slot", "gear", "cam", "rolling", "polynomial",
+         "table", "float", "int", "str", "circle", "ellipse", "path", "spline", "points", "line",
+         "involute", "archimedean-spiral", "logarithmic-spiral"}
 
 
 def _clean(loc: tuple) -> tuple:
     """A pydantic error location without the union/discriminator tags it inserts."""
-    return tuple(k for k in loc if k not in _TAGS
-                 and not str(k).startswith(("function-", "union[", "list[")))
+    loc = tuple(k for k in loc if not str(k).startswith(("function-", "union[", "list[")))
+    # a discriminated union inserts its tag right after the entry's name (joints.K.cam.radius);
+    # strip that one only: a top-level section or a field may share a tag's name ("points")
+    for i, k in enumerate(loc):
+        if i >= 1 and k in _TAGS:
+            return loc[:i] + loc[i + 1:]
+    return loc
 
 
 def _file_error(exc: ValidationError, text: str, source: str) -> MechanismFileError:
@@ -137,8 +147,10 @@ def _angle_in_rad(value, angle_unit: str, kind: str) -> float:
     return float(value) if angle_unit.startswith("rad") else float(np.radians(value))
 
 
-def _build(spec: schema.MechanismFile, text: str, source: str) -> Mechanism:
+def _build(spec: schema.MechanismFile, text: str, source: str, base_dir: Path | None = None) -> Mechanism:
     unit = check_length_unit(spec.units.length)
+    profiles = {name: build_profile(name, p, base_dir, angle_unit=spec.units.angle, source=source)
+                for name, p in spec.profiles.items()}
     joints = []
     for name, j in spec.joints.items():
         point = j.point or name
@@ -151,6 +163,13 @@ def _build(spec: schema.MechanismFile, text: str, source: str) -> Mechanism:
             joints.append(Slot(name, point, links, _axis(j.axis, spec.units.angle, name)))
         elif isinstance(j, schema.CircularSlotSpec):
             joints.append(CircularSlot(name, point, links, j.center))
+        elif isinstance(j, schema.CamSpec):
+            at = j.point or (name if name in spec.points and j.follower != "profile" else None)
+            axis = None if j.axis is None else _axis(j.axis, spec.units.angle, name)
+            joints.append(CamContact(name, links, j.profile, j.follower, point=at,
+                                     radius=float(j.radius or 0.0), axis=axis, mate=j.mate))
+        elif isinstance(j, schema.RollingSpec):
+            joints.append(RollingContact(name, links, tuple(j.profiles)))
         elif isinstance(j, schema.GearSpec):
             radii = tuple(float(r) for r in j.radii)
             if j.kind != "rack" and len(radii) != 2:
@@ -184,7 +203,7 @@ def _build(spec: schema.MechanismFile, text: str, source: str) -> Mechanism:
         drivers.append({"joint": d.joint, "reference": d.reference, "law": law})
     return Mechanism.build(name=spec.name, points=spec.points, links=spec.links, joints=joints,
                            drivers=drivers, frame=spec.frame, length_unit=unit,
-                           description=spec.description)
+                           description=spec.description, profiles=profiles)
 
 
 def dump_schema() -> str:

@@ -10,6 +10,8 @@ from typing import Annotated, Literal, Union
 
 from pydantic import BaseModel, ConfigDict, Field, field_validator
 
+from .profiles import ProfileSpec
+
 Number = Union[float, int]
 Coordinates = Annotated[list[Number], Field(min_length=2, max_length=2)]
 # an axis is a direction vector [x, y] or an angle (degrees unless a unit is written)
@@ -61,8 +63,30 @@ class GearSpec(_Strict):
     point: str | None = None
 
 
+class CamSpec(_Strict):
+    type: Literal["cam"]
+    links: Annotated[list[str], Field(min_length=2, max_length=2)] = Field(
+        description="the link carrying the profile, then the follower")
+    profile: str = Field(description="the profile (a [profiles] name) carried by the first link")
+    follower: Literal["roller", "knife", "flat", "profile"] = Field(
+        description="the follower's element: a roller (circle of `radius` about `point`), a knife "
+                    "edge at `point`, a flat face through `point` along `axis`, or the profile `mate`")
+    point: str | None = Field(None, description="roller centre, knife tip or a point of the flat "
+                                                "face, carried by the follower; defaults to the joint's name")
+    radius: Number | None = Field(None, description="roller radius")
+    axis: Axis | None = Field(None, description="direction of the flat face, fixed in the follower")
+    mate: str | None = Field(None, description="the follower's profile (follower = \"profile\")")
+
+
+class RollingSpec(_Strict):
+    type: Literal["rolling"]
+    links: Annotated[list[str], Field(min_length=2, max_length=2)]
+    profiles: Annotated[list[str], Field(min_length=2, max_length=2)] = Field(
+        description="the profile of each link; they touch in the drawing and roll without slip")
+
+
 JointSpec = Annotated[
-    Union[RevoluteSpec, PrismaticSpec, SlotSpec, CircularSlotSpec, GearSpec],
+    Union[RevoluteSpec, PrismaticSpec, SlotSpec, CircularSlotSpec, GearSpec, CamSpec, RollingSpec],
     Field(discriminator="type"),
 ]
 
@@ -93,6 +117,8 @@ class MechanismFile(_Strict):
     units: Units = Units()
     frame: str = "frame"
     points: dict[str, Coordinates]
+    profiles: dict[str, ProfileSpec] = Field(
+        default_factory=dict, description="curves carried by links, for higher pairs (cam, rolling)")
     links: dict[str, list[str]]
     joints: dict[str, JointSpec]
     driver: DriverSpec | None = None

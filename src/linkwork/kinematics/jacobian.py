@@ -5,6 +5,11 @@ differentiated with respect to the poses (x, y, θ) of all moving links at once,
 with direction seeds that `groups.group_jacobian` uses for one group. At the design position
 every link pose is (0, 0, 0), since each link's own coordinates coincide with the frame's there.
 
+A higher pair's equations also contain its contact coordinates (`contact`), which belong to no
+link: they are eliminated here. Of the pair's rows only the combinations that do not move the
+contact coordinates are kept (the left null space of their columns): the cam's one equation
+(the elements stay in touch) and the rolling pair's two. So the columns stay the link poses.
+
 Its rank gives the real (instantaneous) mobility of the mechanism, whatever the counting rules
 say; its row space tells which pair equations are redundant (over-closed chains, German
 *übergeschlossen*, Latvian *pārāk slēgtas ķēdes*). `linkwork.structure.mobility` reads it.
@@ -18,8 +23,9 @@ import numpy as np
 
 from ..model import Joint, Mechanism
 from ..topology import Group
+from . import contact
 from .constraints import joint_residuals
-from .groups import State, _pose_fn, group_jacobian
+from .groups import State, _pose_fn, group_jacobian, least_squares, residual_and_jacobian
 
 #: names of the residual equations of each pair kind, in the order `joint_residuals` returns them
 EQUATIONS = {
@@ -28,6 +34,8 @@ EQUATIONS = {
     "slot": ("normal",),
     "circular-slot": ("radius",),
     "gear": ("rolling",),
+    "cam": ("contact",),
+    "rolling": ("contact", "rolling"),
 }
 
 #: relative singular-value threshold below which a direction counts as free
@@ -83,7 +91,9 @@ def constraint_jacobian(mech: Mechanism, poses: np.ndarray | None = None, *, dri
     moving = mech.moving_links
     names = tuple(j.name for j in mech.joints) if joints is None else tuple(joints)
     drv = tuple(d.joint for d in mech.drivers) if drivers else ()
-    group = Group(links=moving, joints=names, drivers=drv)
+    higher = tuple(jn for jn in names if contact.is_higher(mech.joint(jn)))
+    group = Group(links=moving + tuple(contact.row_name(mech.joint(jn)) for jn in higher),
+                  joints=names, drivers=drv)
     state = _state(mech, poses)
     rows: list[tuple[str, str]] = []
     for jn in names:
@@ -93,11 +103,50 @@ def constraint_jacobian(mech: Mechanism, poses: np.ndarray | None = None, *, dri
     if not moving or not rows:
         J = np.zeros((len(rows), len(cols)))
     else:
-        J = group_jacobian(state, group)[0]
+        J = _eliminate_contacts(mech, names, group_jacobian(state, group)[0], len(moving))
     J = np.asarray(J, dtype=float).reshape(len(rows), len(cols))
     Js = J.copy()
     Js[:, 2::3] /= mech.length_scale
     return DesignJacobian(J, Js, tuple(rows), cols)
+
+
+def _row_counts(mech: Mechanism, names: tuple[str, ...]) -> list[int]:
+    """Rows each pair's `joint_residuals` returns."""
+    return [contact.contact_row_count(mech.joint(jn)) if contact.is_higher(mech.joint(jn))
+            else len(equation_names(mech.joint(jn))) for jn in names]
+
+
+def _eliminate_contacts(mech: Mechanism, names: tuple[str, ...], J: np.ndarray, k: int) -> np.ndarray:
+    """The Jacobian on the link poses alone: each higher pair's rows reduced to the
+    combinations in which its contact coordinates do not appear."""
+    out, at, c = [], 0, 0
+    for jn, n in zip(names, _row_counts(mech, names)):
+        block = J[at:at + n]
+        if contact.is_higher(mech.joint(jn)):
+            Jc = block[:, 3 * (k + c):3 * (k + c) + 3]
+            U = np.linalg.svd(Jc)[0]
+            block = U[:, 3:].T @ block
+            c += 1
+        out.append(block[:, :3 * k])
+        at += n
+    out.append(J[at:, :3 * k])  # the drivers
+    return np.vstack(out)
+
+
+def _close_contacts(mech: Mechanism, state: State) -> None:
+    """Contact coordinates of every higher pair at the link poses in `state`: those that bring
+    its elements closest (Gauss–Newton on the pair's rows, from the design contact)."""
+    for j in mech.joints:
+        if not contact.is_higher(j):
+            continue
+        g = Group(links=(contact.row_name(j),), joints=(j.name,), drivers=())
+        i = state.li(contact.row_name(j))
+        for _ in range(30):
+            r, Jc = residual_and_jacobian(state, g)
+            step = least_squares(Jc, -r)
+            state.Q[0][:, i, :] += step
+            if np.abs(step).max() <= 1e-15 * mech.length_scale:
+                break
 
 
 def design_jacobian(mech: Mechanism, *, drivers: bool = False,
@@ -109,15 +158,22 @@ def design_jacobian(mech: Mechanism, *, drivers: bool = False,
 def pair_residuals(mech: Mechanism, poses: np.ndarray) -> np.ndarray:
     """All pair residuals (length units, rows as in `constraint_jacobian`) at `poses`."""
     state = _state(mech, poses)
+    _close_contacts(mech, state)
     pose = _pose_fn(state, (), None, 0)
     out: list[float] = []
     for j in mech.joints:
-        out.extend(float(np.ravel(r.c[0])[0]) for r in joint_residuals(mech, j, pose))
+        res = np.array([float(np.ravel(r.c[0])[0]) for r in joint_residuals(mech, j, pose)])
+        if contact.is_higher(j):
+            # what the contact coordinates cannot close: the gap between the elements
+            g = Group(links=(contact.row_name(j),), joints=(j.name,), drivers=())
+            U = np.linalg.svd(residual_and_jacobian(state, g)[1][0])[0]
+            res = U[:, 3:].T @ res
+        out.extend(res)
     return np.array(out)
 
 
 def _state(mech: Mechanism, poses: np.ndarray | None) -> State:
-    Q = np.zeros((2, 1, len(mech.links), 3))
+    Q = np.zeros((2, 1, len(contact.rows(mech)), 3))
     if poses is not None:
         for ln, q in zip(mech.moving_links, np.asarray(poses, dtype=float).reshape(-1, 3)):
             Q[0, 0, mech.link_index[ln]] = q
