@@ -169,7 +169,8 @@ def report(sol, name: str) -> dict[str, np.ndarray]:
 
     `u`, `v`: contact parameters on the profile of links[0] and on the follower's element (the
     mate profile; the place along a flat face from its point; 0 for a roller or knife);
-    `point`: the contact point; `normal`: the unit common normal, from links[0]'s profile
+    `point`: the contact point; `point_on_profile`, `point_on_follower`: the same point in the
+    coordinates of links[0] and of links[1] (where it lies on each element); `normal`: the unit common normal, from links[0]'s profile
     towards the follower; `curvature`: the signed curvature of links[0]'s profile at the contact
     (positive where it turns left with increasing u); `profile_speed` and `follower_speed`: how
     fast the contact point runs along each element, relative to the link carrying it;
@@ -198,8 +199,8 @@ def report(sol, name: str) -> dict[str, np.ndarray]:
     kappa = (t_local[:, 0] * D[2][:, 1] - t_local[:, 1] * D[2][:, 0]) / speed**3
     normal = _perp(tangent) * d.sign if not (isinstance(j, CamContact) and j.follower == "flat") \
         else _perp(tangent) * np.sign(np.einsum("ij,ij->i", _perp(tangent), _normal_flat(sol, j, d)))[:, None]
-    out = {"u": u, "point": point, "normal": normal, "curvature": kappa,
-           "profile_speed": speed * u_dot}
+    out = {"u": u, "point": point, "point_on_profile": D[0], "point_on_follower": sol.local(b, point),
+           "normal": normal, "curvature": kappa, "profile_speed": speed * u_dot}
     # velocities of the two links' material points at the contact
     vb_point = sol.point_on(b, sol.local(b, point)).velocity
     va_point = sol.point_on(a, sol.local(a, point)).velocity
