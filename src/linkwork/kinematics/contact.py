@@ -71,9 +71,18 @@ def rolling_sense(mech: Mechanism, name: str) -> float:
     return 1.0 if float(t1 @ t2) >= 0 else -1.0
 
 
+def _once(u0: np.ndarray) -> np.ndarray:
+    """The parameter values to evaluate a profile at: a Jacobian's jets repeat each sample's
+    value along their last axis (one column per direction), so evaluate one column and let
+    `Jet.compose` broadcast it (the profile is the costliest part of a contact's rows)."""
+    if u0.ndim >= 2 and u0.shape[-1] > 1 and (u0 == u0[..., :1]).all():
+        return u0[..., :1]
+    return u0
+
+
 def _curve(profile, u: Jet, order: int) -> tuple[Jet, Jet, Jet, Jet]:
     """Jets of c(u) and c′(u) (x and y each) for the parameter jet u."""
-    D = profile.derivatives(u.c[0], order + 1)
+    D = profile.derivatives(_once(u.c[0]), order + 1)
     c = u.compose(D[: order + 1])
     t = u.compose(D[1: order + 2])
     return Jet(c.c[..., 0]), Jet(c.c[..., 1]), Jet(t.c[..., 0]), Jet(t.c[..., 1])
@@ -81,13 +90,13 @@ def _curve(profile, u: Jet, order: int) -> tuple[Jet, Jet, Jet, Jet]:
 
 def _arc_length(profile, u: Jet, order: int) -> Jet:
     """Jet of the arc length s(u): s(u₀) from the profile, its u-derivatives from |c′(u)|."""
-    D = profile.derivatives(u.c[0], order)  # c, c′, …, c⁽ᵒʳᵈᵉʳ⁾
+    D = profile.derivatives(_once(u.c[0]), order)  # c, c′, …, c⁽ᵒʳᵈᵉʳ⁾
     # |c′(u₀ + δ)| as a series in δ, then s⁽ᵐ⁺¹⁾(u₀) = m!·(its m-th coefficient)
     tx = Jet.from_derivatives(D[1:, ..., 0])
     ty = Jet.from_derivatives(D[1:, ..., 1])
     speed = (tx * tx + ty * ty).sqrt()
-    derivs = np.empty((order + 1,) + u.c.shape[1:])
-    derivs[0] = profile.arc_length(u.c[0])
+    derivs = np.empty((order + 1,) + D.shape[1:-1])
+    derivs[0] = profile.arc_length(_once(u.c[0]))
     for m in range(order):
         derivs[m + 1] = speed.derivative(m)
     return u.compose(derivs)
