@@ -19,7 +19,7 @@ from pydantic import ValidationError
 from ..errors import InputError, MechanismFileError, ModelError, UnknownMechanismError
 from ..model import (CamContact, CircularSlot, ConstantSpeed, Gear, Mechanism, PolynomialLaw,
                      Prismatic, Revolute, RollingContact, Slot, TabulatedLaw)
-from ..units import check_length_unit, parse_quantity
+from ..units import check_length_unit, parse_quantity, unit_dimension
 from . import schema
 from .profiles import build_profile
 
@@ -168,7 +168,7 @@ def _dotted(loc: tuple) -> str:
 
 
 def _did_you_mean(name: str, known) -> str:
-    close = difflib.get_close_matches(name, list(known), n=1, cutoff=0.6)
+    close = difflib.get_close_matches(name, list(known), n=1, cutoff=0.5)
     if close:
         return f" (did you mean '{close[0]}'?)"
     known = sorted(known)
@@ -251,8 +251,8 @@ def _key_of_message(message: str, spec: schema.MechanismFile) -> tuple | None:
     if words and words[0] == "driver":
         for loc, d in _driver_keys(spec):
             if d.joint == name:
-                sub = next((k for k in ("speed", "law", "reference") if rest.lstrip(" :").startswith(k)
-                            or (k == "law" and "law" in rest.split(":", 1)[-1][:20])), None)
+                sub = next((k for k in ("speed", "law", "reference")
+                            if rest.lstrip(" :").startswith(k)), None)
                 return loc + ((sub,) if sub else ())
         return None
     if words == ["link"] and name in spec.links:
@@ -278,9 +278,12 @@ def _axis(value, angle_unit: str, where: str) -> np.ndarray:
 
 
 def _angle_in_rad(value, angle_unit: str, kind: str) -> float:
+    """An angle in radians: a number or a string in the file's angle unit, or a string with its
+    own unit ('30 deg', '0.5 rad')."""
     if isinstance(value, str):
-        return parse_quantity(value, default_unit="rad", kind=kind) if any(c.isalpha() for c in value) \
-            else _angle_in_rad(float(value), angle_unit, kind)
+        if unit_dimension(value, kind) is not None:
+            return parse_quantity(value, default_unit="rad", kind=kind)
+        value = parse_quantity(value, default_unit="rad", kind=kind)
     return float(value) if angle_unit.startswith("rad") else float(np.radians(value))
 
 
