@@ -139,6 +139,8 @@ class MotionLawShape:
         x = np.asarray(x, dtype=float)
         out = np.empty((order + 1,) + x.shape)
         starts = np.array([p.x0 for p in self.pieces])
+        for b in starts[1:]:  # a join reached through rounding (φ scaled by the segment) is the join
+            x = np.where(np.abs(x - b) <= 1e-13, b, x)
         i = np.searchsorted(starts, x, side="right" if side > 0 else "left") - 1
         i = np.clip(i, 0, len(self.pieces) - 1)
         for n, piece in enumerate(self.pieces):
