@@ -42,12 +42,10 @@ __all__ = ["CamReport", "analyse", "follower_diagrams", "pressure_angle", "radiu
 
 # ---------------------------------------------------------------------------- diagrams
 def follower_diagrams(cam: DiscCam, phi: np.ndarray, speed: float = 1.0, side: int = 1) -> dict[str, np.ndarray]:
-    """The follower's displacement s (a length, or the lever's angle from its rest position
-    for an oscillating follower), velocity v, acceleration a and jerk j at cam angles φ for a
-    cam turning at the constant `speed` ω (rad/s): the k-th time derivative is ωᵏ·dᵏs/dφᵏ."""
+    """The follower's lift s (a length, or for an oscillating follower the lever's swing away
+    from its rest position, radians), velocity v, acceleration a and jerk j at cam angles φ for
+    a cam turning at the constant `speed` ω (rad/s): the k-th time derivative is ωᵏ·dᵏs/dφᵏ."""
     d = cam.program.derivatives(np.asarray(phi, dtype=float), 3, side)
-    if cam.motion == "oscillating":
-        d = cam.rocker_sense * d
     w = float(speed)
     return {"s": d[0], "v": w * d[1], "a": w**2 * d[2], "j": w**3 * d[3]}
 
@@ -392,8 +390,12 @@ def mechanism_text(cam: DiscCam, *, name: str = "Designed disc cam", speed: str 
     else:
         nu = cam.face_normal()
         contact = f'follower = "flat", point = "C", axis = {_n(np.degrees(np.arctan2(nu[0], -nu[1])))}'
-    desc = description or (f"A disc cam designed from its motion program ({prog!r}); "
-                           f"{cam.motion} {cam.follower} follower; written by `linkwork cam design`.")
+    unit = "°" if osc else f" {length_unit}"
+    plan = ", ".join(f"{s.kind} {_n(np.degrees(s.extent))}°" + (
+        "" if s.kind == "dwell" else f" by {_n(np.degrees(s.lift) if osc else s.lift)}{unit} ({s.law})")
+        for s in prog.segments)
+    desc = description or (f"A disc cam designed from its follower's motion program: {plan}; "
+                           f"{cam.motion} {cam.follower} follower. Written by `linkwork cam design`.")
     return "\n".join([
         f"name = {_toml_str(name)}",
         f"description = {_toml_str(desc)}",
