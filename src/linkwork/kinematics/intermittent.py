@@ -31,7 +31,7 @@ from ..model.intermittent import (DWELL, ENGAGED, ENTRY, EXIT, GEAR, PHASES, SLO
                                   IndexingSchedule, indexing_schedule, is_intermittent)
 from .jet import Jet
 
-__all__ = ["Engagement", "Event", "engagement", "is_intermittent", "report", "residuals",
+__all__ = ["Engagement", "Event", "contact_normal", "engagement", "is_intermittent", "report", "residuals",
            "transmission", "wheel_angle"]
 
 
@@ -189,6 +189,36 @@ def report(sol, name: str) -> dict[str, np.ndarray]:
     with np.errstate(invalid="ignore", divide="ignore"):
         out["ratio"] = w[1] / d[1]
     return out
+
+
+def contact_normal(sol, name: str) -> tuple[np.ndarray, np.ndarray]:
+    """A point X (N, 2) and unit direction (N, 2) of a line through the relative pole of driver
+    and wheel, from the geometry alone: on a slot, the normal to the slot at the pin (Rosenauer
+    §65); in the pin gear, the normal to the line of centres at the pitch point (the law of
+    gearing puts the flanks' common normal through it); locked, the normal to the line of
+    centres at the driver's pivot (the wheel rests on the carrier, so the driver turns about
+    its pivot relative to it). The pole lies where this line meets the line of centres."""
+    mech = sol.mechanism
+    j = mech.joint(name)
+    sch = schedule(mech, name)
+    d, _ = _relative_rates(sol, j)
+    f = _phase_data(sch, d[0])
+    Mw = sol.point_on(j.carrier, sch.M).position
+    Cw = sol.point_on(j.carrier, sch.C).position
+    centres = (Cw - Mw) / sch.D
+    X = Mw.copy()
+    gear = f["kind"] == GEAR
+    X[gear] = Mw[gear] + f["radius"][gear, None] * centres[gear]
+    along = centres.copy()
+    on_slot = np.isin(f["kind"], SLOT_PHASES)
+    for i, p in enumerate(sch.pins):
+        here = on_slot & (f["pin"] == i)
+        B = sol.point_on(j.links[0], mech.points[p]).position
+        X[here] = B[here]
+        along[here] = B[here] - Cw[here]
+    n = np.stack([-along[:, 1], along[:, 0]], axis=1)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        return X, n / np.hypot(n[:, 0], n[:, 1])[:, None]
 
 
 # ---------------------------------------------------------------------------- the report
