@@ -208,7 +208,12 @@ def _pivot(mech: "Mechanism", pair: IntermittentPair, link: str, role: str) -> s
 
 def _entry_phi(r: float, D: float, psi_e: float) -> float:
     """Driver angle from the line of centres at which a pin of radius r meets a slot lying ψₑ
-    from the line of centres: where the pin circle cuts the slot line nearer to C."""
+    from the line of centres: where the pin circle cuts the slot line nearer to C. A pin
+    circle drawn tangent to the slot line (to the drawing's precision) enters along the slot,
+    where its bearing from C turns back: cos φₑ = r/D (computed so, as the general formula
+    would lose half the digits there)."""
+    if abs(r - D * np.sin(psi_e)) <= TOL * D:
+        return float(np.arccos(r / D))
     disc = max(r * r - (D * np.sin(psi_e)) ** 2, 0.0)
     rho = D * np.cos(psi_e) - np.sqrt(disc)  # distance of the meeting point from C
     return float(np.arccos(np.clip((D * D + r * r - rho * rho) / (2 * D * r), -1.0, 1.0)))
