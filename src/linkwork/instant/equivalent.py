@@ -270,7 +270,7 @@ def _substitute(eq: EquivalentLinkage, n: int, points: dict, links: dict, taken:
     links[rack].append(x)
     links[cpl].append(x)
     out.append(Prismatic(names["P"], x, (cpl, rack), t))
-    out.append(Gear(names["G"], (pinion, rack), cpl, (r,), "rack", point=x))
+    out.append(Gear(names["G"], (pinion, rack), cpl, (r, np.inf), "rack", point=x))
     return out
 
 
