@@ -13,7 +13,7 @@ Accuracy against closed forms, derived here and not by either library:
   y″ = R″ω² from the law's derivatives;
 - roller: the roller centre sits where a circle of radius ρ, centred on the follower's line,
   last touches the cam: y = max over the profile points p(θ) of p·e + √(ρ² − (p × e)²) (e the
-  line's direction in the cam), found per sample by a grid and golden-section search; its
+  line's direction in the cam), found per sample by a grid, a golden-section search and Newton's method; its
   velocity by the envelope theorem (the partial derivative at the touching point). pylinkage
   puts the roller centre at R(φ) + ρ, which is right only where the radius does not change.
 
@@ -121,6 +121,13 @@ def roller_closed_form(phi: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         return np.where(np.abs(rs) <= RHO, r * np.cos(d) + np.sqrt(np.maximum(RHO**2 - rs**2, 0.0)),
                         -np.inf)
 
+    def dh_dtheta(theta, a):
+        r, r1 = profile_radius(theta, 1)
+        d = theta - a
+        sn, cs = np.sin(d), np.cos(d)
+        w = np.sqrt(RHO**2 - (r * sn) ** 2)
+        return r1 * cs - r * sn - (r * r1 * sn * sn + r * r * sn * cs) / w
+
     span = math.asin(RHO / BASE) * 1.05
     grid = np.linspace(-span, span, 241)
     best = np.empty_like(phi)
@@ -140,6 +147,12 @@ def roller_closed_form(phi: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         x1, f1, x2, f2 = (np.where(left, xn, x2), np.where(left, fn, f2),
                           np.where(left, x1, xn), np.where(left, f1, fn))
     theta = (lo_ + hi_) / 2
+    # the search finds θ to √ε only (h is flat there); Newton's method on ∂h/∂θ = 0 (its
+    # derivative by a central difference) gives the digits the velocity needs
+    for _ in range(3):
+        g0 = dh_dtheta(theta, alpha)
+        eps = 1e-6
+        theta = theta - g0 * 2 * eps / (dh_dtheta(theta + eps, alpha) - dh_dtheta(theta - eps, alpha))
     y = h(theta, alpha)
     # envelope theorem: dy/dφ = −∂h/∂α at the touching point
     r = profile_radius(theta, 0)[0]
