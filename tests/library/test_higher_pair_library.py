@@ -278,3 +278,48 @@ def test_poeschl_check_criterion_over_the_lift():
     assert rise == pytest.approx(LIFT, abs=1e-6)
     assert peak > 0
     assert abs(total) <= 1e-9 * peak * LIFT
+
+
+# ---------------------------------------------------------------------------- elliptical gears
+def test_elliptical_gears_follow_the_focal_rolling_law():
+    """Two equal ellipses (a, e; p = a(1 − e²)) about their foci 2a apart. Seen from its focus an
+    ellipse is r = p/(1 + e cos ϑ), ϑ from the near vertex. Wheel 1, turned by φ from touching with
+    its far vertex, reaches the line of centres with r1 = p/(1 − e cos φ); rolling keeps the
+    contact there (it is the relative pole), so wheel 2 touches with r2 = 2a − r1 = p/(1 + e cos ψ).
+    Eliminating: cos ψ = ((1 + e²) cos φ − 2e)/(1 + e² − 2e cos φ), hence
+    (1 − cos ψ)/(1 + cos ψ) = ((1 + e)/(1 − e))²(1 − cos φ)/(1 + cos φ), i.e.
+    tan(ψ/2) = (1 + e)/(1 − e)·tan(φ/2), wheel 2 turning the other way; ω2/ω1 = −r1/r2, between
+    −(1 + e)/(1 − e) (φ = 0) and −(1 − e)/(1 + e) (φ = π)."""
+    m = mech("elliptical-gears")
+    a, b = 50.0, 40.0
+    e = np.sqrt(1 - (b / a) ** 2)
+    p = a * (1 - e * e)
+    assert e == pytest.approx(0.6)
+    phi = np.radians(np.arange(-179.0, 180.0, 1.0) + 0.25)
+    sol = linkwork.solve(m, phi)
+    assert (sol.status == Status.OK).all()
+    psi = -sol.pose_derivatives("wheel2")[0, :, 2]
+    np.testing.assert_allclose(np.tan(psi / 2), (1 + e) / (1 - e) * np.tan(phi / 2), rtol=1e-9)
+    r1 = p / (1 - e * np.cos(phi))
+    ratio = sol.link("wheel2").omega / sol.link("wheel1").omega
+    np.testing.assert_allclose(ratio, -r1 / (2 * a - r1), rtol=1e-9)
+    ends = linkwork.solve(m, np.array([0.0, np.pi]))
+    r = ends.link("wheel2").omega / ends.link("wheel1").omega
+    assert r == pytest.approx([-(1 + e) / (1 - e), -(1 - e) / (1 + e)], rel=1e-9)
+    # the contact is the relative pole: on the line of centres at r1 from O1, and nothing slides
+    rep = sol.joint("mesh")
+    np.testing.assert_allclose(rep["point"], np.c_[r1, np.zeros_like(r1)], atol=1e-9 * a)
+    np.testing.assert_allclose(rep["sliding_velocity"], 0.0, atol=1e-9 * a)
+    # the axle's link stands still: wheel 2 turns about its focus O2
+    np.testing.assert_allclose(sol.point("O2").position, np.tile(m.points["O2"], (phi.size, 1)), atol=1e-9 * a)
+    np.testing.assert_allclose(sol.link("axle").omega, 0.0, atol=1e-9)
+
+
+def test_elliptical_gears_counts():
+    """Rosenauer's count with a self-closed higher pair (h = 2h_p): n = 4, g = 3, h = 2:
+    2 + 2·3 − 3·4 + 4 = 0, constrained."""
+    from linkwork.structure.mobility import counts
+
+    c = counts(mech("elliptical-gears"))
+    assert (c.n, c.g, c.s, c.h_n, c.h_p, c.h) == (4, 3, 0, 0, 1, 2)
+    assert c.criterion == 0 and c.constrained
