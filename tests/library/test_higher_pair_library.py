@@ -323,3 +323,110 @@ def test_elliptical_gears_counts():
     c = counts(mech("elliptical-gears"))
     assert (c.n, c.g, c.s, c.h_n, c.h_p, c.h) == (4, 3, 0, 0, 1, 2)
     assert c.criterion == 0 and c.constrained
+
+
+# ---------------------------------------------------------------------------- rolling lever
+K1_RL, R1_RL, R2_RL = np.array([310.0, -300.0]), 300.0, 200.0  # the bank's centre and radius, the lever's radius
+
+
+def _line_cross(P, d, Q, e):
+    """Intersection of the lines P + s·d and Q + t·e (rows: samples)."""
+    den = d[:, 0] * e[:, 1] - d[:, 1] * e[:, 0]
+    w = Q - P
+    s = (w[:, 0] * e[:, 1] - w[:, 1] * e[:, 0]) / den
+    return P + s[:, None] * d
+
+
+def _cross(a, b):
+    return a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0]
+
+
+def test_rolling_lever_counts():
+    """Rosenauer §98 Ex. 32 and §109: n = 5, g = 4, s = 1, h = 1: 1 + 2·5 − 3·5 + 4 = 0."""
+    from linkwork.structure.mobility import counts
+
+    c = counts(mech("rolling-lever-valve-gear"))
+    assert (c.n, c.g, c.s, c.h_n, c.h_p, c.h) == (5, 4, 1, 1, 0, 1)
+    assert c.criterion == 0 and c.constrained
+
+
+def test_rolling_lever_equals_its_equivalent_linkage():
+    """Pöschl §53, Rosenauer §121 Method II: with circular arcs the lever's centre K2 stays at
+    R1 + R2 from the bank's centre K1, so the bar K1K2 replaces the higher pair exactly; the
+    six-bar of lower pairs moves as the gear at every crank angle."""
+    from linkwork.model import Mechanism, Prismatic, Revolute
+
+    m = mech("rolling-lever-valve-gear")
+    P = dict(m.points)
+    assert np.hypot(*(P["K2"] - K1_RL)) == pytest.approx(R1_RL + R2_RL)
+    P["K1"] = K1_RL
+    six = Mechanism.build(
+        name="equivalent six-bar", points=P,
+        links={"frame": ["O", "K1"], "crank": ["O", "A"], "rod": ["A", "D"], "lever": ["D", "B", "K2"],
+               "bar": ["K1", "K2"], "valve": ["B", "V"]},
+        joints=[Revolute("O", "O", ("frame", "crank")), Revolute("A", "A", ("crank", "rod")),
+                Revolute("D", "D", ("rod", "lever")), Revolute("B", "B", ("lever", "valve")),
+                Revolute("K1", "K1", ("frame", "bar")), Revolute("K2", "K2", ("bar", "lever")),
+                Prismatic("guide", "V", ("frame", "valve"), np.array([0.0, 1.0]))],
+        drivers=[{"joint": "O", "law": m.drivers[0].law}])
+    phi = np.radians(np.arange(0.0, 360.0, 3.0) + 0.4)
+    a, b = linkwork.solve(m, phi, order=3), linkwork.solve(six, phi, order=3)
+    assert (a.status == Status.OK).all() and (b.status == Status.OK).all()
+    for p in ("B", "D", "K2"):
+        for k, tol in (("position", 1e-9), ("velocity", 1e-8), ("acceleration", 1e-7), ("jerk", 1e-6)):
+            np.testing.assert_allclose(getattr(a.point(p), k), getattr(b.point(p), k), atol=tol * 500,
+                                       err_msg=f"{p} {k}")
+    # the valve's lift is a real one
+    assert np.ptp(a.point("B").position[:, 1]) > 40
+
+
+def test_rolling_lever_pole_sliding_and_inflection_circle():
+    """Rosenauer 1937 paper 8 and §109/§121 Task 3 on the lever 3:
+
+    - its pole P35 is where the normal to the slide through B meets the common normal at E (for
+      circular arcs the line K1K2): the lever's point there stands still;
+    - the sliding velocity at E is |E P35|·ω3, and the contact runs along the bank at R1·Ω, Ω the
+      angular velocity of K1K2 (|P K2|·ω3/(R1 + R2));
+    - Euler–Savary on the common normal, 1/PW = 1/PCα − 1/PCe (Cα = K2 the lever's curvature
+      centre, Ce = K1 the bank's; abscissae from P), gives the inflection point W: the lever's point
+      there moves with zero path curvature; the inflection circle through P, B and W has the
+      inflection pole W0 diametrically opposite P, and the lever's point at P accelerates by
+      ω3²·(W0 − P) (the pole acceleration)."""
+    m = mech("rolling-lever-valve-gear")
+    phi = np.radians(np.arange(0.0, 360.0, 5.0) + 0.4)
+    sol = linkwork.solve(m, phi)
+    B = sol.point("B").position
+    K2 = sol.point("K2").position
+    K1 = np.broadcast_to(K1_RL, B.shape)
+    n = K2 - K1
+    P = _line_cross(B, np.tile([1.0, 0.0], (len(B), 1)), K1, n)
+    w3 = sol.link("lever").omega
+    lever = lambda Q: sol.point_on("lever", sol.local("lever", Q))  # noqa: E731
+    np.testing.assert_allclose(lever(P).velocity, 0.0, atol=1e-8 * 500 * np.abs(w3).max())
+    rep = sol.joint("E")
+    E = rep["point"]
+    np.testing.assert_allclose(_cross(E - K1, n), 0.0, atol=1e-8 * 500 * 500)  # E on K1K2
+    np.testing.assert_allclose(np.abs(rep["sliding_velocity"]), np.hypot(*(E - P).T) * np.abs(w3),
+                               rtol=1e-8, atol=1e-9)
+    Omega = np.hypot(*(P - K2).T) * np.abs(w3) / (R1_RL + R2_RL)
+    np.testing.assert_allclose(np.abs(rep["profile_speed"]), R1_RL * Omega, rtol=1e-8, atol=1e-9)
+    # Euler–Savary: abscissae along the unit normal from P
+    un = n / np.hypot(*n.T)[:, None]
+    pa, pe = ((K2 - P) * un).sum(1), ((K1 - P) * un).sum(1)
+    W = P + (1.0 / (1.0 / pa - 1.0 / pe))[:, None] * un
+    vw, aw = lever(W).velocity, lever(W).acceleration
+    np.testing.assert_allclose(_cross(vw, aw) / (np.hypot(*vw.T) ** 2 * np.hypot(*aw.T)), 0.0, atol=1e-8)
+    # the inflection circle through P, B, W; W0 opposite P; the pole point's acceleration
+    centre = _circumcentre(P, B, W)
+    W0 = 2 * centre - P
+    np.testing.assert_allclose(W0[:, 0], B[:, 0], atol=1e-7 * 500)  # on the slide line through B
+    np.testing.assert_allclose(lever(P).acceleration, (w3**2)[:, None] * (W0 - P),
+                               atol=1e-7 * 500 * (w3**2).max())
+
+
+def _circumcentre(A, B, C):
+    a2, b2, c2 = (A * A).sum(1), (B * B).sum(1), (C * C).sum(1)
+    d = 2 * (A[:, 0] * (B[:, 1] - C[:, 1]) + B[:, 0] * (C[:, 1] - A[:, 1]) + C[:, 0] * (A[:, 1] - B[:, 1]))
+    ux = (a2 * (B[:, 1] - C[:, 1]) + b2 * (C[:, 1] - A[:, 1]) + c2 * (A[:, 1] - B[:, 1])) / d
+    uy = (a2 * (C[:, 0] - B[:, 0]) + b2 * (A[:, 0] - C[:, 0]) + c2 * (B[:, 0] - A[:, 0])) / d
+    return np.c_[ux, uy]
