@@ -305,7 +305,7 @@ def _build(spec: schema.MechanismFile, text: str, source: str, base_dir: Path | 
             joints.append(StarWheelPair(name, links, tuple(tuple(g) for g in j.groups), j.carrier,
                                         entry))
             continue
-        point = j.point or name
+        point = getattr(j, "point", None) or name  # a rolling pair has no point
         if isinstance(j, schema.RevoluteSpec):
             joints.append(Revolute(name, point, links))
         elif isinstance(j, schema.PrismaticSpec):
