@@ -24,7 +24,7 @@ import numpy as np
 
 from ..model import ConstantSpeed, Driver, Mechanism, Prismatic, Revolute, Slot
 from ..topology import Group
-from . import contact, intermittent
+from . import cam_group, contact, intermittent
 from .constraints import driver_residual, joint_residuals
 from .jet import Jet
 
@@ -351,6 +351,9 @@ class GroupSolver:
                       if contact.is_higher(mech.joint(j)))
         self.mech, self.group = mech, replace(group, links=group.links + extra) if extra else group
         self.kind, self.parts = _classify(mech, group)
+        # a cam follower is solved in its own two unknowns (`cam_group`); the continuation still
+        # treats it as generic (its rows are the generic rows)
+        self.cam = cam_group.recognise(mech, group) if self.kind == "generic" else None
         self.fast  # noqa: B018  (computed once here; `plan` keeps the solver per mechanism)
 
     @property
@@ -558,6 +561,8 @@ class GroupSolver:
 
     def _pos_generic(self, state: State, guess: np.ndarray | None) -> np.ndarray:
         """Newton's method on the group alone, from `guess` (N, k, 3) poses."""
+        if self.cam is not None:
+            return cam_group.positions(self.cam, state, guess, NEWTON_TOL * self.mech.length_scale)
         idx = [state.li(ln) for ln in self.group.links]
         N = state.Q.shape[1]
         q = np.zeros((N, self.group.size, 3)) if guess is None else guess.copy()
@@ -596,6 +601,8 @@ class GroupSolver:
             if self.kind == "RRR":
                 return self._der_RRR(state, ok)
             return self._der_driver(state, ok)
+        if self.cam is not None:
+            return cam_group.derivatives(self.cam, state, ok, UNRELIABLE_CONDITION)
         return derivatives_generic(state, self.group, ok)
 
     def _der_driver(self, state: State, ok: np.ndarray) -> np.ndarray:
