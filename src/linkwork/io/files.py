@@ -17,8 +17,9 @@ import numpy as np
 from pydantic import ValidationError
 
 from ..errors import InputError, MechanismFileError, ModelError, UnknownMechanismError
-from ..model import (CamContact, CircularSlot, ConstantSpeed, Gear, Mechanism, PolynomialLaw,
-                     Prismatic, Revolute, RollingContact, Slot, TabulatedLaw)
+from ..model import (CamContact, CircularSlot, ConstantSpeed, Gear, GenevaPair, Mechanism,
+                     PolynomialLaw, Prismatic, Revolute, RollingContact, Slot, StarWheelPair,
+                     TabulatedLaw)
 from ..units import check_length_unit, parse_quantity, unit_dimension
 from . import schema
 from .profiles import build_profile
@@ -123,9 +124,10 @@ def load_text(text: str, *, source: str = "<text>", base_dir: Path | None = None
                                  line=_line_of(text, key) if key else None) from None
 
 
-_TAGS = {"revolute", "prismatic", "slot", "circular-slot", "gear", "cam", "rolling", "polynomial",
+_TAGS = {"revolute", "prismatic", "slot", "circular-slot", "gear", "cam", "rolling", "geneva",
+         "star-wheel", "polynomial",
          "table", "float", "int", "str", "circle", "ellipse", "path", "spline", "points", "line",
-         "involute", "archimedean-spiral", "logarithmic-spiral"}
+         "involute", "archimedean-spiral", "logarithmic-spiral", "cam-design"}
 
 
 def _clean(loc: tuple) -> tuple:
@@ -293,8 +295,17 @@ def _build(spec: schema.MechanismFile, text: str, source: str, base_dir: Path | 
                 for name, p in spec.profiles.items()}
     joints = []
     for name, j in spec.joints.items():
-        point = j.point or name
         links = tuple(j.links)
+        if isinstance(j, schema.GenevaSpec):
+            joints.append(GenevaPair(name, links, j.pin or name, j.slots, j.carrier))
+            continue
+        if isinstance(j, schema.StarWheelSpec):
+            entry = None if j.entry is None else tuple(
+                _angle_in_rad(a, spec.units.angle, f"joint '{name}' entry angle") for a in j.entry)
+            joints.append(StarWheelPair(name, links, tuple(tuple(g) for g in j.groups), j.carrier,
+                                        entry))
+            continue
+        point = getattr(j, "point", None) or name  # a rolling pair has no point
         if isinstance(j, schema.RevoluteSpec):
             joints.append(Revolute(name, point, links))
         elif isinstance(j, schema.PrismaticSpec):

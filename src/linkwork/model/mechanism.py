@@ -10,7 +10,8 @@ Pairs (German *Elementenpaare*, Latvian *kinēmatiskie pāri*):
 `Revolute` (hinge, *Drehpaar*), `Prismatic` (block on a guide, *Schubpaar*), `Slot` (pin in a
 straight slot, turning and sliding), `CircularSlot` (pin in a curved slot, *Kulisse*),
 `Gear` (pitch circles rolling, *Zahnräderpaar*); the higher pairs `CamContact` and
-`RollingContact` (`higher_pairs`) keep profiles (`geometry.profiles`) in contact.
+`RollingContact` (`higher_pairs`) keep profiles (`geometry.profiles`) in contact; the
+intermittent pairs `GenevaPair` and `StarWheelPair` (`intermittent`) change with the phase.
 """
 
 from __future__ import annotations
@@ -25,6 +26,7 @@ import numpy as np
 from ..errors import ModelError
 from ..geometry.profiles import Profile
 from .higher_pairs import CamContact, RollingContact, validate_higher_pair
+from .intermittent import GenevaPair, StarWheelPair, validate_intermittent
 from .laws import ConstantSpeed, MotionLaw, PolynomialLaw, TabulatedLaw
 
 _TOL = 1e-9
@@ -109,7 +111,8 @@ class Gear:
     kind = "gear"
 
 
-Joint = Union[Revolute, Prismatic, Slot, CircularSlot, Gear, CamContact, RollingContact]
+Joint = Union[Revolute, Prismatic, Slot, CircularSlot, Gear, CamContact, RollingContact, GenevaPair,
+              StarWheelPair]
 
 
 @dataclass(frozen=True)
@@ -300,6 +303,9 @@ class Mechanism:
     def _validate_joint(self, j: Joint) -> None:
         if isinstance(j, (CamContact, RollingContact)):
             validate_higher_pair(self, j)
+            return
+        if isinstance(j, (GenevaPair, StarWheelPair)):
+            validate_intermittent(self, j)
             return
         if isinstance(j, Gear):
             if j.carrier not in self.link_index:

@@ -38,12 +38,14 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import StructureError
-from ..model import Gear, Joint, Mechanism
+from ..model import Gear, Joint, Mechanism, is_intermittent
 
 #: degrees of freedom each pair removes (Grübler's g₁ pairs count 2, point contact pairs 1; a
-#: cam contact h = 1, a rolling contact, self-closed, h = 2 as Rosenauer §110 counts it)
+#: cam contact h = 1, a rolling contact, self-closed, h = 2 as Rosenauer §110 counts it; the
+#: intermittent pairs of Geneva and star wheels h = 1 in every phase: the pin on its slot, the
+#: pin gear, or the locking arc each leave the wheel no freedom of its own)
 PAIR_CONSTRAINTS = {"revolute": 2, "prismatic": 2, "slot": 1, "circular-slot": 1, "gear": 1,
-                    "cam": 1, "rolling": 2}
+                    "cam": 1, "rolling": 2, "geneva": 1, "star-wheel": 1}
 
 
 @dataclass(frozen=True)
@@ -65,7 +67,7 @@ class Group:
 
 
 def _involved(j: Joint) -> tuple[str, ...]:
-    return tuple(j.links) + ((j.carrier,) if isinstance(j, Gear) else ())
+    return tuple(j.links) + ((j.carrier,) if isinstance(j, Gear) or is_intermittent(j) else ())
 
 
 def constraint_count(joints: list[Joint], driver_joints: set[str],
