@@ -23,6 +23,7 @@ from rich.table import Table
 from typer.core import TyperCommand
 
 from ..errors import InputError, LinkworkWarning
+from ..outputs import write_output_file
 from ..units import parse_quantity
 from .common import err_console, user_errors
 
@@ -192,7 +193,7 @@ def register(app: typer.Typer) -> None:
                     rb = base_radius
                 cam = with_base_radius(cam, rb)
             text = mechanism_text(cam, name=name, speed=speed, length_unit=unit)
-            out.write_text(text, encoding="utf-8")
+            write_output_file(out, text)  # all or nothing, OSError as one line
             rep = analyse(cam, speed=w)
             if rep.cusps.size:
                 warnings.warn(LinkworkWarning(
