@@ -117,8 +117,7 @@ def _summary(report, cam, unit: str, check: float | None) -> Table:
         k = j.first_jump
         if k is not None and k <= 3:
             jump = conv(j.jumps[k - 1])
-            t.add_row(f"join at {np.degrees(j.angle):.3f}°", f"{names[k]} jumps by {jump:.6g} {lu}/rad{'²³'[k - 2] if k > 1 else ''} "
-                      "of cam angle")
+            t.add_row(f"join at {np.degrees(j.angle):.3f}°", f"{names[k]} jumps by {jump:.6g} {lu}/rad{'²³'[k - 2] if k > 1 else ''}")
     if check is not None:
         t.add_row("engine vs law (whole turn)", f"{check:.2e} of the lift")
     return t
