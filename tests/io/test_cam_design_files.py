@@ -41,7 +41,7 @@ cam = ["O", "M"]
 follower = ["C", "G"]
 [joints]
 O = {{ type = "revolute", links = ["frame", "cam"] }}
-G = {{ type = "prismatic", links = ["frame", "follower"], axis = 90 }}
+G = {{ type = "prismatic", links = ["frame", "follower"], axis = [0, 1] }}
 K = {{ type = "cam", links = ["cam", "follower"], profile = "disc", follower = "roller", point = "C", radius = 5 }}
 [driver]
 joint = "O"
