@@ -4,7 +4,9 @@ Nothing here computes motion; `linkwork.kinematics` solves a `Mechanism` into a 
 """
 
 from .higher_pairs import CamContact, DesignContact, HigherPair, RollingContact, design_contact
+from .disc_cams import DiscCam
 from .laws import ConstantSpeed, MotionLaw, PolynomialLaw, TabulatedLaw
+from .motion_programs import CamDesignError, MotionProgram, Segment
 from .mechanism import (
     CircularSlot,
     Driver,
@@ -18,7 +20,7 @@ from .mechanism import (
 )
 
 __all__ = [
-    "CamContact", "CircularSlot", "ConstantSpeed", "DesignContact", "HigherPair", "RollingContact",
+    "CamContact", "CamDesignError", "DiscCam", "MotionProgram", "Segment", "CircularSlot", "ConstantSpeed", "DesignContact", "HigherPair", "RollingContact",
     "design_contact", "Driver", "Gear", "Joint", "Link", "Mechanism", "MotionLaw",
     "PolynomialLaw", "Prismatic", "Revolute", "Slot", "TabulatedLaw",
 ]
