@@ -32,7 +32,7 @@ import numpy as np
 from scipy.optimize import brentq, minimize_scalar
 
 from ..errors import InputError
-from ..geometry.profiles import curvature, offset_cusps, taylor
+from ..geometry.profiles import curvature, offset_cusps, sign_changes
 from ..model.disc_cams import DiscCam
 from ..model.motion_programs import TWO_PI, CamDesignError, Join
 
@@ -108,26 +108,6 @@ def radius_of_curvature(cam: DiscCam, phi: np.ndarray, side: int = 1, *, of: str
     return r_pitch - cam.roller_radius
 
 
-def _sign_changes(f, a: float, b: float, breaks: np.ndarray, samples: int = 4096) -> np.ndarray:
-    """Where f (called with (φ, side)) changes sign on [a, b): between samples (bisection to
-    full precision) or across a join."""
-    grid = np.union1d(np.linspace(a, b, samples + 1), breaks)
-    lo, hi = grid[:-1], grid[1:]
-    f_lo, f_hi = f(lo, 1), f(hi, -1)
-    roots = [breaks[np.sign(f(breaks, -1)) * np.sign(f(breaks, 1)) < 0]]
-    change = np.sign(f_lo) * np.sign(f_hi) < 0
-    lo, hi, g_lo = lo[change], hi[change], f_lo[change]
-    for _ in range(200):
-        if not lo.size or np.all(hi - lo <= 4 * np.spacing(np.maximum(np.abs(lo), np.abs(hi)))):
-            break
-        mid = (lo + hi) / 2
-        gm = f(mid, 1)
-        left = np.sign(gm) == np.sign(g_lo)
-        lo, g_lo, hi = np.where(left, mid, lo), np.where(left, gm, g_lo), np.where(left, hi, mid)
-    roots.append((lo + hi) / 2)
-    return np.unique(np.mod(np.concatenate(roots), TWO_PI))
-
-
 def cusps(cam: DiscCam) -> np.ndarray:
     """Cam angles where the profile has a cusp (its radius of curvature passes through zero):
     the roller's or face's envelope turns back there, so the profile between two cusps is cut
@@ -136,8 +116,8 @@ def cusps(cam: DiscCam) -> np.ndarray:
         return offset_cusps(cam.pitch_curve, cam.roller_radius)
     if cam.follower == "knife":
         return np.empty(0)
-    return _sign_changes(lambda u, side: radius_of_curvature(cam, u, side), 0.0, TWO_PI,
-                         cam.program.breaks)
+    return sign_changes(lambda u, side=1: radius_of_curvature(cam, u, side), (0.0, TWO_PI),
+                        cam.program.breaks, closed=True, samples=4096)
 
 
 def corners(cam: DiscCam) -> list[Join]:
