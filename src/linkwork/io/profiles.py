@@ -122,6 +122,7 @@ from ..errors import MechanismFileError
 from ..model.disc_cams import DiscCam
 from ..model.motion_programs import LAWS, CamDesignError, MotionProgram, Segment
 from ..geometry.errors import GeometryError
+from ..units import MAX_MAGNITUDE
 from ..geometry.profiles import (
     ArchimedeanSpiral,
     ArcTo,
@@ -136,9 +137,10 @@ from ..geometry.profiles import (
     ProfileError,
     SplineProfile,
 )
+from .values import Number, PositiveNumber
 
-Finite = Annotated[float, Strict(), Field(allow_inf_nan=False)]
-Positive = Annotated[float, Strict(), Field(allow_inf_nan=False, gt=0)]
+Finite = Number
+Positive = PositiveNumber
 Point = Annotated[list[Finite], Field(min_length=2, max_length=2, description="[x, y]")]
 Pair = Annotated[list[Finite], Field(min_length=2, max_length=2)]
 Sense = Literal["ccw", "cw"]
@@ -331,7 +333,8 @@ def _validation_error(exc: ValidationError, name: str, source: str | None) -> Me
     msg = {"extra_forbidden": "unknown key (check its spelling)",
            "missing": "required key is missing",
            "union_tag_not_found": f"a profile needs a 'type': one of {kinds}",
-           "union_tag_invalid": f"unknown profile type {_given_type(err)!r} (one of {kinds})"}.get(err["type"], err["msg"])
+           "union_tag_invalid": f"unknown profile type {_given_type(err)!r} (one of {kinds})"}.get(
+               err["type"], err["msg"].removeprefix("Value error, "))
     return MechanismFileError(msg, source=source, key=_key(name, tuple(err["loc"])))
 
 
@@ -470,8 +473,9 @@ def read_points_csv(path: Path, *, key: str | None = None) -> tuple[np.ndarray, 
         if len(values) != 2:
             raise MechanismFileError(f"a point has two coordinates x, y; this line has {len(values)}",
                                      source=str(path), key=key, line=number)
-        if not all(np.isfinite(values)):
-            raise MechanismFileError(f"coordinates must be finite numbers: {line!r}",
+        if not all(np.isfinite(values)) or max(map(abs, values)) > MAX_MAGNITUDE:
+            raise MechanismFileError(f"coordinates must be finite numbers of at most "
+                                     f"{MAX_MAGNITUDE:g} in size: {line!r}",
                                      source=str(path), key=key, line=number)
         points.append(values)
         lines.append(number)
