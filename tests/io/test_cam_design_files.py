@@ -63,8 +63,8 @@ def test_hand_written_cam_follows_its_law(angle):
 
 
 @pytest.mark.parametrize("change,key,message", [
-    (('law = "3-4-5"', 'law = "quintic"'), "profiles.disc.segments.0.law", "Input should be"),
-    (("{ dwell = 90 }, {", "{ dwell = 90, rise = 2 }, {"), "profiles.disc.segments.1", "a cam segment is"),
+    (('law = "3-4-5"', 'law = "quintic"'), "profiles.disc.segments[0].law", "Input should be"),
+    (("{ dwell = 90 }, {", "{ dwell = 90, rise = 2 }, {"), "profiles.disc.segments[1]", "a cam segment is"),
     (("{ dwell = 90 }]", "{ dwell = 80 }]"), "profiles.disc", "cover 350°"),
     (("return = 12", "return = 11"), "profiles.disc", "end the turn where it starts"),
     (("roller_radius = 5\n", ""), "profiles.disc.roller_radius", "needs `roller_radius`"),
