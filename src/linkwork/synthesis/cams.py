@@ -219,30 +219,31 @@ def _feasible_range(cam: DiscCam) -> tuple[float, float]:
 
 
 def _scan(cam: DiscCam, criterion, lo: float, hi: float, what: str) -> float:
-    """The smallest base radius in (lo, hi) where criterion(cam) ≤ 0 from there up to the next
-    sign change: a scan of 160 radii (geometric steps past a finite `hi`), then Brent's method
-    on the first bracket."""
+    """The smallest base radius in (lo, hi) from which on criterion(cam) ≤ 0: a scan of 160
+    radii (up to 64 times the given one past an unbounded `hi`), then Brent's method on the
+    first bracket (bisection where the radius below cannot be drawn at all)."""
     if not np.isfinite(hi):
         hi = max(lo, cam.base_radius) * 64 + 1.0
-    radii = np.linspace(lo, hi, 162)[1:-1]
-    vals = []
-    for rb in radii:
+
+    def g(rb):
         try:
-            vals.append(criterion(with_base_radius(cam, rb)))
+            return float(criterion(with_base_radius(cam, rb)))
         except CamDesignError:
-            vals.append(np.nan)
-    vals = np.array(vals)
+            return np.nan
+
+    radii = np.linspace(lo, hi, 162)[1:-1]
+    vals = np.array([g(rb) for rb in radii])
     ok = np.flatnonzero(vals <= 0)
     if not ok.size:
         raise CamDesignError(f"no base radius up to {hi:.6g} meets {what}")
     k = int(ok[0])
-    if k == 0 or not np.isfinite(vals[k - 1]):
-        return float(radii[k]) if k == 0 else float(radii[k])
-
-    def g(rb):
-        return criterion(with_base_radius(cam, rb))
-
-    return float(brentq(g, radii[k - 1], radii[k], xtol=1e-12 * radii[k], rtol=1e-14))
+    a, b = (radii[k - 1], radii[k]) if k else (lo, radii[0])
+    if np.isfinite(g(a)):
+        return float(brentq(g, a, b, xtol=1e-12 * b, rtol=1e-14))
+    for _ in range(60):  # below a lies no drawable cam: bisect on "drawable and within the limit"
+        mid = (a + b) / 2
+        a, b = (a, mid) if g(mid) <= 0 else (mid, b)
+    return float(b)
 
 
 def smallest_base_radius(cam: DiscCam, max_pressure_angle: float | None = None,
