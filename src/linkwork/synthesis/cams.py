@@ -51,19 +51,12 @@ def follower_diagrams(cam: DiscCam, phi: np.ndarray, speed: float = 1.0, side: i
 
 
 # ---------------------------------------------------------------------------- pressure angle
-def _frame_point(cam: DiscCam, phi: np.ndarray, side: int) -> tuple[np.ndarray, np.ndarray]:
-    """C and dC/dφ (complex, about the cam centre) of the roller centre or knife tip."""
-    s = cam._lift_series(phi, 1, side)
-    C = cam._frame_point_series(s)
-    return C[0], C[1]
-
-
 def _flat_contact(cam: DiscCam, phi: np.ndarray, side: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Contact point X in the frame (complex, about the cam centre), the face normal ν and the
-    profile's signed radius of curvature p + d²p/dθ² of a flat face."""
-    s = cam._lift_series(phi, 3, side)
-    theta, p = cam._face_series(phi, s)
-    x = cam._flat(phi, 1, side)
+    profile's signed radius of curvature p + d²p/dθ² of a flat face: with x′ = θ′·i e^{iθ}·(p +
+    d²p/dθ²) along the face, the radius is x′·(i e^{iθ})/θ′."""
+    theta, _ = cam.face_line(phi, 1, side)
+    x = cam.profile.derivatives(phi, 1, side=side)
     x0 = (x[0, ..., 0] - cam.center[0]) + 1j * (x[0, ..., 1] - cam.center[1])
     x1 = x[1, ..., 0] + 1j * x[1, ..., 1]
     m = np.exp(1j * theta[0])
@@ -81,11 +74,11 @@ def pressure_angle(cam: DiscCam, phi: np.ndarray, side: int = 1) -> np.ndarray:
         if cam.motion == "translating":
             return np.zeros_like(phi)
         X, nu, _ = _flat_contact(cam, phi, side)
-        D = 1j * (X - cam._geometry["A"])
+        D = 1j * (X - cam.pivot_vector)
         return np.arctan((D * np.conj(1j * nu)).real / (D * np.conj(nu)).real)
-    C, dC = _frame_point(cam, phi, side)
+    C, dC = cam.element_point(phi, 1, side)
     T = dC - 1j * C
-    D = cam._geometry["e"] if cam.motion == "translating" else 1j * (C - cam._geometry["A"])
+    D = cam.line_vector if cam.motion == "translating" else 1j * (C - cam.pivot_vector)
     D = np.broadcast_to(D, T.shape)
     dot = (T * np.conj(D)).real
     cross = (np.conj(T) * D).imag
@@ -206,12 +199,11 @@ def _refined_max(f, grid: np.ndarray) -> float:
 
 def _feasible_range(cam: DiscCam) -> tuple[float, float]:
     """Open interval of base radii for which the follower can be drawn at all."""
-    g = cam._geometry
     rho = cam.roller_radius if cam.follower == "roller" else 0.0
     if cam.motion == "translating":
         lo = abs(cam.offset) - rho if cam.follower != "flat" else 0.0
         return max(lo, 0.0), np.inf
-    d = abs(g["A"])
+    d = abs(cam.pivot_vector)
     if cam.follower == "flat":
         f = cam.face_offset
         return max(-d - f, 0.0), d - f
