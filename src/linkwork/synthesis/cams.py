@@ -309,7 +309,11 @@ def _n(x: float) -> str:
 
 
 def _pt(p) -> str:
-    return f"[{_n(p[0])}, {_n(p[1])}]"
+    """[x, y], a coordinate below 1e-12 of the other written as 0 (rounding of cos 90°)."""
+    x, y = (float(v) for v in p)
+    scale = max(abs(x), abs(y))
+    x, y = (0.0 if abs(v) <= 1e-12 * scale else v for v in (x, y))
+    return f"[{_n(x)}, {_n(y)}]"
 
 
 def mechanism_text(cam: DiscCam, *, name: str = "Designed disc cam", speed: str = "1 rad/s",
