@@ -188,6 +188,23 @@ class IndexingSchedule:
         """The wheel's angle relative to the carrier, from the drawing, at driver rotations δ."""
         return -(self.advance_at(delta) - self.advance_at(np.zeros(1))[0])
 
+    def slot_lines(self) -> tuple[tuple[float, float, float], ...]:
+        """Every radial slot of the wheel (entry and exit slots of a star wheel) as (direction
+        angle in the wheel's drawing coordinates, radius of its foot, radius where the pin
+        meets it): the slot points from C to M when its pin stands on the line of centres."""
+        design_tau = float(self.advance_at(np.zeros(1))[0])
+        out = []
+        for m in range(self.slots // self.groups):
+            for p in self.phases:
+                if p.kind not in SLOT_PHASES:
+                    continue
+                r, D = p.radius, self.D
+                v = p.v0 if p.kind != EXIT else p.end - p.start  # where the pin is at the rim
+                rim = float(np.sqrt(D * D + r * r - 2 * D * r * np.cos(v)))
+                out.append((self.gamma + np.pi + p.centre_tau + m * self.advance - design_tau,
+                            D - r, rim))
+        return tuple(out)
+
     def slot(self, m: np.ndarray, idx: np.ndarray) -> np.ndarray:
         """Which slot (entry) of the wheel a sample's phase uses: 0 … slots − 1, −1 locked. The
         one the first group enters in the turn after the origin is 0."""
