@@ -8,11 +8,11 @@ from __future__ import annotations
 
 from typing import Annotated, Literal, Union
 
-from pydantic import BaseModel, ConfigDict, Field, field_validator
+from pydantic import BaseModel, ConfigDict, Field, field_validator, model_validator
 
 from .profiles import ProfileSpec
+from .values import Number, PositiveNumber
 
-Number = Union[float, int]
 Coordinates = Annotated[list[Number], Field(min_length=2, max_length=2)]
 # an axis is a direction vector [x, y] or an angle (degrees unless a unit is written)
 Axis = Union[Coordinates, Number, str]
@@ -58,7 +58,7 @@ class GearSpec(_Strict):
     type: Literal["gear"]
     links: Annotated[list[str], Field(min_length=2, max_length=2)]
     carrier: str = "frame"
-    radii: Annotated[list[Number], Field(min_length=1, max_length=2)]
+    radii: Annotated[list[PositiveNumber], Field(min_length=1, max_length=2)]
     kind: Literal["external", "internal", "rack"] = "external"
     point: str | None = None
 
@@ -73,7 +73,7 @@ class CamSpec(_Strict):
                     "edge at `point`, a flat face through `point` along `axis`, or the profile `mate`")
     point: str | None = Field(None, description="roller centre, knife tip or a point of the flat "
                                                 "face, carried by the follower; defaults to the joint's name")
-    radius: Number | None = Field(None, description="roller radius")
+    radius: PositiveNumber | None = Field(None, description="roller radius")
     axis: Axis | None = Field(None, description="direction of the flat face, fixed in the follower")
     mate: str | None = Field(None, description="the follower's profile (follower = \"profile\")")
 
@@ -120,8 +120,8 @@ JointSpec = Annotated[
 
 class PolynomialLawSpec(_Strict):
     type: Literal["polynomial"]
-    coefficients: list[Number] = Field(description="input(t) = sum c_k t^k, in degrees (or the length unit) and seconds")
-    duration: Number = 1.0
+    coefficients: list[Number] = Field(min_length=1, description="input(t) = sum c_k t^k, in degrees (or the length unit) and seconds")
+    duration: PositiveNumber = 1.0
 
 
 class TableLawSpec(_Strict):
@@ -136,6 +136,13 @@ class DriverSpec(_Strict):
     speed: Number | str | None = Field(
         None, description="constant speed: '60 rpm', '2 rad/s', '100 mm/s'; a bare number is rad/s (or length unit/s)")
     law: Annotated[Union[PolynomialLawSpec, TableLawSpec], Field(discriminator="type")] | None = None
+
+    @model_validator(mode="after")
+    def _speed_or_law(self) -> "DriverSpec":
+        if self.speed is not None and self.law is not None:
+            raise ValueError("give either `speed` (a constant speed) or `law` (a motion law), "
+                             "not both")
+        return self
 
 
 class MechanismFile(_Strict):
