@@ -382,3 +382,33 @@ def test_star_wheel_pins_run_on_epicycloids_in_the_gear_phase(star):
         assert min(np.max(e_) for e_ in err) < 1e-9
         assert np.all(t[1:-1] > 1e-3)  # away from the cusp: a real test of the angle
         assert gear.sum() > 10
+
+
+# ---------------------------------------------------------------------------- two code paths
+@pytest.mark.parametrize("name", ["geneva-4", "geneva-6", "star-wheel"])
+def test_closed_form_rates_equal_the_phase_equations_on_jets(name, monkeypatch):
+    """The solver's closed-form rates (the transmission composed with the driver's jet) against
+    the linear solve on the jets of each sample's phase equation (`derivatives_generic`), up to
+    the snap, with the same condition numbers."""
+    from linkwork.kinematics import groups
+
+    mech = linkwork.load(f"library:{name}")
+    u = mech.driver_input_at_design(mech.drivers[0]) + np.linspace(0.0, 2 * np.pi, 721)[:-1] + 1e-3
+    fast = linkwork.solve(mech, u, velocities=np.full_like(u, 1.3), accelerations=np.full_like(u, 0.7),
+                          jerks=np.full_like(u, -0.4), order=4)
+    original = groups.GroupSolver.derivatives
+
+    def on_jets(self, state, ok):
+        if self.kind == "intermittent":
+            return groups.derivatives_generic(state, self.group, ok)
+        return original(self, state, ok)
+
+    monkeypatch.setattr(groups.GroupSolver, "derivatives", on_jets)
+    slow = linkwork.solve(mech, u, velocities=np.full_like(u, 1.3), accelerations=np.full_like(u, 0.7),
+                          jerks=np.full_like(u, -0.4), order=4)
+    wheel = mech.joints[-1].links[1]
+    a, b = fast.pose_derivatives(wheel), slow.pose_derivatives(wheel)
+    for k in range(5):
+        scale = np.abs(b[k]).max() or 1.0
+        np.testing.assert_allclose(a[k], b[k], rtol=0, atol=1e-10 * scale, err_msg=f"order {k}")
+    np.testing.assert_allclose(fast.condition, slow.condition, rtol=1e-9)

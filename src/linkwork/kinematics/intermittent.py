@@ -92,6 +92,20 @@ def residuals(mech: Mechanism, j, pose, point, rotate) -> list[Jet]:
     return [_select([(f["kind"] == GEAR, gear), (on_slot, slot)], locked)]
 
 
+def row_slope(mech: Mechanism, j, delta: np.ndarray) -> np.ndarray:
+    """|∂(the pair's equation)/∂θ_wheel| at driver rotations δ: the length scale while locked,
+    D − r in the pin gear, the pin's distance |CB| from the wheel's centre on a slot."""
+    sch = schedule(mech, j.name)
+    f = _phase_data(sch, delta)
+    m, x, idx = sch.locate(delta)
+    v = np.array([p.v0 - p.start for p in sch.phases])[idx] + x  # the pin's angle on a slot
+    r = f["radius"]
+    on_slot = np.sqrt(sch.D**2 + r * r - 2 * sch.D * r * np.cos(v))
+    out = np.where(f["kind"] == GEAR, sch.D - r, np.where(np.isin(f["kind"], SLOT_PHASES), on_slot,
+                                                          mech.length_scale))
+    return np.where(np.isfinite(delta), out, np.nan)
+
+
 def pivots(mech: Mechanism, j) -> tuple[str, str]:
     """The points of the driver's and the wheel's revolutes on the carrier."""
     out = []
