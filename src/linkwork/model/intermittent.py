@@ -152,10 +152,18 @@ class IndexingSchedule:
     def starts(self) -> np.ndarray:
         return np.array([p.start for p in self.phases])
 
-    def locate(self, delta: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    def locate(self, delta: np.ndarray, phase: np.ndarray | None = None
+               ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """(turn m, x, phase index) for driver rotations δ: δ = origin + 2πm + x, 0 ≤ x < 2π.
-        A δ on a phase boundary belongs to the phase that begins there."""
+        A δ on a phase boundary belongs to the phase that begins there. With `phase` (phase
+        indices), that phase in the turn where it holds nearest to δ (for one-sided limits at
+        its ends)."""
         delta = np.asarray(delta, dtype=float)
+        if phase is not None:
+            idx = np.broadcast_to(phase, delta.shape)
+            mid = np.array([0.5 * (p.start + p.end) for p in self.phases])[idx]
+            m = np.round((delta - self.origin - mid) / TWO_PI)
+            return m, delta - self.origin - m * TWO_PI, idx
         finite = np.isfinite(delta)
         d = np.where(finite, delta - self.origin, 0.0)
         m = np.floor(d / TWO_PI)
@@ -165,9 +173,10 @@ class IndexingSchedule:
         idx = np.searchsorted(self.starts, x, side="right") - 1
         return m, np.where(finite, x, np.nan), np.clip(idx, 0, len(self.phases) - 1)
 
-    def advance_at(self, delta: np.ndarray) -> np.ndarray:
-        """The wheel's advance τ(δ) (radians, in its forward sense) since the origin."""
-        m, x, idx = self.locate(delta)
+    def advance_at(self, delta: np.ndarray, phase: np.ndarray | None = None) -> np.ndarray:
+        """The wheel's advance τ(δ) (radians, in its forward sense) since the origin (`phase`:
+        by the law of the given phases, see `locate`)."""
+        m, x, idx = self.locate(delta, phase)
         tau = np.full(np.shape(x), np.nan)
         for k, ph in enumerate(self.phases):
             on = idx == k
