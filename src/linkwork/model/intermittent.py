@@ -290,7 +290,7 @@ def _build(mech: "Mechanism", pair: IntermittentPair) -> IndexingSchedule:
     if len(entries) != len(pair.groups):
         raise ModelError(f"{what}: give one entry angle per pin group ({len(pair.groups)}), got "
                          f"{len(entries)}")
-    spans = []  # per group: (start δ, length, phases relative to the start)
+    spans = []  # per group: (its entry's δ, its length, its phases from there, step, names)
     for g, (group, psi_e) in enumerate(zip(pair.groups, entries)):
         names = ", ".join(group)
         radii = np.array([pins[p][0] for p in group])
@@ -397,4 +397,4 @@ def validate_intermittent(mech: "Mechanism", pair: IntermittentPair) -> None:
     elif not pair.groups or any(not g for g in pair.groups):
         raise ModelError(f"{what}: give the pins of each indexing group (groups = [[\"P1\", "
                          "\"P2\"], …])")
-    _build(mech, pair)
+    indexing_schedule(mech, pair)  # builds (and keeps) the phases, refusing what cannot run
