@@ -603,7 +603,41 @@ class GroupSolver:
             return self._der_driver(state, ok)
         if self.cam is not None:
             return cam_group.derivatives(self.cam, state, ok, UNRELIABLE_CONDITION)
+        if self.kind == "intermittent":
+            return self._der_intermittent(state)
         return derivatives_generic(state, self.group, ok)
+
+    def _der_intermittent(self, state: State) -> np.ndarray:
+        """Rates of a wheel indexed by an intermittent pair, in closed form: its angle relative
+        to the carrier is T(δ) of the driver's relative angle δ, so its jet is T composed with
+        δ's jet (the transmission's derivatives, `intermittent.transmission`); its origin follows
+        from its pivot C on the carrier. The same rates as the phase equations' linear solve
+        (`derivatives_generic`, the independent check in the tests), without it. The condition
+        number is the one of that solve's scaled Jacobian, in closed form: the pivot's rows
+        [I | v] and the pair's row (0, 0, g), g = 1 locked, (D − r)/L in the pin gear, |CB|/L on
+        a slot, whose singular values are 1 and those of [[1, |v|], [0, g]]."""
+        p = self.parts
+        j, wheel, mech = p["pair"], p["wheel"], self.mech
+        K = state.order
+        ic, iw = state.li(j.carrier), state.li(wheel)
+        Qc = state.Q[: K + 1, :, ic]
+        th_c = Jet(Qc[..., 2])
+        delta = Jet(state.Q[: K + 1, :, state.li(j.links[0]), 2]) - th_c
+        th = th_c + delta.compose(intermittent.transmission(mech, j, delta.c[0], order=K))
+        C = mech.points[p["pivot"].point]
+        cc, sc = th_c.cos_sin()
+        cw, sw = th.cos_sin()
+        state.Q[1: K + 1, :, iw, 0] = (Jet(Qc[..., 0]) + (cc - cw) * C[0] - (sc - sw) * C[1]).c[1:]
+        state.Q[1: K + 1, :, iw, 1] = (Jet(Qc[..., 1]) + (sc - sw) * C[0] + (cc - cw) * C[1]).c[1:]
+        state.Q[1: K + 1, :, iw, 2] = th.c[1:]
+        L = mech.length_scale
+        g = intermittent.row_slope(mech, j, state.Q[0, :, state.li(j.links[0]), 2] - Qc[0, :, 2]) / L
+        v2 = (C[0] ** 2 + C[1] ** 2) / L**2
+        t = 1.0 + v2 + g * g
+        root = np.sqrt(np.maximum(t * t - 4 * g * g, 0.0))
+        s_hi, s_lo = np.sqrt(0.5 * (t + root)), np.abs(g) / np.sqrt(0.5 * (t + root))
+        with np.errstate(divide="ignore", invalid="ignore"):
+            return np.maximum(s_hi, 1.0) / np.minimum(s_lo, 1.0)
 
     def _der_driver(self, state: State, ok: np.ndarray) -> np.ndarray:
         """Revolute driver (`kernels.driver_rates`); its condition number is the design one."""
