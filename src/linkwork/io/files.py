@@ -290,7 +290,7 @@ def _build(spec: schema.MechanismFile, text: str, source: str, base_dir: Path | 
                 for name, p in spec.profiles.items()}
     joints = []
     for name, j in spec.joints.items():
-        point = j.point or name
+        point = getattr(j, "point", None) or name  # a rolling pair has no point
         links = tuple(j.links)
         if isinstance(j, schema.RevoluteSpec):
             joints.append(Revolute(name, point, links))
