@@ -17,9 +17,10 @@ import numpy as np
 from pydantic import ValidationError
 
 from ..errors import InputError, MechanismFileError, ModelError, UnknownMechanismError
-from ..model import (CamContact, CircularSlot, ConstantSpeed, Gear, Mechanism, PolynomialLaw,
-                     Prismatic, Revolute, RollingContact, Slot, TabulatedLaw)
-from ..units import check_length_unit, parse_quantity
+from ..model import (CamContact, CircularSlot, ConstantSpeed, Gear, GenevaPair, Mechanism,
+                     PolynomialLaw, Prismatic, Revolute, RollingContact, Slot, StarWheelPair,
+                     TabulatedLaw)
+from ..units import check_length_unit, parse_quantity, unit_dimension
 from . import schema
 from .profiles import build_profile
 
@@ -123,9 +124,10 @@ def load_text(text: str, *, source: str = "<text>", base_dir: Path | None = None
                                  line=_line_of(text, key) if key else None) from None
 
 
-_TAGS = {"revolute", "prismatic", "slot", "circular-slot", "gear", "cam", "rolling", "polynomial",
+_TAGS = {"revolute", "prismatic", "slot", "circular-slot", "gear", "cam", "rolling", "geneva",
+         "star-wheel", "polynomial",
          "table", "float", "int", "str", "circle", "ellipse", "path", "spline", "points", "line",
-         "involute", "archimedean-spiral", "logarithmic-spiral"}
+         "involute", "archimedean-spiral", "logarithmic-spiral", "cam-design"}
 
 
 def _clean(loc: tuple) -> tuple:
@@ -168,7 +170,7 @@ def _dotted(loc: tuple) -> str:
 
 
 def _did_you_mean(name: str, known) -> str:
-    close = difflib.get_close_matches(name, list(known), n=1, cutoff=0.6)
+    close = difflib.get_close_matches(name, list(known), n=1, cutoff=0.5)
     if close:
         return f" (did you mean '{close[0]}'?)"
     known = sorted(known)
@@ -251,8 +253,8 @@ def _key_of_message(message: str, spec: schema.MechanismFile) -> tuple | None:
     if words and words[0] == "driver":
         for loc, d in _driver_keys(spec):
             if d.joint == name:
-                sub = next((k for k in ("speed", "law", "reference") if rest.lstrip(" :").startswith(k)
-                            or (k == "law" and "law" in rest.split(":", 1)[-1][:20])), None)
+                sub = next((k for k in ("speed", "law", "reference")
+                            if rest.lstrip(" :").startswith(k)), None)
                 return loc + ((sub,) if sub else ())
         return None
     if words == ["link"] and name in spec.links:
@@ -278,9 +280,12 @@ def _axis(value, angle_unit: str, where: str) -> np.ndarray:
 
 
 def _angle_in_rad(value, angle_unit: str, kind: str) -> float:
+    """An angle in radians: a number or a string in the file's angle unit, or a string with its
+    own unit ('30 deg', '0.5 rad')."""
     if isinstance(value, str):
-        return parse_quantity(value, default_unit="rad", kind=kind) if any(c.isalpha() for c in value) \
-            else _angle_in_rad(float(value), angle_unit, kind)
+        if unit_dimension(value, kind) is not None:
+            return parse_quantity(value, default_unit="rad", kind=kind)
+        value = parse_quantity(value, default_unit="rad", kind=kind)
     return float(value) if angle_unit.startswith("rad") else float(np.radians(value))
 
 
@@ -290,8 +295,17 @@ def _build(spec: schema.MechanismFile, text: str, source: str, base_dir: Path | 
                 for name, p in spec.profiles.items()}
     joints = []
     for name, j in spec.joints.items():
-        point = getattr(j, "point", None) or name  # a rolling pair has no point
         links = tuple(j.links)
+        if isinstance(j, schema.GenevaSpec):
+            joints.append(GenevaPair(name, links, j.pin or name, j.slots, j.carrier))
+            continue
+        if isinstance(j, schema.StarWheelSpec):
+            entry = None if j.entry is None else tuple(
+                _angle_in_rad(a, spec.units.angle, f"joint '{name}' entry angle") for a in j.entry)
+            joints.append(StarWheelPair(name, links, tuple(tuple(g) for g in j.groups), j.carrier,
+                                        entry))
+            continue
+        point = getattr(j, "point", None) or name  # a rolling pair has no point
         if isinstance(j, schema.RevoluteSpec):
             joints.append(Revolute(name, point, links))
         elif isinstance(j, schema.PrismaticSpec):

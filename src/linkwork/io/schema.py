@@ -85,8 +85,35 @@ class RollingSpec(_Strict):
         description="the profile of each link; they touch in the drawing and roll without slip")
 
 
+class GenevaSpec(_Strict):
+    type: Literal["geneva"]
+    links: Annotated[list[str], Field(min_length=2, max_length=2)] = Field(
+        description="the driver carrying the pin, then the slotted wheel (Malteserkreuz)")
+    pin: str | None = Field(None, description="the pin (Triebstock), a point of the driver; "
+                                              "defaults to the joint's name")
+    slots: int = Field(ge=3, description="number of radial slots of the wheel (at least 3); the "
+                                         "pin radius r and the centre distance D come from the "
+                                         "drawing, r = D·sin(180°/slots) for shock-free entry")
+    carrier: str = Field("frame", description="the link both are pivoted on")
+
+
+class StarWheelSpec(_Strict):
+    type: Literal["star-wheel"]
+    links: Annotated[list[str], Field(min_length=2, max_length=2)] = Field(
+        description="the driver carrying the pins, then the star wheel (Sternrad)")
+    groups: Annotated[list[Annotated[list[str], Field(min_length=1)]], Field(min_length=1)] = Field(
+        description="the pins (points of the driver) of each indexing group, equally spaced on "
+                    "one pitch circle per group")
+    entry: Annotated[list[Union[Number, str]], Field(min_length=1)] | None = Field(
+        None, description="per group, the angle of its entry and exit slots from the line of "
+                          "centres where the pin meets them (file's angle unit unless written); "
+                          "default asin(r/D), shock-free")
+    carrier: str = Field("frame", description="the link both are pivoted on")
+
+
 JointSpec = Annotated[
-    Union[RevoluteSpec, PrismaticSpec, SlotSpec, CircularSlotSpec, GearSpec, CamSpec, RollingSpec],
+    Union[RevoluteSpec, PrismaticSpec, SlotSpec, CircularSlotSpec, GearSpec, CamSpec, RollingSpec,
+          GenevaSpec, StarWheelSpec],
     Field(discriminator="type"),
 ]
 
