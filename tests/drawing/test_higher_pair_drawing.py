@@ -98,3 +98,15 @@ def test_draw_command_on_cam_files(which, tmp_path):
     png = tmp_path / f"{which}.png"
     res = runner.invoke(app, ["draw", str(path), "--show", "mechanism,equivalent", "-o", str(png)])
     assert res.exit_code == 0 and png.stat().st_size > 1000, res.output
+
+
+@pytest.mark.parametrize("name", ["radial-roller-cam", "flat-faced-cam", "oscillating-roller-cam",
+                                  "elliptical-gears", "rolling-lever-valve-gear", "poeschl-arc-cam"])
+def test_library_cams_draw_every_layer(name):
+    mech = linkwork.load(f"library:{name}")
+    sc = scene(mech, 37.0)
+    fig = scene_figure(sc, [x for x in LAYERS if x != "construction"])
+    found = ids(fig.to_svg())
+    pair = next(j.name for j in mech.joints if j.kind in ("cam", "rolling"))
+    assert f"normal-{pair}" in found and any(k.startswith(f"profile-{pair}-") for k in found)
+    assert any(k.startswith(f"equivalent-") for k in found)

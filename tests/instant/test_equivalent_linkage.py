@@ -214,3 +214,34 @@ def test_errors_name_the_problem():
     with pytest.raises(InputError, match="sample 7 is out of range"):
         equivalent_mechanism(sol, 7)
     assert set(KINDS) == {"RR", "RP", "PR", "PP"}
+
+
+# ---------------------------------------------------------------------------- the library
+def _library_with_higher_pairs() -> list[str]:
+    from linkwork.io.files import library_names
+    out = []
+    for name in library_names():
+        mech = linkwork.load(f"library:{name}")
+        if any(j.kind in ("cam", "rolling") for j in mech.joints):
+            out.append(name)
+    return out
+
+
+@pytest.mark.parametrize("name", _library_with_higher_pairs())
+def test_library_higher_pairs_have_their_equivalent_linkages(name):
+    """Every shipped mechanism with a cam or rolling pair: at six positions over its whole
+    motion the substitute gives the same ω, α, velocities and accelerations, and the
+    profiles' curvature centres are conjugate points of the relative motion."""
+    from linkwork.instant import contact_curvature
+    from linkwork.instant.poles import pole_discrepancy
+    mech = linkwork.load(f"library:{name}")
+    sol = linkwork.whole_motion(mech, order=2)
+    ok = np.flatnonzero(sol.status == linkwork.Status.OK)
+    assert ok.size > 10
+    picks = ok[np.linspace(0, ok.size - 1, 6).astype(int)]
+    for pair in (j.name for j in mech.joints if j.kind in ("cam", "rolling")):
+        cc = contact_curvature(sol, pair)
+        gap = pole_discrepancy(cc.conjugates[0], cc.centres[0], mech.length_scale)[picks]
+        assert (gap < 1e-9).all(), (pair, gap)
+    for n in picks:
+        assert_same_rates(sol, int(n), solve_equivalent(sol, int(n)), mech.length_scale)
