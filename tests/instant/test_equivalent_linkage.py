@@ -245,3 +245,18 @@ def test_library_higher_pairs_have_their_equivalent_linkages(name):
         assert (gap < 1e-9).all(), (pair, gap)
     for n in picks:
         assert_same_rates(sol, int(n), solve_equivalent(sol, int(n)), mech.length_scale)
+
+
+def test_unreachable_samples_are_marked_not_invented():
+    """A follower line 38 from the pivot is reached by the roller (R + ρ = 35 about a centre
+    e = 10 from it) only where e cos φ ≥ 3: elsewhere the substitute is undefined."""
+    mech = eccentric("roller", offset=38.0)
+    phi = np.radians(np.arange(0.0, 360.0, 30.0))
+    sol = linkwork.solve(mech, phi)
+    far = sol.status == linkwork.Status.UNREACHABLE
+    assert far.any() and (E * np.cos(phi[~far]) >= 38.0 - (R + RHO) - 1e-12).all()
+    eq = equivalent_linkage(sol, "K")
+    assert (eq.kind[far] == "").all() and np.isnan(eq.coupler[far]).all()
+    assert (eq.kind[~far] == "RR").all() and np.allclose(eq.coupler[~far], R + RHO)
+    with pytest.raises(InputError, match="not assembled at sample"):
+        equivalent_mechanism(sol, int(np.flatnonzero(far)[0]))
