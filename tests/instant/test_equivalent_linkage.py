@@ -260,3 +260,26 @@ def test_unreachable_samples_are_marked_not_invented():
     assert (eq.kind[~far] == "RR").all() and np.allclose(eq.coupler[~far], R + RHO)
     with pytest.raises(InputError, match="not assembled at sample"):
         equivalent_mechanism(sol, int(np.flatnonzero(far)[0]))
+
+
+def test_one_of_two_higher_pairs_replaced():
+    """A disc driving a roller follower above it and a flat-faced follower beside it: either
+    pair alone, or both, replaced; a pair kept is carried into the new drawing (its profile
+    turned with the disc) and still solved as a cam."""
+    y0 = np.sqrt((R + RHO) ** 2 - E**2)
+    mech = Mechanism.build(
+        name="two followers",
+        points={"O": [0, 0], "E": [E, 0], "C": [0, y0], "F": [0, -20], "Q": [E + R, 0], "G": [E + R + 15, 0]},
+        links={"frame": ["O"], "cam": ["O", "E"], "lifter": ["C", "F"], "pusher": ["Q", "G"]},
+        joints=[Revolute("O", "O", ("frame", "cam")),
+                Prismatic("F", "F", ("frame", "lifter"), np.array([0.0, 1.0])),
+                Prismatic("G", "G", ("frame", "pusher"), np.array([1.0, 0.0])),
+                CamContact("K1", ("cam", "lifter"), "disc", "roller", point="C", radius=RHO),
+                CamContact("K2", ("cam", "pusher"), "disc", "flat", point="Q", axis=np.array([0.0, 1.0]))],
+        drivers=[{"joint": "O", "reference": "E"}], profiles={"disc": CircleProfile((E, 0.0), R)})
+    sol = linkwork.solve(mech, np.radians([20.0, 75.0, 130.0]), velocities=[1.5] * 3)
+    for pairs, kept in ((["K1"], {"K2"}), (["K2"], {"K1"}), (None, set())):
+        for n in range(3):
+            sub = solve_equivalent(sol, n, pairs)
+            assert {j.name for j in sub.mechanism.joints if j.kind == "cam"} == kept
+            assert_same_rates(sol, n, sub, 60.0)
