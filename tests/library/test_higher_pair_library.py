@@ -430,3 +430,95 @@ def _circumcentre(A, B, C):
     ux = (a2 * (B[:, 1] - C[:, 1]) + b2 * (C[:, 1] - A[:, 1]) + c2 * (A[:, 1] - B[:, 1])) / d
     uy = (a2 * (C[:, 0] - B[:, 0]) + b2 * (A[:, 0] - C[:, 0]) + c2 * (B[:, 0] - A[:, 0])) / d
     return np.c_[ux, uy]
+
+
+# ---------------------------------------------------------------------------- Sulzer valve gear
+def _circles_upper(P, r1, Q, r2):
+    """The intersection of circle(P, r1) and circle(Q, r2) with the larger y (rows: samples)."""
+    d = Q - P
+    D = np.hypot(*d.T)
+    a = (r1 * r1 - r2 * r2 + D * D) / (2 * D)
+    with np.errstate(invalid="ignore"):  # NaN where they do not meet (an arc out of reach)
+        h = np.sqrt(r1 * r1 - a * a)
+    ex = d / D[:, None]
+    perp = np.c_[-ex[:, 1], ex[:, 0]]
+    X1 = P + a[:, None] * ex + h[:, None] * perp
+    X2 = P + a[:, None] * ex - h[:, None] * perp
+    return np.where((X1[:, 1] >= X2[:, 1])[:, None], X1, X2)
+
+
+def _rot(theta, v):
+    c, s = np.cos(theta), np.sin(theta)
+    return np.c_[c * v[..., 0] - s * v[..., 1], s * v[..., 0] + c * v[..., 1]]
+
+
+def sulzer_closed_form(phi):
+    """Valve pin height y_B of the Sulzer gear, by Rosenauer's Method II (§121) made exact: on
+    each cam arc (centre A, radius R) the four-bar O–A–C–F (coupler R + ρ), then the four-bar
+    F–D–E–G through the faces' centres (coupler 30 + 40), then the pin on x = 220 in the guide of
+    lever 3 through G. The cam (design numbers of the file): base circle 30 about O, flanks R 60,
+    nose R 12 about (0, −28), lift 10, arcs derived from their tangency. Returns y_B and the
+    index of the cam arc in contact (3: the base circle, the dwell)."""
+    r0, h, R1, R2, rho = 30.0, 10.0, 60.0, 12.0, 8.0
+    ok1, ok2, k12 = R1 - r0, r0 + h - R2, R1 - R2
+    K2 = np.array([0.0, -ok2])
+    g = np.arccos((ok1**2 + ok2**2 - k12**2) / (2 * ok1 * ok2))
+    K1 = ok1 * np.array([np.cos(-np.pi / 2 + g), np.sin(-np.pi / 2 + g)])
+    T0, T2 = -K1 * r0 / ok1, K1 + R1 * (K2 - K1) / k12
+    mir = np.array([-1.0, 1.0])
+    pts = [T0, T2, T2 * mir, T0 * mir, T0]
+    arcs = []
+    for c, r, p, q in zip([K1, K2, K1 * mir, np.zeros(2)], [R1, R2, R1, r0], pts[:-1], pts[1:]):
+        a0 = np.arctan2(*(p - c)[::-1])
+        arcs.append((c, r, a0, np.mod(np.arctan2(*(q - c)[::-1]) - a0, 2 * np.pi)))
+    F, C0, D0 = np.array([-60.0, 38.0]), np.array([0.0, 38.0]), np.array([60.0, 20.0])
+    G, E0, xB = np.array([160.0, 50.0]), np.array([60.0, 90.0]), 220.0
+    n = len(phi)
+    C = np.full((n, 2), np.nan)
+    which = np.full(n, -1)
+    for i, (c, r, a0, sweep) in enumerate(arcs):
+        A = _rot(phi, np.broadcast_to(c, (n, 2)))
+        Ci = _circles_upper(np.broadcast_to(F, (n, 2)), 60.0, A, r + rho)
+        contact = _rot(-phi, Ci - A)  # the contact's direction from the arc's centre, in the cam
+        inside = np.mod(np.arctan2(contact[:, 1], contact[:, 0]) - a0, 2 * np.pi) <= sweep
+        sel = inside & (which < 0)
+        C[sel], which[sel] = Ci[sel], i
+    th2 = np.arctan2(*(C - F).T[::-1]) - np.arctan2(*(C0 - F)[::-1])
+    D = F + _rot(th2, np.broadcast_to(D0 - F, (n, 2)))
+    E = _circles_upper(np.broadcast_to(G, (n, 2)), np.hypot(*(E0 - G)), D, 70.0)
+    th3 = np.arctan2(*(E - G).T[::-1]) - np.arctan2(*(E0 - G)[::-1])
+    return G[1] + (xB - G[0]) * np.tan(th3), which
+
+
+def test_sulzer_counts():
+    """Rosenauer §121 Task 4: h = 2 (non-self-closed), n = 6, g = 4, s = 2, z = 6:
+    2 + 2·6 − 3·6 + 4 = 0."""
+    from linkwork.structure.mobility import counts
+
+    c = counts(mech("sulzer-valve-gear"))
+    assert (c.n, c.g, c.s, c.h_n, c.h_p, c.h, c.z) == (6, 4, 2, 2, 0, 2, 6)
+    assert c.criterion == 0 and c.constrained
+
+
+def test_sulzer_valve_motion_and_dwell():
+    m = mech("sulzer-valve-gear")
+    w = m.drivers[0].law.speed
+    phi = np.radians(np.arange(0.0, 360.0, 1.0) + 0.3)
+    sol = linkwork.solve(m, phi)
+    assert (sol.status == Status.OK).all()
+    yB, which = sulzer_closed_form(phi)
+    assert set(which) == {0, 1, 2, 3}
+    got = sol.point("B")
+    np.testing.assert_allclose(got.position[:, 1], yB, atol=1e-9 * 100)
+    np.testing.assert_allclose(got.position[:, 0], 220.0, atol=1e-9)
+    hstep = 1e-6
+    vB = (sulzer_closed_form(phi + hstep)[0] - sulzer_closed_form(phi - hstep)[0]) / (2 * hstep)
+    np.testing.assert_allclose(got.velocity[:, 1], w * vB, atol=1e-6 * 100 * w)
+    # the dwell: on the base circle everything but the cam rests, the valve is shut
+    dwell = which == 3
+    assert 180 < dwell.sum() < 300
+    np.testing.assert_allclose(got.position[dwell, 1], 50.0, atol=1e-9)
+    for link in ("lever2", "lever3", "spindle"):
+        np.testing.assert_allclose(sol.link(link).omega[dwell], 0.0, atol=1e-9)
+    # outside it the valve opens (moves down) by the lever ratios
+    assert got.position[~dwell, 1].min() < 50.0 - 10.0
