@@ -522,3 +522,97 @@ def test_sulzer_valve_motion_and_dwell():
         np.testing.assert_allclose(sol.link(link).omega[dwell], 0.0, atol=1e-9)
     # outside it the valve opens (moves down) by the lever ratios
     assert got.position[~dwell, 1].min() < 50.0 - 10.0
+
+
+# ---------------------------------------------------------------------------- Proell–Schwabe
+PS = dict(P18=np.array([0.0, 0.0]), P38=np.array([200.0, 100.0]), P58=np.array([100.0, 60.0]),
+          crank=25.0, lever=80.0, track=65.0, wheel=15.0, join=np.radians(-112.0), x67=-80.0)
+
+
+def proell_schwabe_closed_form(phi):
+    """The wheel centre W (the four-bar 1238: crank 25 about 18, rod |12–234|, lever 80 about 38;
+    W below 38), the angle θ5 of lever 5 and the valve pin's height. The track (design numbers of
+    the file): an arc of radius 65 about 38 up to 112° below the horizontal, then its tangent J + s·t.
+    On the arc lever 5 rests (θ5 = 0); on the line, the line turned by θ5 about 58 lies at the
+    wheel's radius from W on the wheel's side n = (cos β_J, sin β_J):
+    |q| cos(∠q − β_J − θ5) = n·(J − 58) + r_w, q = W − 58. The pin rides the guide through 58."""
+    P18, P38, P58 = PS["P18"], PS["P38"], PS["P58"]
+    A0 = P18 + PS["crank"] * np.array([-1.0, 0.0])
+    W0 = np.array([146.3917525773196, 40.61855670103087])  # the file's design wheel centre
+    rod = np.hypot(*(W0 - A0))
+    assert np.hypot(*(W0 - P38)) == pytest.approx(PS["lever"])
+    A = P18 + PS["crank"] * np.c_[np.cos(phi), np.sin(phi)]
+    d = P38 - A
+    D = np.hypot(*d.T)
+    a = (rod**2 - PS["lever"] ** 2 + D * D) / (2 * D)
+    h = np.sqrt(rod**2 - a * a)
+    ex = d / D[:, None]
+    cands = [A + a[:, None] * ex + s * h[:, None] * np.c_[-ex[:, 1], ex[:, 0]] for s in (1, -1)]
+    W = np.where((cands[0][:, 1] < cands[1][:, 1])[:, None], cands[0], cands[1])
+    beta = np.arctan2(W[:, 1] - P38[1], W[:, 0] - P38[0])
+    bJ = PS["join"]
+    n = np.array([np.cos(bJ), np.sin(bJ)])
+    J = P38 + PS["track"] * n
+    q = W - P58
+    c = n @ (J - P58) + PS["wheel"]
+    ang = np.arctan2(q[:, 1], q[:, 0]) - bJ
+    roots = np.stack([ang - np.arccos(c / np.hypot(*q.T)), ang + np.arccos(c / np.hypot(*q.T))])
+    roots = np.angle(np.exp(1j * roots))
+    th5 = np.where(np.abs(roots[0]) < np.abs(roots[1]), roots[0], roots[1])
+    on_arc = beta <= bJ
+    th5 = np.where(on_arc, 0.0, th5)
+    y67 = P58[1] + (PS["x67"] - P58[0]) * np.tan(th5)
+    return W, th5, y67, on_arc
+
+
+def test_proell_schwabe_counts():
+    """Rosenauer §98 Ex. 33: n = 8; simple hinges 18, 12, 38, 58, 67 (g1 = 5), the double hinge
+    234 (g2 = 1): g = 7; sliders 65 and 78: z = 9; one self-closed pair: h = 2h_p = 2;
+    2 + 2·9 − 3·8 + 4 = 0."""
+    from linkwork.structure.mobility import counts
+
+    c = counts(mech("proell-schwabe-valve-gear"))
+    assert (c.n, c.g1, c.g2, c.g, c.s, c.z, c.h_n, c.h_p, c.h) == (8, 5, 1, 7, 2, 9, 0, 1, 2)
+    assert c.criterion == 0 and c.constrained
+
+
+def test_proell_schwabe_motion_dwell_and_rolling():
+    """§98, §110: while the wheel rolls on the arc about 38 lever 5 is not moved, links 6 and 7
+    rest and the gear is the four-bar 1238; then the wheel pushes the track and opens the valve.
+    The wheel rolls without slip: on the arc it turns by (65 + 15)/15 times the angle its centre
+    turns about 38 (epicycloidal rolling on a fixed circle)."""
+    m = mech("proell-schwabe-valve-gear")
+    phi = np.radians(np.arange(0.0, 360.0, 1.0) + 0.3)
+    sol = linkwork.solve(m, phi)
+    assert (sol.status == Status.OK).all()
+    W, th5, y67, on_arc = proell_schwabe_closed_form(phi)
+    assert 60 < on_arc.sum() < 300  # a dwell and an opening in every turn
+    np.testing.assert_allclose(sol.point("P234").position, W, atol=1e-9 * 200)
+    np.testing.assert_allclose(sol.pose_derivatives("lever5")[0, :, 2], th5, atol=1e-10)
+    np.testing.assert_allclose(sol.point("P67").position[:, 1], y67, atol=1e-9 * 200)
+    for link in ("lever5", "block", "valve"):
+        np.testing.assert_allclose(sol.link(link).omega[on_arc], 0.0, atol=1e-9)
+    assert y67.min() < 60.0 - 5.0
+    # rolling on the dwell arc: the wheel's turn against the turn of its centre about 38
+    beta = np.unwrap(np.arctan2(W[:, 1] - 100.0, W[:, 0] - 200.0))
+    turn = sol.pose_derivatives("wheel")[0, :, 2]
+    i = np.flatnonzero(on_arc)
+    np.testing.assert_allclose(turn[i] - turn[i[0]], (80.0 / 15.0) * (beta[i] - beta[i[0]]), atol=1e-9)
+
+
+def test_proell_schwabe_pole_35():
+    """§110: the relative pole 35 of the levers lies on the contact normal between wheel 4 and
+    lever 5 (through the wheel's centre 234) and on the line 58–38 (Aronhold–Kennedy): there the
+    points of levers 3 and 5 move alike."""
+    m = mech("proell-schwabe-valve-gear")
+    phi = np.radians(np.arange(0.0, 360.0, 3.0) + 0.3)
+    sol = linkwork.solve(m, phi)
+    rep = sol.joint("roll")
+    W = sol.point("P234").position
+    n = rep["point"] - W
+    P35 = _line_cross(W, n, np.broadcast_to(PS["P38"], W.shape), np.broadcast_to(PS["P58"] - PS["P38"], W.shape))
+    v3 = sol.point_on("lever3", sol.local("lever3", P35)).velocity
+    v5 = sol.point_on("lever5", sol.local("lever5", P35)).velocity
+    moving = np.abs(sol.link("lever5").omega) > 1e-6
+    assert moving.sum() > 10
+    np.testing.assert_allclose(v3[moving], v5[moving], atol=1e-8 * 200 * 3 * np.pi)
