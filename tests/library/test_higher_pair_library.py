@@ -616,3 +616,22 @@ def test_proell_schwabe_pole_35():
     moving = np.abs(sol.link("lever5").omega) > 1e-6
     assert moving.sum() > 10
     np.testing.assert_allclose(v3[moving], v5[moving], atol=1e-8 * 200 * 3 * np.pi)
+
+
+def test_a_contact_run_off_its_profile_is_unreachable_not_a_crash():
+    """The Proell–Schwabe track's straight end cut short: where the wheel would roll beyond it
+    the samples are marked unreachable (NaN), the others solve as before."""
+    from importlib.resources import files
+
+    text = (files("linkwork") / "library" / "proell-schwabe-valve-gear.toml").read_text()
+    short = text.replace("line_to = [240.55344124764082, 13.51058791404498]",
+                         "line_to = [194.19424851930145, 32.24091758484058]")  # 20 mm of it
+    assert short != text
+    m = linkwork.load_text(short)
+    phi = np.radians(np.arange(0.0, 360.0, 5.0) + 0.3)
+    sol = linkwork.solve(m, phi)
+    bad = sol.status == Status.UNREACHABLE
+    assert bad.any() and not bad.all()
+    assert np.isnan(sol.point("P67").position[bad]).all()
+    ref = linkwork.solve(mech("proell-schwabe-valve-gear"), phi[~bad])
+    np.testing.assert_allclose(sol.point("P67").position[~bad], ref.point("P67").position, atol=1e-9)
