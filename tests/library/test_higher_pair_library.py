@@ -635,3 +635,58 @@ def test_a_contact_run_off_its_profile_is_unreachable_not_a_crash():
     assert np.isnan(sol.point("P67").position[bad]).all()
     ref = linkwork.solve(mech("proell-schwabe-valve-gear"), phi[~bad])
     np.testing.assert_allclose(sol.point("P67").position[~bad], ref.point("P67").position, atol=1e-9)
+
+
+# ---------------------------------------------------------------------------- real profiles
+HIGHER = ["radial-roller-cam", "offset-roller-cam", "flat-faced-cam", "oscillating-roller-cam",
+          "poeschl-arc-cam", "elliptical-gears", "rolling-lever-valve-gear", "sulzer-valve-gear",
+          "proell-schwabe-valve-gear"]
+
+
+def test_higher_pair_mechanisms_are_in_the_library():
+    from linkwork.io.files import library_names
+
+    assert set(HIGHER) <= set(library_names())
+
+
+def _oscillating_on(profile_toml: str, C: np.ndarray):
+    """The library's oscillating roller lever, its disc replaced by `profile_toml` and the
+    roller's centre drawn at C."""
+    from importlib.resources import files
+
+    text = (files("linkwork") / "library" / "oscillating-roller-cam.toml").read_text()
+    old = 'type = "circle"\ncenter = [10, 0]\nradius = 30\n'
+    old_c = "C  = [10.806418259638395, 37.99144232048215]"
+    assert old in text and old_c in text
+    return linkwork.load_text(text.replace(old, profile_toml).replace(
+        old_c, f"C  = [{float(C[0])!r}, {float(C[1])!r}]"))
+
+
+def test_oscillating_roller_on_a_spline_cam_by_finite_differences():
+    """A real profile: a closed quintic spline through 36 points of a wobbly disc, the roller
+    drawn touching it near the eccentric's contact. The rocker's angular velocity is the central
+    difference of its angles, its acceleration that of its velocities."""
+    from linkwork.geometry.profiles import SplineProfile
+
+    t = np.linspace(0.0, 2 * np.pi, 36, endpoint=False)
+    rng = np.random.default_rng(7)
+    r = 30.0 + 1.5 * np.sin(3 * t) + rng.uniform(-0.1, 0.1, t.size)
+    pts = np.c_[10.0 + r * np.cos(t), r * np.sin(t)]
+    spline = SplineProfile(pts, closed=True)
+    C0 = np.array([10.806418259638395, 37.99144232048215])
+    d = spline.derivatives(np.array(spline.nearest(C0)), 1)
+    n = np.array([d[1][1], -d[1][0]]) / np.hypot(*d[1])  # right of a ccw curve: outwards
+    rows = ", ".join(f"[{float(x)!r}, {float(y)!r}]" for x, y in pts)
+    m = _oscillating_on(f'type = "spline"\nclosed = true\npoints = [{rows}]\n', d[0] + 8.0 * n)
+    phi = np.radians(np.arange(0.0, 360.0, 7.0) + 0.9)
+    sol = linkwork.solve(m, phi)
+    assert (sol.status == Status.OK).all()
+    h = 1e-5
+    w = m.drivers[0].law.speed
+    up, dn = linkwork.solve(m, phi + h), linkwork.solve(m, phi - h)
+    ang = lambda s: s.pose_derivatives("rocker")[0, :, 2]  # noqa: E731
+    np.testing.assert_allclose(sol.link("rocker").omega, w * (ang(up) - ang(dn)) / (2 * h), atol=1e-6 * w)
+    np.testing.assert_allclose(sol.link("rocker").alpha,
+                               w * (up.link("rocker").omega - dn.link("rocker").omega) / (2 * h),
+                               atol=1e-5 * w * w)
+    assert np.ptp(ang(sol)) > np.radians(5.0)  # the rocker does swing
