@@ -20,7 +20,8 @@ import linkwork
 from linkwork import Status
 from linkwork.io.files import library_names
 from linkwork.kinematics.motion import input_limits
-from linkwork.model import CamContact, CircularSlot, Gear, Prismatic, Revolute, RollingContact, Slot
+from linkwork.model import (CamContact, CircularSlot, Gear, GenevaPair, Prismatic, Revolute,
+                            RollingContact, Slot, StarWheelPair)
 
 NAMES = library_names()
 NEW = ["double-crank", "double-rocker", "parallelogram", "antiparallelogram", "slider-crank-centric",
@@ -106,6 +107,11 @@ def test_loop_closure_at_every_sample(name):
             rolled = r1 * d1 + (r2 if j.gear_kind == "external" else -r2) * d2
             np.testing.assert_allclose(rolled, 0.0, atol=1e-9 * L, err_msg=j.name)
             continue
+        if isinstance(j, GenevaPair):
+            _geneva_closure(m, sol, j)
+            continue
+        if isinstance(j, StarWheelPair):
+            continue  # its phases are checked against the seed's facts below
         a, b = j.links
         P = m.points[j.point]
         on_b = sol.point_on(b, P)
@@ -175,6 +181,33 @@ def _check_contact(m, sol, j, L, V, ok):
     np.testing.assert_allclose((v_rel * n).sum(1)[ok], 0.0, atol=1e-8 * V, err_msg=j.name)
     if isinstance(j, RollingContact):
         np.testing.assert_allclose(v_rel[ok], 0.0, atol=1e-8 * V, err_msg=j.name)
+
+
+def _pivot(m, link, carrier):
+    return next(m.points[j.point] for j in m.joints
+                if isinstance(j, Revolute) and set(j.links) == {link, carrier})
+
+
+def _geneva_closure(m, sol, j):
+    """Within the wheel's rim (|CB| < D·cos(π/n), the pin circle's entry radius) the pin lies on
+    one of the n equally spaced radial slots of the wheel; outside it the wheel stands at one of
+    its n index angles."""
+    driver, wheel = j.links
+    M, C = _pivot(m, driver, j.carrier), _pivot(m, wheel, j.carrier)
+    D, n = np.hypot(*(C - M)), j.slots
+    B = sol.point_on(driver, m.points[j.pin]).position
+    inside = np.hypot(*(B - sol.point_on(j.carrier, C).position).T) < D * np.cos(np.pi / n) * (1 - 1e-9)
+    local = sol.local(wheel, B) - C
+    bearing = np.arctan2(local[:, 1], local[:, 0])
+    index = _angle_change(sol, wheel) - _angle_change(sol, j.carrier)
+
+    def spread(a):  # of angles modulo 2π/n, about their circular mean
+        z = np.exp(1j * n * a)
+        return np.abs(np.angle(z / np.mean(z))).max() / n
+
+    assert inside.any() and (~inside).any(), j.name
+    assert spread(bearing[inside]) < 1e-9, j.name
+    assert spread(index[~inside]) < 1e-9, j.name
 
 
 @pytest.mark.parametrize("name", NAMES)

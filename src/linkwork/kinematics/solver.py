@@ -16,7 +16,7 @@ from ..errors import InputError
 from ..model import ConstantSpeed, Mechanism
 from ..topology import solution_order
 from .branches import branch_schedule
-from .contact import rows
+from .contact import interference, rows
 from .continuation import continuation_guesses
 from .groups import SINGULAR_CONDITION, GroupSolver, State, input_coefficients
 from .solution import Solution, Status
@@ -133,6 +133,12 @@ def solve(mech: Mechanism, inputs=None, *, times=None, velocities=None, accelera
         for s in solvers:
             np.maximum(cond, s.derivatives(state, ok), out=cond)
         _finish_block(state)
+    if n_rows > len(mech.link_names):  # higher pairs: a contact cut into is no contact
+        cut = interference(mech, Q[0])
+        if cut.any():
+            Q[:, cut] = np.nan
+            T[:, :, cut] = np.nan
+            assembled &= ~cut
     status = np.where(assembled, np.where(condition > SINGULAR_CONDITION, Status.SINGULAR, Status.OK),
                       Status.UNREACHABLE).astype(np.int8)
     condition = np.where(assembled, condition, np.nan)
