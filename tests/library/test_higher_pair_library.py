@@ -690,3 +690,45 @@ def test_oscillating_roller_on_a_spline_cam_by_finite_differences():
                                w * (up.link("rocker").omega - dn.link("rocker").omega) / (2 * h),
                                atol=1e-5 * w * w)
     assert np.ptp(ang(sol)) > np.radians(5.0)  # the rocker does swing
+
+
+def test_poeschl_cam_with_an_oscillating_lever_follows_the_four_bars():
+    """Pöschl §49 (Abb. 59): the arc cam under a roller lever (Schwinghebel) pivoted at B0; for
+    each arc the equivalent mechanism is the four-bar O–K–M–B0 through the arc's centre K (coupler
+    R + ρ, M the roller centre)."""
+    from linkwork.model import CamContact, Mechanism, Revolute
+
+    cam = mech("poeschl-arc-cam")
+    B0, C0 = np.array([-70.0, 50.0]), np.array([0.0, R0 + RHO_P])
+    m = Mechanism.build(
+        name="arc cam, oscillating roller lever", points={"O": [0, 0], "Q": [40, 0], "B0": B0, "C": C0},
+        links={"frame": ["O", "B0"], "cam": ["O", "Q"], "lever": ["B0", "C"]},
+        joints=[Revolute("O", "O", ("frame", "cam")), Revolute("B0", "B0", ("frame", "lever")),
+                CamContact("K", ("cam", "lever"), "cam", "roller", point="C", radius=RHO_P)],
+        drivers=[{"joint": "O"}], profiles={"cam": cam.profiles["cam"]})
+    phi = np.radians(np.arange(0.0, 360.0, 1.0) + 0.37)
+    sol = linkwork.solve(m, phi)
+    assert (sol.status == Status.OK).all()
+
+    def lever_angle(phi):
+        n = len(phi)
+        out, which = np.full(n, np.nan), np.full(n, -1)
+        for i, (c, r, a0, sweep) in enumerate(poeschl_arcs()):
+            K = _rot(phi, np.broadcast_to(c, (n, 2)))
+            M = _circles_upper(np.broadcast_to(B0, (n, 2)), 70.0, K, r + RHO_P)
+            contact = _rot(-phi, M - K)
+            inside = np.mod(np.arctan2(contact[:, 1], contact[:, 0]) - a0, 2 * np.pi) <= sweep
+            sel = inside & (which < 0)
+            out[sel] = np.arctan2(M[sel, 1] - B0[1], M[sel, 0] - B0[0])
+            which[sel] = i
+        return out, which
+
+    psi, which = lever_angle(phi)
+    assert set(which) == set(range(6))
+    np.testing.assert_allclose(sol.pose_derivatives("lever")[0, :, 2], psi - np.arctan2(*(C0 - B0)[::-1]),
+                               atol=1e-11)
+    h = 1e-6
+    np.testing.assert_allclose(sol.link("lever").omega,
+                               (lever_angle(phi + h)[0] - lever_angle(phi - h)[0]) / (2 * h), atol=1e-7)
+    # the lever rests in both dwells
+    np.testing.assert_allclose(sol.link("lever").omega[(which == 2) | (which == 5)], 0.0, atol=1e-12)
