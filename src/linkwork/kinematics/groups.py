@@ -233,7 +233,12 @@ def least_squares(J: np.ndarray, b: np.ndarray) -> np.ndarray:
     try:
         return np.linalg.solve(J, b[..., None])[..., 0]
     except np.linalg.LinAlgError:
-        return (np.linalg.pinv(J) @ b[..., None])[..., 0]
+        # samples with NaN in them (a contact run off the end of its profile) stay NaN: the SVD
+        # of pinv would not converge on them
+        out = np.full(b.shape[:-1] + J.shape[-1:], np.nan)
+        good = np.isfinite(J).all(axis=(-2, -1)) & np.isfinite(b).all(axis=-1)
+        out[good] = (np.linalg.pinv(J[good]) @ b[good][..., None])[..., 0]
+        return out
 
 
 def _scaled(J: np.ndarray, scale: float) -> np.ndarray:
