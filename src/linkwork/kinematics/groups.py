@@ -29,7 +29,6 @@ from .constraints import driver_residual, joint_residuals
 from .jet import Jet
 
 NEWTON_TOL = 1e-12  # relative to the mechanism's length scale
-SINGULAR_CONDITION = 1e8
 # above this the linear solve for the rates loses every digit (condition × ε ~ 1): the rates of
 # such samples are NaN, not invented (the sample is singular either way)
 UNRELIABLE_CONDITION = 1e14
@@ -66,6 +65,7 @@ class State:
     known: set = field(default_factory=set)
     rots: dict = field(default_factory=dict)
     branches: dict = field(default_factory=dict)  # group -> (N,) assembly signs (`branches`)
+    residuals: dict = field(default_factory=dict)  # group -> (N,) Newton's final residual / L
 
     def __post_init__(self) -> None:
         if self.T is None:
@@ -199,7 +199,7 @@ def residual_and_jacobian(state: State, group: Group) -> tuple[np.ndarray, np.nd
     residuals are the jets' values). rows = 3k, less one per wedge pair."""
     N, k = state.Q.shape[1], group.size
     m = 3 * k
-    U = np.zeros((2, N, m, k, 3))
+    U = np.zeros((2, N, m, k, 3), dtype=state.Q.dtype)  # extended precision stays so
     U[0] = state.Q[0][:, [state.li(ln) for ln in group.links]][:, None]
     U[1] = np.eye(m).reshape(m, k, 3)[None]
     # only the unknowns' directions are wanted: known links and inputs held still
@@ -230,16 +230,33 @@ def least_squares(J: np.ndarray, b: np.ndarray) -> np.ndarray:
     """x with J·x = b, per sample: by LU when every J is square and regular, else in the least
     squares sense (a singular sample in the batch, or more constraint rows than unknowns where
     sliding pairs repeat a rotation row)."""
-    try:
-        return np.linalg.solve(J, b[..., None])[..., 0]
-    except np.linalg.LinAlgError:
-        return (np.linalg.pinv(J) @ b[..., None])[..., 0]
+    if J.shape[-1] == J.shape[-2]:
+        try:
+            return np.linalg.solve(J, b[..., None])[..., 0]
+        except np.linalg.LinAlgError:
+            # only the singular samples by the pseudo-inverse: the others' answers do not
+            # depend on what else is in the batch
+            sv = np.linalg.svd(J, compute_uv=False)
+            regular = sv[..., -1] > 1e-15 * sv[..., 0]
+            out = np.empty(b.shape, dtype=np.result_type(J, b))
+            if regular.any():
+                out[regular] = np.linalg.solve(J[regular], b[regular][..., None])[..., 0]
+            out[~regular] = (np.linalg.pinv(J[~regular]) @ b[~regular][..., None])[..., 0]
+            return out
+    return (np.linalg.pinv(J) @ b[..., None])[..., 0]
 
 
-def _scaled(J: np.ndarray, scale: float) -> np.ndarray:
-    """Jacobian with angle columns in length units, so its condition number is unit-free."""
+def _scaled(J: np.ndarray, scale: float, links: tuple[str, ...] = ()) -> np.ndarray:
+    """Jacobian with angle columns in length units, so its condition number is unit-free; the
+    columns of contact coordinates (rows named in `links` with `contact.PREFIX`: profile
+    parameters of any unit) scaled to unit length."""
     Js = J.copy()
     Js[..., 2::3] /= scale
+    for i, ln in enumerate(links):
+        if ln.startswith(contact.PREFIX):
+            cols = Js[..., 3 * i:3 * i + 3]
+            norm = np.sqrt((cols * cols).sum(axis=-2, keepdims=True))
+            cols /= np.where(norm > 0, norm, 1.0)
     return Js
 
 
@@ -257,7 +274,7 @@ def derivatives_generic(state: State, group: Group, ok: np.ndarray) -> np.ndarra
     finite = ok & np.isfinite(J).all(axis=(1, 2))
     cond = np.full(J.shape[0], np.inf)
     if finite.any():
-        cond[finite] = np.linalg.cond(_scaled(J[finite], state.mech.length_scale))
+        cond[finite] = np.linalg.cond(_scaled(J[finite], state.mech.length_scale, group.links))
     good = finite & (cond < UNRELIABLE_CONDITION)
     for k in range(1, state.order + 1):
         sol = _solve(J, -rate_residuals(state, group, k), good)
@@ -366,13 +383,13 @@ class GroupSolver:
         A, B, C = P[p["a"].point], P[p["b"].point], P[p["c"].point]
         L1, L2 = np.hypot(*(B - A)), np.hypot(*(B - C))
         phi1, phi2 = _angle(B - A), _angle(B - C)
-        # cos θ = (r·(cos φ, sin φ))/L, sin θ = (r × (cos φ, sin φ))/L for the hinge vector r
-        # of a link drawn at angle φ; the condition number needs only L1², L2² and c1·c2
+        # cos θ = (r·(cos φ, sin φ))/|r|, sin θ = (r × (cos φ, sin φ))/|r| for the hinge
+        # vector r of a link drawn at angle φ; the condition number needs only L1², L2², c1·c2
         return dict(
             A=A, C=C, BA=B - A, BC=B - C, L1sq=L1 * L1, diff=L1 * L1 - L2 * L2, tol=-1e-12 * L1 * L1,
             branch=_design_branch(_cross(C - A, B - A)), phi1=phi1, phi2=phi2,
-            k1=np.array([np.cos(phi1), np.sin(phi1)]) / L1,
-            k2=np.array([np.cos(phi2), np.sin(phi2)]) / L2,
+            k1=np.array([np.cos(phi1), np.sin(phi1)]),
+            k2=np.array([np.cos(phi2), np.sin(phi2)]),
             mid=0.5 * (L1 * L1 + L2 * L2), hd2=(0.5 * (L1 * L1 - L2 * L2)) ** 2,
             i1=li[p["l1"]], i2=li[p["l2"]],
             iA=li[_other(p["a"], p["l1"])], iC=li[_other(p["c"], p["l2"])])
@@ -557,7 +574,7 @@ class GroupSolver:
             converged = active & (err <= NEWTON_TOL * scale)
             todo = active & ~(converged & polished)
             if not todo.any():
-                break
+                break  # err is the residual at the final poses
             # a converged sample takes one more step: Newton's quadratic convergence then leaves
             # only rounding, which the acceleration solve needs (its error scales with it)
             polished |= converged
@@ -566,9 +583,14 @@ class GroupSolver:
             big = np.abs(step[:, 2::3]).max(axis=1, initial=0.0)
             step *= np.minimum(1.0, 1.0 / np.maximum(big, 1e-300))[:, None]
             q[todo] += step.reshape(-1, self.group.size, 3)
+        else:
+            state.Q[0][:, idx, :] = q
+            err = np.abs(residual_and_jacobian(state, self.group)[0]).max(axis=1, initial=0.0)
         q[~converged] = np.nan
         state.Q[0][:, idx, :] = q
         state.forget_trig(idx)
+        # the backward error of the poses, for the forward error estimate (`precision`)
+        state.residuals[self.group] = err / scale
         return converged
 
     # ------------------------------------------------------------------ derivatives
