@@ -183,8 +183,9 @@ def propagate_errors(Q, links, L, omega, kappa, rho, m, E, eps):
     """First-order forward error of one group's pose coefficients, added to the running bounds
     E[k, n]: the largest error of the k-th Taylor coefficients so far, in the natural units
     L·Ω^k (angles Ω^k), Ω = omega[n] the inputs' rate. m[0, n] is the size of the drawing's
-    coordinates over L, m[k, n] (k ≥ 1) the size of the k-th coefficients so far, raised here
-    to those of the group's `links`.
+    coordinates over L (raised here to the links' angles, whose rounding grows with the turns),
+    m[k, n] (k ≥ 1) the size of the k-th coefficients so far, raised here to those of the
+    group's `links`.
 
     The group's k-th coefficients solve J·x_k = −r_k, with κ = kappa[n] the condition number
     of the scaled J: positions carry κ times their backward error (the residual rho[n], or none
@@ -195,6 +196,10 @@ def propagate_errors(Q, links, L, omega, kappa, rho, m, E, eps):
     K = E.shape[0] - 1
     e = np.empty(K + 1)
     for n in range(E.shape[1]):
+        for i in links:  # an angle of many turns rounds to ε times its size
+            a = abs(Q[0, i, 2, n])
+            if a > m[0, n]:
+                m[0, n] = a
         w = omega[n]
         scale = 1.0
         for k in range(1, K + 1):
@@ -234,8 +239,8 @@ def relative_errors(E, m, eps, out):
     K = min(E.shape[0], 3)
     for n in range(E.shape[1]):
         top = 0.0
-        for k in range(K):
-            v = E[k, n] / max(m[k, n], 1.0)
+        for k in range(K):  # positions against the scale L; rates against their size too
+            v = E[k, n] / max(m[k, n], 1.0) if k else E[0, n]
             if not v <= top:  # NaN too
                 top = v if v == v else math.inf
         out[n] = top + eps
