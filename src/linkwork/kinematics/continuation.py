@@ -338,8 +338,13 @@ def _march(mech: Mechanism, solvers: tuple, gen: _Generic, lanes: list[_Lane], r
     reach[lane.sense] or stopped. Every attempt solves all groups in order at the proposed
     input — the generic ones by `_correct` from the predicted poses — then their velocities at
     unit input rate along the lane: the tangent for the next prediction."""
+    from .branches import branch_schedule  # imports the solver, which imports this module
+
     n_links = len(row_index(mech))  # links and contact rows
     budget = {id(ln): MAX_ATTEMPTS for ln in lanes}
+    # closed-form groups take the assembly the real motion takes across change points, as in
+    # `solve` (a parallelogram under an over-closing crank stays a parallelogram)
+    schedule = branch_schedule(mech) if len(mech.drivers) == 1 else {}
     while True:
         todo = [ln for ln in lanes if not ln.reached(reach[ln.sense])]
         if not todo:
@@ -364,7 +369,8 @@ def _march(mech: Mechanism, solvers: tuple, gen: _Generic, lanes: list[_Lane], r
         # second order, so that the driver and RRR dyads take their closed-form velocities;
         # the sample axis last in memory, as `solve` lays out Q for the compiled kernels
         state = State(mech, np.zeros((3, n_links, 3, N)).transpose(0, 3, 1, 2),
-                      input_coefficients(mech, u, arrive, None, None, 2))
+                      input_coefficients(mech, u, arrive, None, None, 2),
+                      branches={g: sch.signs(u[:, 0]) for g, sch in schedule.items()})
         ok = np.ones(N, dtype=bool)
         jacobians = {}
         with np.errstate(invalid="ignore", divide="ignore", over="ignore"):

@@ -261,9 +261,10 @@ def _scaled(J: np.ndarray, scale: float, links: tuple[str, ...] = ()) -> np.ndar
 
 
 def _solve(J: np.ndarray, r: np.ndarray, ok: np.ndarray) -> np.ndarray:
-    out = np.full(r.shape, np.nan)
+    out = np.full(r.shape[:1] + J.shape[2:], np.nan)
     if ok.any():
-        out[ok] = np.linalg.solve(J[ok], r[ok][..., None])[..., 0]
+        # more rows than unknowns (an over-closed group): least squares, exact where consistent
+        out[ok] = least_squares(J[ok], r[ok])
     return out
 
 

@@ -12,7 +12,7 @@ from functools import lru_cache
 
 import numpy as np
 
-from ..errors import InputError
+from ..errors import InputError, StructureError
 from ..model import ConstantSpeed, Mechanism
 from ..topology import solution_order
 from .branches import branch_schedule
@@ -27,8 +27,16 @@ BLOCK = 8192  # samples per block when every group has a closed form
 
 @lru_cache(maxsize=64)
 def plan(mech: Mechanism) -> tuple[GroupSolver, ...]:
-    """The group solvers of `mech` in solution order (computed once per mechanism)."""
-    return tuple(GroupSolver(mech, g) for g in solution_order(mech))
+    """The group solvers of `mech` in solution order (computed once per mechanism); an
+    over-closed chain is ordered by `overclosed` (its redundant links last, least squares)."""
+    try:
+        order = solution_order(mech)
+    except StructureError as exc:
+        if not str(exc).startswith("over-constrained"):
+            raise
+        from .overclosed import overclosed_order
+        order = overclosed_order(mech, exc)
+    return tuple(GroupSolver(mech, g) for g in order)
 
 
 def _pose_array(order: int, N: int, n_links: int, frame: int) -> np.ndarray:
