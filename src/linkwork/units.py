@@ -1,21 +1,183 @@
-"""Quantities with units: parsing of the strings users write ("60 rpm", "1.2rad", "5 mm").
+"""Quantities with units: parsing of the strings users write ("60 rpm", "1.2rad", "5 mm/s^2").
 
 One pint registry for the whole package. Internally linkwork works in the file's length unit,
 radians and seconds; this module converts at the boundary and nowhere else.
+
+A quantity is read by a small grammar of its own, never by handing the text to pint's
+expression evaluator (which computes `9**9**9` as an integer of 370 million digits):
+
+    quantity := sign? product
+    product  := power (("*" | "/" | juxtaposition) power)*
+    power    := atom (("^" | "**") exponent)?
+    exponent := sign? integer, at most MAX_EXPONENT in size
+    atom     := number | unit name | "(" product ")"
+
+Numbers are decimal (`12`, `1.5`, `2e-3`); unit names are looked up in pint's registry one by
+one, and pint does the unit arithmetic and the conversion. Every number read and the final
+value must be finite and at most MAX_MAGNITUDE in size.
 """
 
 from __future__ import annotations
 
+import math
+import re
 from functools import lru_cache
 
 import pint
 
 from .errors import InputError
 
+#: the largest size of any number linkwork accepts from a user (file or command line): larger
+#: ones are typing mistakes, and squares of them would overflow the solver's arithmetic
+MAX_MAGNITUDE = 1e12
+#: the largest exponent in a quantity (`mm/s^2`, `rad*s^-3`)
+MAX_EXPONENT = 4
+#: the longest quantity text read (a quantity is a few words)
+MAX_LENGTH = 200
+
 
 @lru_cache(maxsize=1)
 def registry() -> pint.UnitRegistry:
     return pint.UnitRegistry()
+
+
+_TOKEN = re.compile(r"\s*(?:(?P<number>(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?)"
+                    r"|(?P<name>[^\W\d][\w°]*|°)"
+                    r"|(?P<op>\*\*|[*/^()+\-]))")
+
+
+def _tokens(text: str, what: str) -> list[tuple[str, str]]:
+    out, pos = [], 0
+    text = text.rstrip()
+    while pos < len(text):
+        m = _TOKEN.match(text, pos)
+        if m is None or m.end() == pos:
+            raise InputError(f"{what}: unexpected '{text[pos:].strip()[:20]}' (write a number and "
+                             "a unit, e.g. '60 rpm', '2 rad/s', '5 mm/s^2')")
+        kind = m.lastgroup
+        out.append((kind, m.group(kind)))
+        pos = m.end()
+    return out
+
+
+def _finite(value: float, what: str, text: str) -> float:
+    if not math.isfinite(value) or abs(value) > MAX_MAGNITUDE:
+        raise InputError(f"{what}: '{text}' is not a finite number of at most {MAX_MAGNITUDE:g} "
+                         "in size")
+    return value
+
+
+class _Reader:
+    """Recursive descent over the tokens: magnitude (a float) and unit (a pint Unit)."""
+
+    def __init__(self, text: str, what: str) -> None:
+        self.text, self.what = text, what
+        self.tokens = _tokens(text, what)
+        self.i = 0
+        self.ureg = registry()
+
+    def peek(self) -> tuple[str, str] | None:
+        return self.tokens[self.i] if self.i < len(self.tokens) else None
+
+    def take(self) -> tuple[str, str]:
+        tok = self.peek()
+        if tok is None:
+            raise InputError(f"{self.what}: '{self.text}' ends too early")
+        self.i += 1
+        return tok
+
+    def fail(self, why: str):
+        raise InputError(f"{self.what}: cannot read '{self.text}': {why}")
+
+    def quantity(self) -> tuple[float, pint.Unit]:
+        if not self.tokens:
+            raise InputError(f"{self.what}: empty quantity")
+        sign = 1.0
+        while self.peek() in (("op", "-"), ("op", "+")):
+            sign *= -1.0 if self.take()[1] == "-" else 1.0
+        mag, unit = self.product()
+        if self.peek() is not None:
+            self.fail(f"unexpected '{self.peek()[1]}'")
+        return sign * mag, unit
+
+    def product(self) -> tuple[float, pint.Unit]:
+        mag, unit = self.power()
+        while True:
+            tok = self.peek()
+            if tok in (("op", "*"), ("op", "/")):
+                self.take()
+                m, u = self.power()
+                if tok[1] == "*":
+                    mag, unit = mag * m, unit * u
+                else:
+                    if m == 0:
+                        self.fail("division by zero")
+                    mag, unit = mag / m, unit / u
+            elif tok is not None and (tok[0] in ("number", "name") or tok == ("op", "(")):
+                m, u = self.power()  # juxtaposition: "60 rpm", "2 rad s^-1"
+                mag, unit = mag * m, unit * u
+            else:
+                return _finite(mag, self.what, self.text), unit
+
+    def power(self) -> tuple[float, pint.Unit]:
+        mag, unit = self.atom()
+        if self.peek() in (("op", "^"), ("op", "**")):
+            self.take()
+            sign = 1
+            while self.peek() in (("op", "-"), ("op", "+")):
+                sign *= -1 if self.take()[1] == "-" else 1
+            kind, value = self.take()
+            if kind != "number" or not value.isdigit():
+                self.fail("an exponent is a whole number")
+            if len(value) > 3 or int(value) > MAX_EXPONENT:
+                self.fail(f"exponents go up to {MAX_EXPONENT}")
+            if self.peek() in (("op", "^"), ("op", "**")):
+                self.fail("write one exponent per factor")
+            n = sign * int(value)
+            if mag == 0 and n < 0:
+                self.fail("division by zero")
+            mag, unit = mag ** n, unit ** n
+        return _finite(mag, self.what, self.text), unit
+
+    def atom(self) -> tuple[float, pint.Unit]:
+        kind, value = self.take()
+        if kind == "number":
+            return _finite(float(value), self.what, value), self.ureg.Unit("")
+        if kind == "name":
+            if value.lower() in ("nan", "inf", "infinity"):
+                self.fail("not a finite number")
+            try:
+                if value not in self.ureg:
+                    raise KeyError(value)
+                return 1.0, self.ureg.Unit(value)
+            except Exception:
+                self.fail(f"unknown unit '{value}'")
+        if value == "(":
+            inner = self.product()
+            if self.take() != ("op", ")"):
+                self.fail("a '(' is not closed")
+            return inner
+        self.fail(f"unexpected '{value}'")
+
+
+def read_quantity(text: str, what: str = "quantity") -> pint.Quantity:
+    """The quantity `text` by the grammar of the module's docstring; `InputError` naming `what`
+    for anything else."""
+    text = str(text).strip()
+    if len(text) > MAX_LENGTH:
+        raise InputError(f"{what}: a quantity of {len(text)} characters is too long to be one")
+    mag, unit = _Reader(text, what).quantity()
+    return registry().Quantity(mag, unit)
+
+
+def check_number(value, what: str) -> float:
+    """`value` as a float if it is a finite number (not a bool) of at most MAX_MAGNITUDE in
+    size; `InputError` naming `what` otherwise."""
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        raise InputError(f"{what}: expected a number, got {value!r}")
+    if isinstance(value, int) and abs(value) > MAX_MAGNITUDE:
+        raise InputError(f"{what}: {value} is larger than {MAX_MAGNITUDE:g} in size")
+    return _finite(float(value), what, repr(value))
 
 
 def parse_quantity(text: str | float | int, *, default_unit: str, kind: str) -> float:
@@ -24,33 +186,25 @@ def parse_quantity(text: str | float | int, *, default_unit: str, kind: str) -> 
     A bare number is taken in `default_unit`; a number with a unit is converted. `kind` names
     what the value is for, so that the error message can say it ("speed", "input angle").
     """
-    if isinstance(text, (int, float)) and not isinstance(text, bool):
-        return float(text)
-    ureg = registry()
-    try:
-        q = ureg.Quantity(str(text).strip())
-    except Exception as exc:  # pint raises several unrelated types for garbage
-        raise InputError(f"cannot read {kind} '{text}': {exc}") from None
-    if isinstance(q, (int, float)):
-        return float(q)
-    if q.dimensionless and str(q.units) == "dimensionless":
+    if not isinstance(text, str):
+        return check_number(text, kind)
+    q = read_quantity(text, kind)
+    if str(q.units) == "dimensionless":
         return float(q.magnitude)
     try:
-        return float(q.to(default_unit).magnitude)
-    except pint.DimensionalityError:
+        value = float(q.to(default_unit).magnitude)
+    except pint.errors.PintError:  # other dimensions, offset units (degC) in a product
         raise InputError(
             f"{kind} '{text}' has unit '{q.units}', which cannot be converted to '{default_unit}'"
         ) from None
+    return _finite(value, kind, text)
 
 
-def unit_dimension(text: str) -> str | None:
+def unit_dimension(text: str, what: str = "quantity") -> str | None:
     """'time', 'angle', 'length' or None for a quantity string without a unit."""
     ureg = registry()
-    try:
-        q = ureg.Quantity(str(text).strip())
-    except Exception:
-        raise InputError(f"cannot read quantity '{text}'") from None
-    if not hasattr(q, "units") or str(q.units) == "dimensionless":
+    q = read_quantity(text, what)
+    if str(q.units) == "dimensionless":
         return None
     for dim, unit in (("time", "s"), ("angle", "rad"), ("length", "m")):
         if q.check(ureg.Unit(unit).dimensionality):
@@ -62,6 +216,8 @@ def check_length_unit(unit: str) -> str:
     """Validate a length unit name ('mm', 'm', 'in'); return it unchanged."""
     ureg = registry()
     try:
+        if not re.fullmatch(r"[^\W\d]\w*", unit) or unit not in ureg:
+            raise KeyError(unit)
         u = ureg.Unit(unit)
     except Exception:
         raise InputError(f"unknown length unit '{unit}'") from None

@@ -103,7 +103,7 @@ def test_no_driver():
 
 def test_driver_on_unknown_joint():
     msg = _error(FOURBAR.replace('joint = "O2"', 'joint = "Q"'))
-    assert "driver joint 'Q'" in msg
+    assert "joint 'Q', which is not in [joints]" in msg and "driver.joint" in msg
 
 
 def test_bad_speed_unit():

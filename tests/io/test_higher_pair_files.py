@@ -64,9 +64,9 @@ def test_csv_profile_beside_the_file(tmp_path):
 
 
 @pytest.mark.parametrize("joint,profile,message", [
-    ('follower = "roller", point = "C", radius = 5', "disk", "no profile 'disk'"),
+    ('follower = "roller", point = "C", radius = 5', "disk", r"profile 'disk', which is not in \[profiles\] \(did you mean 'disc'\?\)"),
     ('follower = "roller", point = "C"', "disc", "roller needs a positive radius"),
-    ('follower = "roller", point = "Q", radius = 5', "disc", "needs `point`"),
+    ('follower = "roller", point = "Q", radius = 5', "disc", r"point 'Q', which is not in \[points\]"),
     ('follower = "wheel", point = "C", radius = 5', "disc", "follower"),
     ('follower = "roller", point = "C", radius = 6', "disc", "does not touch profile 'disc'"),
     ('follower = "flat", point = "C"', "disc", "flat face needs `axis`"),

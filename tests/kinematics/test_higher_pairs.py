@@ -155,6 +155,12 @@ def test_pressure_angle_and_contact_speeds():
     Ew = np.stack([E * np.cos(PHI), E * np.sin(PHI)], axis=1)
     np.testing.assert_allclose(np.hypot(*(P - Ew).T), R, atol=1e-10 * R)
     np.testing.assert_allclose(np.hypot(*(P - sol.point("C").position).T), RHO, atol=1e-10 * R)
+    # in the cam's own coordinates the contact lies on the disc as drawn, in the follower's on
+    # the roller as drawn (both links' coordinates are the drawing's at the design position)
+    on_cam, on_follower = rep["point_on_profile"], rep["point_on_follower"]
+    np.testing.assert_allclose(np.hypot(on_cam[:, 0] - E, on_cam[:, 1]), R, atol=1e-10 * R)
+    C0 = eccentric("roller").points["C"]
+    np.testing.assert_allclose(np.hypot(*(on_follower - C0).T), RHO, atol=1e-10 * R)
 
 
 def test_disc_rolling_on_a_fixed_circle():

@@ -20,7 +20,8 @@ import linkwork
 from linkwork import Status
 from linkwork.io.files import library_names
 from linkwork.kinematics.motion import input_limits
-from linkwork.model import CircularSlot, Gear, Prismatic, Revolute, Slot
+from linkwork.model import (CamContact, CircularSlot, Gear, GenevaPair, Prismatic, Revolute,
+                            RollingContact, Slot, StarWheelPair)
 
 NAMES = library_names()
 NEW = ["double-crank", "double-rocker", "parallelogram", "antiparallelogram", "slider-crank-centric",
@@ -90,6 +91,9 @@ def test_loop_closure_at_every_sample(name):
     L, V, A = _scales(m)
     ok = sol.status == Status.OK
     for j in m.joints:
+        if isinstance(j, (CamContact, RollingContact)):
+            _check_contact(m, sol, j, L, V, ok)
+            continue
         if isinstance(j, Gear):
             r1, r2 = j.radii
             d1 = _angle_change(sol, j.links[0]) - _angle_change(sol, j.carrier)
@@ -103,6 +107,11 @@ def test_loop_closure_at_every_sample(name):
             rolled = r1 * d1 + (r2 if j.gear_kind == "external" else -r2) * d2
             np.testing.assert_allclose(rolled, 0.0, atol=1e-9 * L, err_msg=j.name)
             continue
+        if isinstance(j, GenevaPair):
+            _geneva_closure(m, sol, j)
+            continue
+        if isinstance(j, StarWheelPair):
+            continue  # its phases are checked against the seed's facts below
         a, b = j.links
         P = m.points[j.point]
         on_b = sol.point_on(b, P)
@@ -132,6 +141,73 @@ def test_loop_closure_at_every_sample(name):
             c = m.points[j.center]
             R = np.hypot(*(P - c))
             np.testing.assert_allclose(np.hypot(*(loc + P - c).T), R, atol=1e-9 * L, err_msg=j.name)
+
+
+def _check_contact(m, sol, j, L, V, ok):
+    """A higher pair from the contact report `Solution.joint`: the contact point lies on the
+    profile of links[0] and on the follower's element (roller circle, knife tip, flat face or
+    mate profile), both tangent to the common tangent there; the two links' material points at
+    the contact have no relative velocity along the common normal (and none at all when rolling)."""
+    rep = sol.joint(j.name)
+    a, b = j.links
+    P, n = rep["point"], rep["normal"]
+    prof = m.profiles[j.profile if isinstance(j, CamContact) else j.profiles[0]]
+    d = prof.derivatives(rep["u"], 1)
+    np.testing.assert_allclose(sol.local(a, P), d[0], atol=1e-9 * L, err_msg=j.name)
+    th_a = sol.pose_derivatives(a)[0, :, 2]
+    t_a = np.c_[np.cos(th_a) * d[1][:, 0] - np.sin(th_a) * d[1][:, 1],
+                np.sin(th_a) * d[1][:, 0] + np.cos(th_a) * d[1][:, 1]]
+    np.testing.assert_allclose((t_a * n).sum(1) / np.hypot(*t_a.T), 0.0, atol=1e-9, err_msg=j.name)
+    follower = j.follower if isinstance(j, CamContact) else "profile"
+    if follower in ("roller", "knife"):
+        C = sol.point(j.point).position
+        np.testing.assert_allclose(C - P, j.radius * n, atol=1e-9 * L, err_msg=j.name)
+    elif follower == "flat":
+        loc = sol.local(b, P) - m.points[j.point]
+        np.testing.assert_allclose(loc @ np.array([-j.axis[1], j.axis[0]]), 0.0, atol=1e-9 * L,
+                                   err_msg=j.name)
+    else:
+        mate = m.profiles[j.mate if isinstance(j, CamContact) else j.profiles[1]]
+        e = mate.derivatives(rep["v"], 1)
+        np.testing.assert_allclose(sol.local(b, P), e[0], atol=1e-9 * L, err_msg=j.name)
+        t_b = e[1] / np.hypot(*e[1].T)[:, None]
+        t_a_loc = d[1] / np.hypot(*d[1].T)[:, None]
+        th_b = sol.pose_derivatives(b)[0, :, 2]
+        # the mate's tangent, turned into the frame, is parallel to the profile's
+        cross = (np.cos(th_a - th_b) * t_a_loc[:, 0] - np.sin(th_a - th_b) * t_a_loc[:, 1]) * t_b[:, 1] \
+            - (np.sin(th_a - th_b) * t_a_loc[:, 0] + np.cos(th_a - th_b) * t_a_loc[:, 1]) * t_b[:, 0]
+        np.testing.assert_allclose(cross, 0.0, atol=1e-9, err_msg=j.name)
+    v_rel = (sol.point_on(b, sol.local(b, P)).velocity - sol.point_on(a, sol.local(a, P)).velocity)
+    np.testing.assert_allclose((v_rel * n).sum(1)[ok], 0.0, atol=1e-8 * V, err_msg=j.name)
+    if isinstance(j, RollingContact):
+        np.testing.assert_allclose(v_rel[ok], 0.0, atol=1e-8 * V, err_msg=j.name)
+
+
+def _pivot(m, link, carrier):
+    return next(m.points[j.point] for j in m.joints
+                if isinstance(j, Revolute) and set(j.links) == {link, carrier})
+
+
+def _geneva_closure(m, sol, j):
+    """Within the wheel's rim (|CB| < D·cos(π/n), the pin circle's entry radius) the pin lies on
+    one of the n equally spaced radial slots of the wheel; outside it the wheel stands at one of
+    its n index angles."""
+    driver, wheel = j.links
+    M, C = _pivot(m, driver, j.carrier), _pivot(m, wheel, j.carrier)
+    D, n = np.hypot(*(C - M)), j.slots
+    B = sol.point_on(driver, m.points[j.pin]).position
+    inside = np.hypot(*(B - sol.point_on(j.carrier, C).position).T) < D * np.cos(np.pi / n) * (1 - 1e-9)
+    local = sol.local(wheel, B) - C
+    bearing = np.arctan2(local[:, 1], local[:, 0])
+    index = _angle_change(sol, wheel) - _angle_change(sol, j.carrier)
+
+    def spread(a):  # of angles modulo 2π/n, about their circular mean
+        z = np.exp(1j * n * a)
+        return np.abs(np.angle(z / np.mean(z))).max() / n
+
+    assert inside.any() and (~inside).any(), j.name
+    assert spread(bearing[inside]) < 1e-9, j.name
+    assert spread(index[~inside]) < 1e-9, j.name
 
 
 @pytest.mark.parametrize("name", NAMES)

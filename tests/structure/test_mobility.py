@@ -175,6 +175,11 @@ LIBRARY_COUNTS = {
     "roemer-mechanism": dict(n=7, g=7, s=1, h=1),
     # Jansen: 8 links, 4 simple and 3 double hinges (hand count of the file's joints)
     "jansen-linkage": dict(n=8, g=10, s=0, g2=3),
+    # Geneva and star wheels (Pöschl §25): frame, driver, wheel; two hinges and the pin's
+    # intermittent pair, h = 1 in every phase: F = 3·2 − 2·2 − 1 = 1
+    "geneva-4": dict(n=3, g=2, s=0, h=1),
+    "geneva-6": dict(n=3, g=2, s=0, h=1),
+    "star-wheel": dict(n=3, g=2, s=0, h=1),
 }
 
 

@@ -16,6 +16,7 @@ import typer
 from rich.console import Console
 from rich.table import Table
 
+from .common import print_message
 from linkwork.topology.atlas import SUPPORTED_LINK_COUNTS, TYPE_NAMES, Chain, enumerate_chains, write_atlas_svg
 
 
@@ -107,7 +108,7 @@ def atlas(
         try:
             written = write_atlas_svg(chains, svg, progress=True)
         except OSError as exc:
-            err.print(f"[bold red]error:[/] cannot write SVG files to {svg}: {exc.strerror or exc}", highlight=False)
+            print_message("error", f"cannot write SVG files to {svg}: {exc.strerror or exc}")
             raise typer.Exit(2) from None
         err.print(f"wrote {len(written)} SVG files to {svg}", highlight=False)
 

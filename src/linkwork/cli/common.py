@@ -11,6 +11,7 @@ from typing import Iterator
 import numpy as np
 import typer
 from rich.console import Console
+from rich.text import Text
 
 from ..errors import InputError, LinkworkError, LinkworkWarning
 from ..io import load
@@ -20,6 +21,14 @@ from ..units import parse_quantity, unit_dimension
 err_console = Console(stderr=True)
 
 
+def print_message(kind: str, message: str) -> None:
+    """One line on stderr, `error: …` or `warning: …`: the message printed as it is (a TOML
+    section such as `[links]` in it is text, not Rich markup)."""
+    style = "bold red" if kind == "error" else "bold yellow"
+    err_console.print(Text.assemble((f"{kind}:", style), " ", message), highlight=False,
+                      soft_wrap=True)
+
+
 @contextmanager
 def user_errors() -> Iterator[None]:
     """Print a `LinkworkError` as one line on stderr and exit with status 2; print each
@@ -27,8 +36,7 @@ def user_errors() -> Iterator[None]:
 
     def show(message, category, filename, lineno, file=None, line=None) -> None:
         if issubclass(category, LinkworkWarning):
-            err_console.print(f"[bold yellow]warning:[/] {message}", highlight=False,
-                              soft_wrap=True)
+            print_message("warning", str(message))
         else:
             shown(message, category, filename, lineno, file, line)
 
@@ -38,8 +46,18 @@ def user_errors() -> Iterator[None]:
         try:
             yield
         except LinkworkError as exc:
-            err_console.print(f"[bold red]error:[/] {exc}", highlight=False, soft_wrap=True)
+            print_message("error", str(exc))
             raise typer.Exit(2) from None
+
+
+def positive_option(value: float | None, option: str, largest: float | None = None) -> None:
+    """Refuse a numeric option that is not a finite positive number (at most `largest`)."""
+    if value is None:
+        return
+    if not (np.isfinite(value) and value > 0):
+        raise InputError(f"{option} {value:g}: give a finite number greater than 0")
+    if largest is not None and value > largest:
+        raise InputError(f"{option} {value:g}: at most {largest:g}")
 
 
 def load_mechanism(spec: str) -> Mechanism:
@@ -62,25 +80,29 @@ def show_input(mech: Mechanism, driver: Driver, value: float) -> str:
     return f"{np.degrees(value):.3f}°"
 
 
-def input_value(mech: Mechanism, text: str, driver: Driver | None = None) -> tuple[str, float]:
+def input_value(mech: Mechanism, text: str, driver: Driver | None = None,
+                what: str = "input value", part: str = "") -> tuple[str, float]:
     """('input', value in rad or length unit) or ('time', seconds) for one value written by
     the user: degrees for a revolute driver and the file's unit for a prismatic one, unless a
     unit is written (`1.2rad`, `0.5 s`). `driver` defaults to the only (first) driver; when it
-    is given, messages name it."""
+    is given, messages name it; `what` names the option in messages (--at, --sweep O2) and
+    `part` the value's place in it (STEP)."""
     text = text.strip()
     the = "the driver" if driver is None else f"driver {driver.joint}"
     if not text:
         raise InputError("empty input value" if driver is None else f"empty value for driver {driver.joint}")
-    dim = unit_dimension(text)
+    kind = f"{what} {part}".strip()
+    dim = unit_dimension(text, kind)
     if dim == "time":
-        return "time", parse_quantity(text, default_unit="s", kind="time")
+        return "time", parse_quantity(text, default_unit="s", kind=kind)
     if _is_prismatic(mech, driver):
         if dim not in (None, "length"):
-            raise InputError(f"'{text}': {the} is prismatic, give a length (default {mech.length_unit})")
-        return "input", parse_quantity(text, default_unit=mech.length_unit, kind="input displacement")
+            raise InputError(f"{what}: '{text}': {the} is prismatic, give a length (default "
+                             f"{mech.length_unit})")
+        return "input", parse_quantity(text, default_unit=mech.length_unit, kind=kind)
     if dim not in (None, "angle"):
-        raise InputError(f"'{text}': {the} is revolute, give an angle (degrees by default)")
-    return "input", float(np.radians(parse_quantity(text, default_unit="deg", kind="input angle")))
+        raise InputError(f"{what}: '{text}': {the} is revolute, give an angle (degrees by default)")
+    return "input", float(np.radians(parse_quantity(text, default_unit="deg", kind=kind)))
 
 
 MAX_SAMPLES = 10_000_000
@@ -91,12 +113,13 @@ def _range(mech: Mechanism, text: str, label: str, driver: Driver | None) -> tup
     parts = text.split(":")
     if len(parts) != 3:
         raise InputError(f"{label} '{text}': write START:STOP:STEP")
-    parsed = [input_value(mech, p, driver) for p in parts]
+    parsed = [input_value(mech, p, driver, label, part)
+              for p, part in zip(parts, ("START", "STOP", "STEP"))]
     kinds = {k for k, _ in parsed}
     if len(kinds) > 1:
         raise InputError(f"{label} mixes times and input values")
     (a, b, h) = (v for _, v in parsed)
-    if h == 0 or not np.isfinite(h):
+    if h == 0:
         raise InputError(f"{label}: the step must not be zero")
     if (b - a) * h < 0:
         raise InputError(f"{label}: the step goes away from STOP")
@@ -184,7 +207,7 @@ def _unnamed(mech: Mechanism, at_texts: list[str], at_items: list, sweep_texts: 
                 f"--at {mech.drivers[1].joint}=10 or --sweep {mech.drivers[0].joint}=0:360:10 "
                 f"--sweep {mech.drivers[1].joint}=0:360:10, or give times ({option} 0.5s)")
     if at_texts:
-        parsed = [input_value(mech, v) for _, v in at_items]
+        parsed = [input_value(mech, v, what="--at") for _, v in at_items]
         kinds = {k for k, _ in parsed}
         if len(kinds) > 1:
             raise InputError("--at mixes times and input values")
@@ -215,7 +238,7 @@ def _named(mech: Mechanism, at_items: list, sweep_items: list) -> tuple[str, np.
                                  f"{', '.join(texts)}")
             try:
                 if option == "--at":
-                    parsed = [input_value(mech, t, d) for t in texts]
+                    parsed = [input_value(mech, t, d, label) for t in texts]
                     kind = "time" if any(k == "time" for k, _ in parsed) else "input"
                     vals = np.array([v for _, v in parsed])
                 else:

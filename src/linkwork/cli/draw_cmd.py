@@ -17,7 +17,11 @@ import numpy as np
 import typer
 
 from ..errors import InputError
-from .common import input_values, load_mechanism, user_errors
+from ..units import MAX_MAGNITUDE
+from .common import input_values, load_mechanism, positive_option, user_errors
+
+#: the finest PNG resolution drawn (an A4 page at 2400 dpi is already 20 000 pixels wide)
+MAX_DPI = 2400.0
 
 
 def _list(text: Optional[str]) -> list[str]:
@@ -47,6 +51,10 @@ def register(app: typer.Typer) -> None:
             from ..drawing import scene_figure
             from ..drawing.layers import Scene
             from ..kinematics import solve
+            positive_option(dpi, "--dpi", MAX_DPI)
+            for value, option in ((length_scale, "--length-scale"), (velocity_scale, "--velocity-scale"),
+                                  (acceleration_scale, "--acceleration-scale"), (animate, "--animate")):
+                positive_option(value, option, MAX_MAGNITUDE)
             mech = load_mechanism(mechanism)
             out = Path(output)
             if out.suffix.lower() not in (".svg", ".png", ".pdf"):

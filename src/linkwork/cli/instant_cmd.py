@@ -105,7 +105,7 @@ def _input_doc(sol: Solution, n: int):
 
 
 def _render(tables: list) -> str:
-    con = Console(record=True, width=150, file=open("/dev/null", "w"))
+    con = Console(record=True, width=150, file=open("/dev/null", "w"), markup=False)
     for t in tables:
         con.print(t)
     return con.export_text()

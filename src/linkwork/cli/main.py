@@ -13,7 +13,6 @@ from typing import Optional
 import numpy as np
 import typer
 from rich.console import Console
-from rich.markup import escape
 from rich.progress import Progress
 from rich.table import Table
 
@@ -60,7 +59,8 @@ def _solve_with_progress(mech, kind: str, values: np.ndarray, speeds: np.ndarray
 
 def _table(sol: Solution) -> str:
     mech = sol.mechanism
-    out = Console(record=True, width=160, file=open("/dev/null", "w"))
+    # markup off: names from the file ("[A]", "x [mm]") are text
+    out = Console(record=True, width=160, file=open("/dev/null", "w"), markup=False)
     unit = mech.length_unit
     single = len(mech.drivers) == 1
 
@@ -75,14 +75,14 @@ def _table(sol: Solution) -> str:
             t = Table(title=f"{mech.name} — input {inp} — {Status(int(sol.status[n]))}, "
                             f"condition {sol.condition[n]:.3g}")
             for c in ("point", f"x [{unit}]", "y", f"vx [{unit}/s]", "vy", f"ax [{unit}/s²]", "ay"):
-                t.add_column(escape(c), justify="right")
+                t.add_column(c, justify="right")
             for p in mech.points:
                 m = sol.point(p)
                 t.add_row(p, *(f"{v:.6g}" for v in (*m.position[n], *m.velocity[n], *m.acceleration[n])))
             out.print(t)
             t = Table()
             for c in ("link", "angle [°]", "ω [rad/s]", "α [rad/s²]"):
-                t.add_column(escape(c), justify="right")
+                t.add_column(c, justify="right")
             for ln in mech.moving_links:
                 m = sol.link(ln)
                 t.add_row(ln, f"{np.degrees(m.angle[n]):.4f}", f"{m.omega[n]:.6g}", f"{m.alpha[n]:.6g}")

@@ -44,7 +44,7 @@ def _input_text(rep: StructureReport, v: float) -> str:
 
 def _counts_table(rep: StructureReport) -> Table:
     c = rep.mobility.counts
-    t = Table(title=f"{rep.mechanism.name}: counts as the seeds write them", show_header=False)
+    t = Table(title=f"{escape(rep.mechanism.name)}: counts as the seeds write them", show_header=False)
     t.add_column("quantity")
     t.add_column("value")
     hinge_parts = ", ".join(f"g{str(k + 1).translate(SUB)} = {gk}"

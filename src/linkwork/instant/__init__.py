@@ -15,7 +15,7 @@ return and Bresse circles, Γ, Euler–Savary, envelopes, Bobillier), `third_ord
 stationary curvature, Ball and Burmester points).
 """
 
-from .centrodes import Centrodes, centrodes
+from .centrodes import Centrodes, centrode_profiles, centrodes
 from .curvature import (Collineation, Envelope, Instant, PathCurvature, acceleration_pole,
                         bobillier_pole_tangent, bresse_circle, collineation_axis, conjugate,
                         curvature_centre, envelope, euler_savary, inflection_circle, instant,
@@ -28,6 +28,7 @@ from .third_order import (BurmesterPoints, StationaryCurvature, ball_point, burm
                           fourth_order, stationary_curvature)
 
 __all__ = [
+    "centrode_profiles",
     "BurmesterPoints", "Centrodes", "Collineation", "Envelope", "Instant", "PathCurvature",
     "PoleLine", "PoleSchedule", "PoleStep", "Poles", "RelativeMotion", "StationaryCurvature",
     "acceleration_pole", "agreement", "ball_point", "bobillier_pole_tangent", "bresse_circle",

@@ -1,6 +1,6 @@
 """Centrodes (polodes; *Polbahnen*, *poloidas*) of the motion of any link relative to any link.
 
-Owns `centrodes`: over the samples of a solution (typically the whole motion), the fixed
+Owns `centrodes` (and `centrode_profiles`, the centrodes as rolling profiles): over the samples of a solution (typically the whole motion), the fixed
 centrode (*Rastpolbahn*, *nekustīgā poloida*: the pole's path in `relative_to`'s own
 coordinates) and the moving centrode (*Gangpolbahn*, *kustīgā poloida*: the pole's path in
 `link`'s own coordinates), which rolls on the fixed one without slipping (Rosenauer §5), with
@@ -19,7 +19,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..errors import InputError
 from ..geometry import Point
+from ..geometry.profiles import SplineProfile
 from ..kinematics import Solution
 from .curvature import local_invariants
 from .motion import TOL, dot, make_point, norm, perp, relative_motion
@@ -101,3 +103,18 @@ def centrodes(solution: Solution, link: str, relative_to: str | None = None, *,
             Rm[loc.translating] = np.nan
     return Centrodes(rm.link, rm.relative_to, fixed, moving, Rf, Rm, D, u)
 
+
+
+def centrode_profiles(cen: Centrodes, *, degree: int = 5) -> tuple[SplineProfile, SplineProfile]:
+    """The two centrodes as profiles that roll on each other without slip (the motion's
+    *Polbahnen* cut out as non-circular gears, Rosenauer §5): the fixed one in `relative_to`'s
+    coordinates, the moving one in `link`'s, each an interpolating spline through the poles in
+    sample order. Sample a range on which the pole stays finite and moves on (no relative
+    translation, no stationary pole); the spline's error falls like the sixth power of the
+    spacing of the samples."""
+    fixed, moving = cen.fixed_xy, cen.moving_xy
+    if not (np.isfinite(fixed).all() and np.isfinite(moving).all()):
+        raise InputError(f"the centrodes of '{cen.link}' relative to '{cen.relative_to}' go to "
+                            "infinity in these samples (a relative translation): choose a range "
+                            "where the pole stays finite")
+    return SplineProfile(fixed, degree=degree), SplineProfile(moving, degree=degree)

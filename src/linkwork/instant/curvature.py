@@ -292,18 +292,28 @@ def _design(solution: Solution, point) -> np.ndarray:
     return np.asarray(point, dtype=float)
 
 
+def osculating_centre(x: np.ndarray, v: np.ndarray, a: np.ndarray, scale: float,
+                      tol: float = TOL) -> np.ndarray:
+    """Homogeneous (N, 3) centre of the osculating circle of a curve at x with first and second
+    derivatives v, a (in time or in any parameter): x + |v|²·Jv/(v × a), carried as
+    (x·(v × a) + |v|²·Jv, v × a). A centre farther than scale/tol (an inflection, a straight
+    piece) is exactly at infinity, in the direction of the normal Jv."""
+    cr = cross(v, a)
+    vv = dot(v, v)
+    cr = np.where(np.abs(cr) * scale <= tol * vv ** 1.5, 0.0, cr)
+    return np.concatenate([x * cr[:, None] + vv[:, None] * perp(v), cr[:, None]], axis=1)
+
+
 def _path_local(rm: RelativeMotion, s: np.ndarray, tol: float) -> tuple[np.ndarray, ...]:
     rm.require(2, "path curvature")
     X = rm.point(s)
     x, v, a = X[0], X[1], X[2]
-    cr = cross(v, a)
     vv = dot(v, v)
     vscale = norm(rm.point(rm.reference)[1]) + np.abs(rm.omega) * rm.scale
     cusp = np.sqrt(vv) <= tol * vscale
-    # an inflection: the centre farther than length_scale/tol is exactly at infinity
-    flat = ~cusp & (np.abs(cr) * rm.scale <= tol * vv ** 1.5)
-    cr = np.where(flat, 0.0, cr)
-    h = np.concatenate([x * cr[:, None] + vv[:, None] * perp(v), cr[:, None]], axis=1)
+    h = osculating_centre(x, v, a, rm.scale, tol)
+    cr = h[:, 2].copy()
+    flat = ~cusp & (cr == 0)
     h[cusp] = np.concatenate([x, np.ones((len(x), 1))], axis=1)[cusp]
     with np.errstate(divide="ignore", invalid="ignore"):
         kappa = np.where(cusp, np.inf, cr / vv ** 1.5)
@@ -441,3 +451,101 @@ def bobillier_pole_tangent(solution: Solution, link: str, a, b, relative_to: str
     t = _angle(ra) - beta
     return Vector(np.stack([np.cos(t), np.sin(t)], axis=1))
 
+
+
+# ---------------------------------------------------------------------------- higher pairs
+def _carried(solution: Solution, link: str, h: np.ndarray) -> np.ndarray:
+    """Homogeneous points (N, 3) in `link`'s design coordinates, drawn in the frame."""
+    pose = solution.pose_derivatives(link)[0]
+    return np.concatenate([rotate(pose[:, 2], h[:, :2]) + h[:, 2:] * pose[:, :2], h[:, 2:]], axis=1)
+
+
+def _higher_pair(solution: Solution, pair: str):
+    from ..kinematics.contact import is_higher
+    j = solution.mechanism.joint(pair)
+    if not is_higher(j):
+        raise ModelError(f"pair '{pair}' is a {j.kind} pair, not a higher pair (cam or rolling)")
+    return j
+
+
+def element_centres(solution: Solution, pair: str, *, tol: float = TOL) -> tuple[Point, Point]:
+    """The centres of curvature, at the contact of higher pair `pair`, of the two elements in
+    touch (*Krümmungsmittelpunkte der Profile*): C₁ of the profile of links[0] and C₂ of the
+    follower's element of links[1] — a roller's centre, a knife edge's tip (radius 0, C₂ is the
+    contact point), a flat face's centre at infinity along its normal, or the centre of the
+    mate profile. From the profiles' own derivatives at the contact parameters (geometry, not
+    motion); both lie on the common normal. A profile straight at the contact (radius of
+    curvature beyond length_scale/tol) has its centre exactly at infinity."""
+    from ..model import CamContact
+    j = _higher_pair(solution, pair)
+    mech = solution.mechanism
+    a, b = j.links
+    L = mech.length_scale
+    rep = solution.joint(pair)
+    prof = mech.profiles[j.profile if isinstance(j, CamContact) else j.profiles[0]]
+    D = prof.derivatives(rep["u"], 2)
+    C1 = _carried(solution, a, osculating_centre(D[0], D[1], D[2], L, tol))
+    follower = j.follower if isinstance(j, CamContact) else "rolling"
+    N = len(solution)
+    if follower == "roller":
+        h2 = np.concatenate([solution.point_on(b, mech.points[j.point]).position, np.ones((N, 1))], axis=1)
+    elif follower == "knife":
+        h2 = np.concatenate([rep["point"], np.ones((N, 1))], axis=1)
+    elif follower == "flat":
+        face = rotate(solution.pose_derivatives(b)[0, :, 2], np.asarray(j.axis, dtype=float))
+        h2 = np.concatenate([perp(face), np.zeros((N, 1))], axis=1)
+    else:
+        mate = mech.profiles[j.mate if isinstance(j, CamContact) else j.profiles[1]]
+        M = mate.derivatives(rep["v"], 2)
+        h2 = _carried(solution, b, osculating_centre(M[0], M[1], M[2], L, tol))
+    return make_point(C1), make_point(h2)
+
+
+@dataclass(frozen=True)
+class ContactCurvature:
+    """Curvature theory through a higher pair (Pöschl §38, Rosenauer §15, §121): the motion of
+    the follower (links[1]) relative to the profile's link (links[0]), seen from the contact.
+
+    contact, normal (N, 2): the contact point and the unit common normal (from links[0]'s
+    profile towards the follower). centres (C₁, C₂): the elements' curvature centres at the
+    contact (`element_centres`). relative: the instantaneous invariants of links[1] relative to
+    links[0] (pole on the common normal, inflection pole W, …), inverse: those of links[0]
+    relative to links[1]; inflection_circle: the inflection circle of the relative motion.
+    conjugates: the Euler–Savary conjugate of C₂ in the relative motion (the centre of curvature
+    of the path C₂ describes on links[0]) and that of C₁ in the inverse motion. As any curve of
+    links[1] with centre C₂ envelopes on links[0] a curve with centre at C₂'s conjugate
+    (Aronhold, Pöschl eq. 93), the conjugates are C₁ and C₂ again: the two profiles are
+    conjugate curves, and C₁, C₂ are a pair of conjugate points."""
+
+    pair: str
+    links: tuple[str, str]
+    contact: np.ndarray
+    normal: np.ndarray
+    centres: tuple[Point, Point]
+    relative: Instant
+    inverse: Instant
+    inflection_circle: Circle
+    conjugates: tuple[Point, Point]
+
+    @property
+    def pole(self) -> Point:
+        """The relative pole P of the two links (on the common normal)."""
+        return self.relative.pole
+
+
+def contact_curvature(solution: Solution, pair: str, *, tol: float = TOL) -> ContactCurvature:
+    """Curvature theory of higher pair `pair` at every sample (the solution needs
+    accelerations): the elements' curvature centres and their Euler–Savary conjugates in the
+    relative motion of the two links. Where the relative motion is a translation (ω of the
+    two links equal) the pole is at infinity and the conjugates are undefined (NaN)."""
+    j = _higher_pair(solution, pair)
+    a, b = j.links
+    L = solution.mechanism.length_scale
+    rep = solution.joint(pair)
+    C1, C2 = element_centres(solution, pair, tol=tol)
+    rel = instant(solution, b, a, tol=tol)
+    inv = instant(solution, a, b, tol=tol)
+    conj2 = euler_savary(rel.pole, rel.inflection_pole, C2, scale=L, tol=tol)
+    conj1 = euler_savary(inv.pole, inv.inflection_pole, C1, scale=L, tol=tol)
+    return ContactCurvature(pair, (a, b), rep["point"], rep["normal"], (C1, C2), rel, inv,
+                            inflection_circle(solution, b, a, tol=tol), (conj2, conj1))

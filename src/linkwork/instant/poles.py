@@ -30,7 +30,9 @@ import numpy as np
 from ..errors import ModelError
 from ..geometry import Line, Point
 from ..kinematics import Solution
-from ..model import CamContact, CircularSlot, Gear, Mechanism, Prismatic, Revolute, RollingContact, Slot
+from ..kinematics.intermittent import contact_normal
+from ..model import (CamContact, CircularSlot, Gear, Mechanism, Prismatic, Revolute, RollingContact,
+                     Slot, is_intermittent)
 from .motion import TOL, make_point, perp, rotate
 
 Pair = tuple[str, str]
@@ -258,7 +260,7 @@ def pole_schedule(mechanism: Mechanism) -> PoleSchedule:
         elif isinstance(j, RollingContact):
             if p not in known:  # rolling without slip: the contact point is the pole
                 add(PoleStep(p, "rolling", j.name))
-        elif isinstance(j, (Slot, CircularSlot, CamContact)):
+        elif isinstance(j, (Slot, CircularSlot, CamContact)) or is_intermittent(j):
             # the relative pole lies on the contact normal (Rosenauer §65; for higher pairs the
             # common normal of the profiles, Reuleaux, Pöschl §45)
             normals.setdefault(p, []).append(PoleLineSource(joint=j.name))
@@ -313,6 +315,8 @@ def _normal_points(mechanism: Mechanism, joint: str, hinge_point: dict[Pair, str
     line of those hinges."""
     j = mechanism.joint(joint)
     slot_link, pin_link = j.links
+    if is_intermittent(j):
+        return []  # the pin, the pitch point or the driver's pivot, by phase: no one hinge
     if isinstance(j, CamContact) and j.follower not in ("roller", "knife"):
         return []  # a face or profile: no point of the follower stays on the normal
     on = [(j.point, pin_link)]
@@ -478,9 +482,13 @@ def _normal_line(solution: Solution, joint: str, L: float) -> np.ndarray:
     mech = solution.mechanism
     j = mech.joint(joint)
     a, b = j.links
-    if isinstance(j, CamContact):
-        rep = solution.joint(joint)
-        g, X = perp(rep["normal"]), rep["point"]  # the normal through the contact point
+    if isinstance(j, CamContact) or is_intermittent(j):
+        if is_intermittent(j):
+            X, n = contact_normal(solution, joint)
+            g = perp(n)
+        else:
+            rep = solution.joint(joint)
+            g, X = perp(rep["normal"]), rep["point"]  # the normal through the contact point
         line = np.concatenate([g, -(g * X).sum(1, keepdims=True) / L], axis=1)
         with np.errstate(invalid="ignore", divide="ignore"):
             return line / np.linalg.norm(line, axis=1, keepdims=True)

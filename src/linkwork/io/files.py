@@ -17,13 +17,16 @@ import numpy as np
 from pydantic import ValidationError
 
 from ..errors import InputError, MechanismFileError, ModelError, UnknownMechanismError
-from ..model import (CamContact, CircularSlot, ConstantSpeed, Gear, Mechanism, PolynomialLaw,
-                     Prismatic, Revolute, RollingContact, Slot, TabulatedLaw)
-from ..units import check_length_unit, parse_quantity
+from ..model import (CamContact, CircularSlot, ConstantSpeed, Gear, GenevaPair, Mechanism,
+                     PolynomialLaw, Prismatic, Revolute, RollingContact, Slot, StarWheelPair,
+                     TabulatedLaw)
+from ..units import check_length_unit, parse_quantity, unit_dimension
 from . import schema
 from .profiles import build_profile
 
 LIBRARY_PREFIX = "library:"
+#: mechanism files are a few kilobytes; anything this large is not one
+MAX_FILE_BYTES = 10_000_000
 
 
 def library_names() -> list[str]:
@@ -45,7 +48,19 @@ def resolve(spec: str | Path) -> tuple[str, str]:
     if not path.is_file():
         raise UnknownMechanismError(
             f"no mechanism file '{spec}' (give a path, or library:NAME for a shipped mechanism)")
-    return spec, path.read_text(encoding="utf-8")
+    try:
+        data = path.read_bytes()
+    except OSError as exc:
+        raise MechanismFileError(f"cannot read the file: {exc.strerror or exc}", source=spec) from None
+    if len(data) > MAX_FILE_BYTES:
+        raise MechanismFileError(f"the file has {len(data)} bytes; a mechanism file has at most "
+                                 f"{MAX_FILE_BYTES}", source=spec)
+    try:
+        return spec, data.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        line = data[:exc.start].count(b"\n") + 1
+        raise MechanismFileError(f"not UTF-8 text: byte 0x{data[exc.start]:02x} cannot be read "
+                                 "(save the file as UTF-8)", source=spec, line=line) from None
 
 
 def load(spec: str | Path) -> Mechanism:
@@ -57,13 +72,22 @@ def load(spec: str | Path) -> Mechanism:
 
 
 def _line_of(text: str, loc: tuple) -> int | None:
-    """Best-effort line number (1-based) of the key path `loc` in TOML `text`."""
+    """Best-effort line number (1-based) of the key path `loc` in TOML `text`. An index after a
+    key picks that entry of an array of tables (`[[drivers]]`)."""
     lines = text.splitlines()
     start, found = 0, None
-    keys = [str(k) for k in loc if not isinstance(k, int)]
-    for depth, key in enumerate(keys):
+    for depth, key in enumerate(loc):
+        if isinstance(key, int):
+            if depth == 0 or isinstance(loc[depth - 1], int):
+                continue
+            header = re.compile(rf'^\s*\[\[\s*"?{re.escape(str(loc[depth - 1]))}"?\s*\]\]')
+            hits = [i for i, ln in enumerate(lines) if header.search(ln)]
+            if key < len(hits):
+                found, start = hits[key] + 1, hits[key]
+            continue
+        key = str(key)
         pat = re.compile(
-            rf'^\s*(\[\s*([\w."-]*\.)?"?{re.escape(key)}"?\s*\]|"?{re.escape(key)}"?\s*=)'
+            rf'^\s*(\[{{1,2}}\s*([\w."-]*\.)?"?{re.escape(key)}"?\s*\]|"?{re.escape(key)}"?\s*=)'
             rf'|[{{,]\s*"?{re.escape(key)}"?\s*=')
         for i in range(start, len(lines)):
             if pat.search(lines[i]):
@@ -83,19 +107,27 @@ def load_text(text: str, *, source: str = "<text>", base_dir: Path | None = None
         m = re.search(r"line (\d+)", str(exc))
         raise MechanismFileError(f"not valid TOML: {exc}", source=source,
                                  line=int(m.group(1)) if m else None) from None
+    except ValueError as exc:  # an integer of more than 4300 digits
+        raise MechanismFileError(f"not valid TOML: {exc}", source=source) from None
     try:
         spec = schema.MechanismFile.model_validate(raw)
     except ValidationError as exc:
         raise _file_error(exc, text, source) from None
+    check_references(spec, text, source)
     try:
         return _build(spec, text, source, base_dir)
+    except MechanismFileError:
+        raise
     except (ModelError, InputError) as exc:
-        raise MechanismFileError(str(exc), source=source) from None
+        key = _key_of_message(str(exc), spec)
+        raise MechanismFileError(str(exc), source=source, key=_dotted(key) if key else None,
+                                 line=_line_of(text, key) if key else None) from None
 
 
-_TAGS = {"revolute", "prismatic", "slot", "circular-slot", "gear", "cam", "rolling", "polynomial",
+_TAGS = {"revolute", "prismatic", "slot", "circular-slot", "gear", "cam", "rolling", "geneva",
+         "star-wheel", "polynomial",
          "table", "float", "int", "str", "circle", "ellipse", "path", "spline", "points", "line",
-         "involute", "archimedean-spiral", "logarithmic-spiral"}
+         "involute", "archimedean-spiral", "logarithmic-spiral", "cam-design"}
 
 
 def _clean(loc: tuple) -> tuple:
@@ -115,7 +147,7 @@ def _file_error(exc: ValidationError, text: str, source: str) -> MechanismFileEr
     extra = [e for e in errors if e["type"] == "extra_forbidden"]
     err = extra[0] if extra else errors[0]
     clean = _clean(tuple(err["loc"]))
-    key = ".".join(str(k) for k in clean)
+    key = _dotted(clean)
     msg = err["msg"]
     if err["type"] == "extra_forbidden":
         missing = [str(_clean(tuple(e["loc"]))[-1]) for e in errors
@@ -124,7 +156,114 @@ def _file_error(exc: ValidationError, text: str, source: str) -> MechanismFileEr
         msg = "unknown key" + (f" (did you mean '{close[0]}'?)" if close else " (check its spelling)")
     elif err["type"] == "missing":
         msg = "required key is missing"
+    else:
+        msg = msg.removeprefix("Value error, ")
     return MechanismFileError(msg, source=source, key=key, line=_line_of(text, clean))
+
+
+def _dotted(loc: tuple) -> str:
+    """A key path as written in messages: joints.O2.links, drivers[1].speed."""
+    out = ""
+    for k in loc:
+        out += f"[{k}]" if isinstance(k, int) else (f".{k}" if out else str(k))
+    return out
+
+
+def _did_you_mean(name: str, known) -> str:
+    close = difflib.get_close_matches(name, list(known), n=1, cutoff=0.5)
+    if close:
+        return f" (did you mean '{close[0]}'?)"
+    known = sorted(known)
+    return f" (defined: {', '.join(known[:12])}{', …' if len(known) > 12 else ''})" if known \
+        else " (none is defined)"
+
+
+def _driver_keys(spec: schema.MechanismFile) -> list[tuple[tuple, schema.DriverSpec]]:
+    """(key path, spec) of every driver: [driver] and the entries of [[drivers]]."""
+    keys = [(("drivers", i), d) for i, d in enumerate(spec.drivers or [])]
+    return keys + ([(("driver",), spec.driver)] if spec.driver else [])
+
+
+def check_references(spec: schema.MechanismFile, text: str, source: str) -> None:
+    """Every name the file uses (points of links, links and points of joints, profiles of higher
+    pairs, joints and reference points of drivers) resolved before the model is built, so that
+    the first unknown name is reported with its key, its line and the nearest defined name."""
+
+    def fail(loc: tuple, msg: str) -> None:
+        raise MechanismFileError(msg, source=source, key=_dotted(loc), line=_line_of(text, loc))
+
+    def need(loc: tuple, what: str, name: str, section: str, known) -> None:
+        if name not in known:
+            fail(loc, f"{what} '{name}', which is not in [{section}]{_did_you_mean(name, known)}")
+
+    points, links, profiles = spec.points, spec.links, spec.profiles
+    if spec.frame not in links:
+        fail(("frame",) if "frame" in spec.model_fields_set else ("links",),
+             f"there is no frame link '{spec.frame}' (name the fixed link '{spec.frame}' under "
+             f"[links] or set frame = \"...\"){_did_you_mean(spec.frame, links) if links else ''}")
+    carried = set()
+    for ln, pts in links.items():
+        for p in pts:
+            need(("links", ln), f"link '{ln}' lists point", p, "points", points)
+        carried.update(pts)
+    for p in points:
+        if p not in carried:
+            fail(("points", p), f"point '{p}' is on no link (list it under [links], or remove it)")
+    fixed_point = (schema.RevoluteSpec, schema.PrismaticSpec, schema.SlotSpec, schema.CircularSlotSpec)
+    for jn, j in spec.joints.items():
+        for ln in j.links:
+            need(("joints", jn, "links"), f"joint '{jn}' names link", ln, "links", links)
+        if isinstance(j, fixed_point) and j.point is None and jn not in points:
+            fail(("joints", jn), f"joint '{jn}' has no `point` and there is no point named "
+                                 f"'{jn}'{_did_you_mean(jn, points)}")
+        for attr, section, known in (("point", "points", points), ("center", "points", points),
+                                     ("carrier", "links", links), ("profile", "profiles", profiles),
+                                     ("mate", "profiles", profiles)):
+            name = getattr(j, attr, None)
+            if isinstance(name, str):
+                need(("joints", jn, attr), f"joint '{jn}' names {attr}", name, section, known)
+        if isinstance(j, schema.RollingSpec):
+            for name in j.profiles:
+                need(("joints", jn, "profiles"), f"joint '{jn}' names profile", name, "profiles", profiles)
+    driven: dict[str, tuple] = {}
+    for loc, d in _driver_keys(spec):
+        need(loc + ("joint",), "the driver names joint", d.joint, "joints", spec.joints)
+        if d.joint in driven:
+            fail(loc + ("joint",), f"joint '{d.joint}' has two drivers ({_dotted(driven[d.joint])} "
+                                   f"and {_dotted(loc)}); give each joint one driver")
+        driven[d.joint] = loc
+        if d.reference is not None:
+            need(loc + ("reference",), f"driver '{d.joint}' names reference point", d.reference,
+                 "points", points)
+
+
+_NAMED = re.compile(r"^(?P<words>[\w -]*?)\s*'(?P<name>[^']*)'(?P<rest>.*)", re.S)
+
+
+def _key_of_message(message: str, spec: schema.MechanismFile) -> tuple | None:
+    """The key path a model error is about, from the part its message names first: "link
+    'NAME'", "joint 'NAME'" (also "revolute joint", "gear", "cam pair", "rolling pair" …),
+    "driver 'NAME'" or "driver joint 'NAME'"; None if it names none of the file's parts."""
+    if message.startswith("there is no frame link"):
+        return ("frame",) if "frame" in spec.model_fields_set else ("links",)
+    m = _NAMED.match(message)
+    if m is None:
+        return None
+    words, name, rest = m.group("words").split(), m.group("name"), m.group("rest")
+    if words and words[0] == "driver":
+        for loc, d in _driver_keys(spec):
+            if d.joint == name:
+                sub = next((k for k in ("speed", "law", "reference")
+                            if rest.lstrip(" :").startswith(k)), None)
+                return loc + ((sub,) if sub else ())
+        return None
+    if words == ["link"] and name in spec.links:
+        return ("links", name)
+    if name in spec.joints:
+        return ("joints", name)
+    if name in spec.links:
+        return ("links", name)
+    return None
 
 
 def _axis(value, angle_unit: str, where: str) -> np.ndarray:
@@ -141,9 +280,12 @@ def _axis(value, angle_unit: str, where: str) -> np.ndarray:
 
 
 def _angle_in_rad(value, angle_unit: str, kind: str) -> float:
+    """An angle in radians: a number or a string in the file's angle unit, or a string with its
+    own unit ('30 deg', '0.5 rad')."""
     if isinstance(value, str):
-        return parse_quantity(value, default_unit="rad", kind=kind) if any(c.isalpha() for c in value) \
-            else _angle_in_rad(float(value), angle_unit, kind)
+        if unit_dimension(value, kind) is not None:
+            return parse_quantity(value, default_unit="rad", kind=kind)
+        value = parse_quantity(value, default_unit="rad", kind=kind)
     return float(value) if angle_unit.startswith("rad") else float(np.radians(value))
 
 
@@ -153,8 +295,17 @@ def _build(spec: schema.MechanismFile, text: str, source: str, base_dir: Path | 
                 for name, p in spec.profiles.items()}
     joints = []
     for name, j in spec.joints.items():
-        point = j.point or name
         links = tuple(j.links)
+        if isinstance(j, schema.GenevaSpec):
+            joints.append(GenevaPair(name, links, j.pin or name, j.slots, j.carrier))
+            continue
+        if isinstance(j, schema.StarWheelSpec):
+            entry = None if j.entry is None else tuple(
+                _angle_in_rad(a, spec.units.angle, f"joint '{name}' entry angle") for a in j.entry)
+            joints.append(StarWheelPair(name, links, tuple(tuple(g) for g in j.groups), j.carrier,
+                                        entry))
+            continue
+        point = getattr(j, "point", None) or name  # a rolling pair has no point
         if isinstance(j, schema.RevoluteSpec):
             joints.append(Revolute(name, point, links))
         elif isinstance(j, schema.PrismaticSpec):

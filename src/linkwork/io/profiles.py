@@ -67,6 +67,32 @@ Every number must be finite; a misspelt key is an error, as everywhere in mechan
     pitch_angle = 10
     angles = [0, 360]
 
+    [profiles.cam]           # a disc cam designed from a motion program (see below)
+    type = "cam-design"
+    follower = "roller"      # roller, knife or flat
+    base_radius = 40         # the base circle (smallest radius of the profile)
+    roller_radius = 10       # a roller's radius
+    offset = 0               # optional: translating follower's line, right of the cam centre
+    segments = [             # one turn of cam angle, in order from the drawing's position
+        { rise = 20, over = 120, law = "cycloidal" },
+        { dwell = 60 },
+        { return = 20, over = 120, law = "3-4-5" },
+        { dwell = 60 },
+    ]
+
+A `cam-design` table describes the cam by the follower motion it must produce: `segments` rise,
+dwell and return over cam angles that fill one turn, each `law` one of uniform, harmonic,
+cycloidal, 3-4-5, 4-5-6-7, modified-trapezoid, modified-sine, parabolic
+(`linkwork.model.motion_programs`). The cam turns counter-clockwise about `center` (default
+[0, 0]). `motion = "translating"` (default): the follower moves along the direction `direction`
+(an angle, default 90, straight up) on a line `offset` to the right of the cam centre, and the
+lifts are lengths. `motion = "oscillating"`: a lever pivoted at `pivot` carries the roller or
+knife at `arm` from it, or a flat face at `face_offset` from it; `side` ("left", default, or
+"right") puts the follower on that side of the line from the cam centre to the pivot, and the
+lifts are angles. The profile's parameter is the cam angle: the contact of a roller or knife
+designed so sits at u = φ. `linkwork cam design` writes such files with the follower drawn in
+place.
+
 Parameters (what the engine reports positions on a profile by): the arc length from the start
 for a path, the chord length from point to point for a spline, the angle for a circle, the
 eccentric anomaly for an ellipse, the roll angle for an involute, the polar angle for spirals,
@@ -93,7 +119,10 @@ import numpy as np
 from pydantic import BaseModel, ConfigDict, Discriminator, Field, Strict, Tag, TypeAdapter, ValidationError
 
 from ..errors import MechanismFileError
+from ..model.disc_cams import DiscCam
+from ..model.motion_programs import LAWS, CamDesignError, MotionProgram, Segment
 from ..geometry.errors import GeometryError
+from ..units import MAX_MAGNITUDE
 from ..geometry.profiles import (
     ArchimedeanSpiral,
     ArcTo,
@@ -108,9 +137,10 @@ from ..geometry.profiles import (
     ProfileError,
     SplineProfile,
 )
+from .values import Number, PositiveNumber
 
-Finite = Annotated[float, Strict(), Field(allow_inf_nan=False)]
-Positive = Annotated[float, Strict(), Field(allow_inf_nan=False, gt=0)]
+Finite = Number
+Positive = PositiveNumber
 Point = Annotated[list[Finite], Field(min_length=2, max_length=2, description="[x, y]")]
 Pair = Annotated[list[Finite], Field(min_length=2, max_length=2)]
 Sense = Literal["ccw", "cw"]
@@ -211,14 +241,68 @@ class LogarithmicSpiralSpec(_Table):
     angles: Pair
 
 
+LawName = Literal[LAWS]  # type: ignore[valid-type]
+
+
+class RiseSpec(_Table):
+    rise: Positive = Field(description="lift: a length (translating) or an angle (oscillating)")
+    over: Positive = Field(description="cam angle of the rise")
+    law: LawName
+
+
+class DwellSpec(_Table):
+    dwell: Positive = Field(description="cam angle of the dwell")
+
+
+class ReturnSpec(_Table):
+    model_config = ConfigDict(extra="forbid", frozen=True, populate_by_name=True)
+    return_: Positive = Field(alias="return", description="fall back by this lift")
+    over: Positive = Field(description="cam angle of the return")
+    law: LawName
+
+
+def _cam_segment_kind(value: Any) -> str | None:
+    if isinstance(value, dict):
+        keys = [k for k in ("rise", "dwell", "return") if k in value]
+        return keys[0] if len(keys) == 1 else None
+    return ("rise" if hasattr(value, "rise") else "dwell" if hasattr(value, "dwell")
+            else "return" if hasattr(value, "return_") else None)
+
+
+CamSegmentSpec = Annotated[
+    Union[Annotated[RiseSpec, Tag("rise")], Annotated[DwellSpec, Tag("dwell")],
+          Annotated[ReturnSpec, Tag("return")]],
+    Discriminator(_cam_segment_kind, custom_error_type="segment",
+                  custom_error_message="a cam segment is { rise = L, over = A, law = .. }, { dwell = A } "
+                                       "or { return = L, over = A, law = .. }"),
+]
+
+
+class CamDesignSpec(_Table):
+    type: Literal["cam-design"]
+    follower: Literal["roller", "knife", "flat"]
+    base_radius: Positive = Field(description="radius of the base circle, the profile's smallest")
+    segments: Annotated[list[CamSegmentSpec], Field(min_length=1)] = Field(
+        description="rise, dwell and return segments over one turn of cam angle, in order")
+    roller_radius: Positive | None = Field(None, description="the roller's radius (follower = roller)")
+    motion: Literal["translating", "oscillating"] = "translating"
+    center: Point = Field([0.0, 0.0], description="the cam's centre of rotation")
+    offset: Finite = Field(0.0, description="translating: the line of motion's distance to the right of the cam centre")
+    direction: Finite = Field(90.0, description="translating: the angle of the line of motion")
+    pivot: Point | None = Field(None, description="oscillating: the lever's fixed pivot")
+    arm: Positive | None = Field(None, description="oscillating: pivot to roller centre or knife tip")
+    face_offset: Finite = Field(0.0, description="oscillating flat face: its distance from the pivot")
+    side: Literal["left", "right"] = Field("left", description="oscillating: the follower's side of the line from the cam centre to the pivot")
+
+
 ProfileSpec = Annotated[
     Union[CircleSpec, EllipseSpec, PathSpec, SplineSpec, PointsSpec, LineSpec, InvoluteSpec,
-          ArchimedeanSpiralSpec, LogarithmicSpiralSpec],
+          ArchimedeanSpiralSpec, LogarithmicSpiralSpec, CamDesignSpec],
     Field(discriminator="type"),
 ]
 _ADAPTER: TypeAdapter = TypeAdapter(ProfileSpec)
 _TYPES = {"circle", "ellipse", "path", "spline", "points", "line", "involute", "archimedean-spiral",
-          "logarithmic-spiral"}
+          "logarithmic-spiral", "cam-design"}
 
 
 def profile_file_schema() -> dict:
@@ -231,7 +315,7 @@ def _key(name: str, loc: tuple = ()) -> str:
     type first, a segment's kind after its index)."""
     key = f"profiles.{name}"
     for i, part in enumerate(loc):
-        if (i == 0 and part in _TYPES) or (i >= 2 and loc[i - 2] == "segments" and part in ("line", "arc")):
+        if (i == 0 and part in _TYPES) or (i >= 2 and loc[i - 2] == "segments" and part in ("line", "arc", "rise", "dwell", "return")):
             continue
         key += f"[{part}]" if isinstance(part, int) else f".{part}"
     return key
@@ -249,7 +333,8 @@ def _validation_error(exc: ValidationError, name: str, source: str | None) -> Me
     msg = {"extra_forbidden": "unknown key (check its spelling)",
            "missing": "required key is missing",
            "union_tag_not_found": f"a profile needs a 'type': one of {kinds}",
-           "union_tag_invalid": f"unknown profile type {_given_type(err)!r} (one of {kinds})"}.get(err["type"], err["msg"])
+           "union_tag_invalid": f"unknown profile type {_given_type(err)!r} (one of {kinds})"}.get(
+               err["type"], err["msg"].removeprefix("Value error, "))
     return MechanismFileError(msg, source=source, key=_key(name, tuple(err["loc"])))
 
 
@@ -278,9 +363,11 @@ def build_profile(name: str, spec: dict, base_dir: Path | None = None, *, angle_
         raise MechanismFileError(f"unknown angle unit {angle_unit!r} (deg or rad)", source=source, key="units.angle")
     try:
         return _build(name, model, base_dir, rad, source)
-    except ProfileError as exc:
-        sub = {PathSpec: "segments", SplineSpec: "points"}.get(type(model))
+    except (ProfileError, CamDesignError) as exc:
+        sub = {PathSpec: "segments", SplineSpec: "points", CamDesignSpec: "segments"}.get(type(model))
         key = _key(name) + (f".{sub}[{exc.index}]" if sub and exc.index is not None else "")
+        if getattr(exc, "key", None):
+            key = _key(name) + "." + exc.key
         raise MechanismFileError(str(exc), source=source, key=key) from None
     except GeometryError as exc:
         raise MechanismFileError(str(exc), source=source, key=_key(name)) from None
@@ -317,7 +404,29 @@ def _build(name: str, m, base_dir: Path | None, rad: float, source: str | None) 
     if isinstance(m, LogarithmicSpiralSpec):
         return LogarithmicSpiral(m.center, m.start_radius, m.pitch_angle * rad,
                                  (m.angles[0] * rad, m.angles[1] * rad))
+    if isinstance(m, CamDesignSpec):
+        return cam_from_spec(m, rad).profile
     raise MechanismFileError(f"unknown profile type {type(m).__name__}", source=source, key=_key(name))  # pragma: no cover
+
+
+def cam_from_spec(m: CamDesignSpec, rad: float) -> DiscCam:
+    """The `DiscCam` a `cam-design` table describes (`rad`: radians per the file's angle unit)."""
+    lift_unit = rad if m.motion == "oscillating" else 1.0
+    segments = [Segment("rise", s.over * rad, s.rise * lift_unit, s.law) if isinstance(s, RiseSpec) else
+                Segment("return", s.over * rad, s.return_ * lift_unit, s.law) if isinstance(s, ReturnSpec) else
+                Segment("dwell", s.dwell * rad) for s in m.segments]
+    for key, value in (("roller_radius", m.roller_radius if m.follower == "roller" else 0.0),
+                       ("pivot", m.pivot if m.motion == "oscillating" else 0.0),
+                       ("arm", m.arm if m.motion == "oscillating" and m.follower != "flat" else 0.0)):
+        if value is None:
+            need = {"roller_radius": "a roller needs `roller_radius`",
+                    "pivot": "an oscillating follower needs `pivot`, the lever's fixed pivot",
+                    "arm": "an oscillating roller or knife needs `arm`, its distance from the pivot"}[key]
+            raise CamDesignError(need, key=key)
+    return DiscCam(MotionProgram(segments), m.follower, m.base_radius,
+                   roller_radius=m.roller_radius or 0.0, motion=m.motion, offset=m.offset,
+                   direction=m.direction * rad, pivot=None if m.pivot is None else tuple(m.pivot),
+                   arm=m.arm, face_offset=m.face_offset, side=m.side, center=tuple(m.center))
 
 
 def _csv_path(name: str, file: str, base_dir: Path | None, source: str | None) -> Path:
@@ -364,8 +473,9 @@ def read_points_csv(path: Path, *, key: str | None = None) -> tuple[np.ndarray, 
         if len(values) != 2:
             raise MechanismFileError(f"a point has two coordinates x, y; this line has {len(values)}",
                                      source=str(path), key=key, line=number)
-        if not all(np.isfinite(values)):
-            raise MechanismFileError(f"coordinates must be finite numbers: {line!r}",
+        if not all(np.isfinite(values)) or max(map(abs, values)) > MAX_MAGNITUDE:
+            raise MechanismFileError(f"coordinates must be finite numbers of at most "
+                                     f"{MAX_MAGNITUDE:g} in size: {line!r}",
                                      source=str(path), key=key, line=number)
         points.append(values)
         lines.append(number)

@@ -8,11 +8,11 @@ from __future__ import annotations
 
 from typing import Annotated, Literal, Union
 
-from pydantic import BaseModel, ConfigDict, Field, field_validator
+from pydantic import BaseModel, ConfigDict, Field, field_validator, model_validator
 
 from .profiles import ProfileSpec
+from .values import Number, PositiveNumber
 
-Number = Union[float, int]
 Coordinates = Annotated[list[Number], Field(min_length=2, max_length=2)]
 # an axis is a direction vector [x, y] or an angle (degrees unless a unit is written)
 Axis = Union[Coordinates, Number, str]
@@ -58,7 +58,7 @@ class GearSpec(_Strict):
     type: Literal["gear"]
     links: Annotated[list[str], Field(min_length=2, max_length=2)]
     carrier: str = "frame"
-    radii: Annotated[list[Number], Field(min_length=1, max_length=2)]
+    radii: Annotated[list[PositiveNumber], Field(min_length=1, max_length=2)]
     kind: Literal["external", "internal", "rack"] = "external"
     point: str | None = None
 
@@ -73,7 +73,7 @@ class CamSpec(_Strict):
                     "edge at `point`, a flat face through `point` along `axis`, or the profile `mate`")
     point: str | None = Field(None, description="roller centre, knife tip or a point of the flat "
                                                 "face, carried by the follower; defaults to the joint's name")
-    radius: Number | None = Field(None, description="roller radius")
+    radius: PositiveNumber | None = Field(None, description="roller radius")
     axis: Axis | None = Field(None, description="direction of the flat face, fixed in the follower")
     mate: str | None = Field(None, description="the follower's profile (follower = \"profile\")")
 
@@ -85,16 +85,43 @@ class RollingSpec(_Strict):
         description="the profile of each link; they touch in the drawing and roll without slip")
 
 
+class GenevaSpec(_Strict):
+    type: Literal["geneva"]
+    links: Annotated[list[str], Field(min_length=2, max_length=2)] = Field(
+        description="the driver carrying the pin, then the slotted wheel (Malteserkreuz)")
+    pin: str | None = Field(None, description="the pin (Triebstock), a point of the driver; "
+                                              "defaults to the joint's name")
+    slots: int = Field(ge=3, description="number of radial slots of the wheel (at least 3); the "
+                                         "pin radius r and the centre distance D come from the "
+                                         "drawing, r = D·sin(180°/slots) for shock-free entry")
+    carrier: str = Field("frame", description="the link both are pivoted on")
+
+
+class StarWheelSpec(_Strict):
+    type: Literal["star-wheel"]
+    links: Annotated[list[str], Field(min_length=2, max_length=2)] = Field(
+        description="the driver carrying the pins, then the star wheel (Sternrad)")
+    groups: Annotated[list[Annotated[list[str], Field(min_length=1)]], Field(min_length=1)] = Field(
+        description="the pins (points of the driver) of each indexing group, equally spaced on "
+                    "one pitch circle per group")
+    entry: Annotated[list[Union[Number, str]], Field(min_length=1)] | None = Field(
+        None, description="per group, the angle of its entry and exit slots from the line of "
+                          "centres where the pin meets them (file's angle unit unless written); "
+                          "default asin(r/D), shock-free")
+    carrier: str = Field("frame", description="the link both are pivoted on")
+
+
 JointSpec = Annotated[
-    Union[RevoluteSpec, PrismaticSpec, SlotSpec, CircularSlotSpec, GearSpec, CamSpec, RollingSpec],
+    Union[RevoluteSpec, PrismaticSpec, SlotSpec, CircularSlotSpec, GearSpec, CamSpec, RollingSpec,
+          GenevaSpec, StarWheelSpec],
     Field(discriminator="type"),
 ]
 
 
 class PolynomialLawSpec(_Strict):
     type: Literal["polynomial"]
-    coefficients: list[Number] = Field(description="input(t) = sum c_k t^k, in degrees (or the length unit) and seconds")
-    duration: Number = 1.0
+    coefficients: list[Number] = Field(min_length=1, description="input(t) = sum c_k t^k, in degrees (or the length unit) and seconds")
+    duration: PositiveNumber = 1.0
 
 
 class TableLawSpec(_Strict):
@@ -109,6 +136,13 @@ class DriverSpec(_Strict):
     speed: Number | str | None = Field(
         None, description="constant speed: '60 rpm', '2 rad/s', '100 mm/s'; a bare number is rad/s (or length unit/s)")
     law: Annotated[Union[PolynomialLawSpec, TableLawSpec], Field(discriminator="type")] | None = None
+
+    @model_validator(mode="after")
+    def _speed_or_law(self) -> "DriverSpec":
+        if self.speed is not None and self.law is not None:
+            raise ValueError("give either `speed` (a constant speed) or `law` (a motion law), "
+                             "not both")
+        return self
 
 
 class MechanismFile(_Strict):

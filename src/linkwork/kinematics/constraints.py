@@ -13,7 +13,7 @@ from typing import Callable
 import numpy as np
 
 from ..model import CircularSlot, Driver, Gear, Joint, Mechanism, Prismatic, Revolute, Slot
-from . import contact
+from . import contact, intermittent
 from .jet import Jet
 
 # pose(link) -> (x, y, θ, cos θ, sin θ) jets
@@ -34,6 +34,8 @@ def joint_residuals(mech: Mechanism, j: Joint, pose: PoseFn) -> list[Jet]:
     """Residuals (zero when the pair is closed), each in units of length."""
     if contact.is_higher(j):
         return contact.residuals(mech, j, pose, point, rotate)
+    if intermittent.is_intermittent(j):
+        return intermittent.residuals(mech, j, pose, point, rotate)
     if isinstance(j, Gear):
         return [_gear(mech, j, pose)]
     P = mech.points[j.point]

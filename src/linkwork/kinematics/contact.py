@@ -28,6 +28,7 @@ from types import MappingProxyType
 from typing import Mapping
 
 import numpy as np
+from scipy.spatial import cKDTree
 
 from ..model import CamContact, Mechanism, RollingContact, design_contact
 from .jet import Jet
@@ -70,9 +71,18 @@ def rolling_sense(mech: Mechanism, name: str) -> float:
     return 1.0 if float(t1 @ t2) >= 0 else -1.0
 
 
+def _once(u0: np.ndarray) -> np.ndarray:
+    """The parameter values to evaluate a profile at: a Jacobian's jets repeat each sample's
+    value along their last axis (one column per direction), so evaluate one column and let
+    `Jet.compose` broadcast it (the profile is the costliest part of a contact's rows)."""
+    if u0.ndim >= 2 and u0.shape[-1] > 1 and (u0 == u0[..., :1]).all():
+        return u0[..., :1]
+    return u0
+
+
 def _curve(profile, u: Jet, order: int) -> tuple[Jet, Jet, Jet, Jet]:
     """Jets of c(u) and c′(u) (x and y each) for the parameter jet u."""
-    D = profile.derivatives(u.c[0], order + 1)
+    D = profile.derivatives(_once(u.c[0]), order + 1)
     c = u.compose(D[: order + 1])
     t = u.compose(D[1: order + 2])
     return Jet(c.c[..., 0]), Jet(c.c[..., 1]), Jet(t.c[..., 0]), Jet(t.c[..., 1])
@@ -80,13 +90,13 @@ def _curve(profile, u: Jet, order: int) -> tuple[Jet, Jet, Jet, Jet]:
 
 def _arc_length(profile, u: Jet, order: int) -> Jet:
     """Jet of the arc length s(u): s(u₀) from the profile, its u-derivatives from |c′(u)|."""
-    D = profile.derivatives(u.c[0], order)  # c, c′, …, c⁽ᵒʳᵈᵉʳ⁾
+    D = profile.derivatives(_once(u.c[0]), order)  # c, c′, …, c⁽ᵒʳᵈᵉʳ⁾
     # |c′(u₀ + δ)| as a series in δ, then s⁽ᵐ⁺¹⁾(u₀) = m!·(its m-th coefficient)
     tx = Jet.from_derivatives(D[1:, ..., 0])
     ty = Jet.from_derivatives(D[1:, ..., 1])
     speed = (tx * tx + ty * ty).sqrt()
-    derivs = np.empty((order + 1,) + u.c.shape[1:])
-    derivs[0] = profile.arc_length(u.c[0])
+    derivs = np.empty((order + 1,) + D.shape[1:-1])
+    derivs[0] = profile.arc_length(_once(u.c[0]))
     for m in range(order):
         derivs[m + 1] = speed.derivative(m)
     return u.compose(derivs)
@@ -139,6 +149,107 @@ def residuals(mech: Mechanism, j, pose, point, rotate) -> list[Jet]:
     return rows_
 
 
+def _concavities(mech: Mechanism, j, u: np.ndarray, v: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """How much each element bends towards the other at the contact (1/length; positive where
+    it is hollow towards the other body): links[0]'s profile at u, the follower's element at v.
+    Curvature does not change with the links' poses, and the sides are those of the drawing."""
+    d = _design(mech, j.name)
+    prof = mech.profiles[j.profile if isinstance(j, CamContact) else j.profiles[0]]
+    D1 = prof.derivatives(np.array(d.u0), 1)
+    left = np.array([-D1[1][1], D1[1][0]])
+    towards = float(np.sign(left @ d.normal))  # the follower's side relative to the left normal
+    k1 = towards * np.asarray(_curvature(prof, u))
+    follower = j.follower if isinstance(j, CamContact) else "rolling"
+    if follower == "roller":
+        return k1, np.full_like(k1, -1.0 / j.radius)
+    if follower == "flat":
+        return k1, np.zeros_like(k1)
+    if follower == "knife":
+        return k1, np.full_like(k1, -np.inf)
+    mate = mech.profiles[j.mate if isinstance(j, CamContact) else j.profiles[1]]
+    D2 = mate.derivatives(np.array(d.v0), 1)
+    mate_left = np.array([-D2[1][1], D2[1][0]])
+    return k1, -float(np.sign(mate_left @ d.normal)) * np.asarray(_curvature(mate, v))
+
+
+def _curvature(profile, u: np.ndarray) -> np.ndarray:
+    D = profile.derivatives(u, 2)
+    t = D[1]
+    return (t[..., 0] * D[2][..., 1] - t[..., 1] * D[2][..., 0]) / np.hypot(t[..., 0], t[..., 1]) ** 3
+
+
+@lru_cache(maxsize=256)
+def _outline(mech: Mechanism, name: str):
+    """A fine polygon through the profile `name` and its KD-tree (for the search of a second,
+    deeper touching), or None for a profile of infinite extent."""
+    prof = mech.profiles[name]
+    lo, hi = prof.domain
+    if not (np.isfinite(lo) and np.isfinite(hi)):
+        return None
+    u = np.linspace(lo, hi, 4096, endpoint=not prof.closed)
+    pts = prof.derivatives(u, 0)[0]
+    keep = np.all(np.isfinite(pts), axis=1)
+    return u[keep], pts[keep], cKDTree(pts[keep])
+
+
+def _roller_cuts_elsewhere(mech: Mechanism, j, poses: np.ndarray) -> np.ndarray:
+    """Samples at which the roller of cam pair `j` overlaps its profile somewhere: the profile's
+    point nearest to the roller's centre (a KD-tree over a fine polygon, refined by Newton's
+    method) is nearer than the radius. For a true contact that nearest point is the contact."""
+    outline = _outline(mech, j.profile)
+    N = poses.shape[0]
+    if outline is None:
+        return np.zeros(N, dtype=bool)
+    us, _, tree = outline
+    index = mech.link_index
+    a, b = poses[:, index[j.links[0]]], poses[:, index[j.links[1]]]
+    C = _rotate(b[:, 2], np.asarray(mech.points[j.point])[None, :]) + b[:, :2]
+    local = _rotate(-a[:, 2], C - a[:, :2])  # the roller's centre in the cam's coordinates
+    finite = np.all(np.isfinite(local), axis=1)
+    out = np.zeros(N, dtype=bool)
+    if not finite.any():
+        return out
+    q = local[finite]
+    _, k = tree.query(q)
+    prof = mech.profiles[j.profile]
+    u = us[k]
+    for _ in range(4):  # Newton on (c(u) − q)·c′(u) = 0, from the nearest vertex
+        d = prof.derivatives(u, 2)
+        r = d[0] - q
+        fp = np.einsum("ij,ij->i", d[1], d[1]) + np.einsum("ij,ij->i", r, d[2])
+        with np.errstate(divide="ignore", invalid="ignore"):
+            u = u - np.where(fp > 0, np.einsum("ij,ij->i", r, d[1]) / fp, 0.0)
+        if not prof.closed:
+            u = np.clip(u, *prof.domain)
+    gap = np.hypot(*(prof.derivatives(u, 0)[0] - q).T)
+    out[finite] = gap < j.radius - 1e-9 * mech.length_scale
+    return out
+
+
+def interference(mech: Mechanism, poses: np.ndarray) -> np.ndarray:
+    """Samples (N,) at which some higher pair's elements would cut into each other: next to the
+    contact (a roller larger than the hollow of the profile it sits in — the undercut cam —, a
+    flat face on a hollow flank, two profiles hollow towards each other beyond their touching),
+    or, for a roller, anywhere along the profile (the roller bridging a hollow touches it at
+    two places; the contact followed on past that is not where the roller can be). Such a
+    contact solves the pair's equations but is not a place the follower can be: the solver
+    marks those samples unreachable. `poses` (N, rows, 3) is the pose array of the solve
+    (links, then contact rows holding u − u0, v − v0)."""
+    bad = np.zeros(poses.shape[0], dtype=bool)
+    index = row_index(mech)
+    for j in mech.joints:
+        if not is_higher(j) or (isinstance(j, CamContact) and j.follower == "knife"):
+            continue
+        d = _design(mech, j.name)
+        r = index[row_name(j)]
+        with np.errstate(invalid="ignore"):
+            k1, k2 = _concavities(mech, j, poses[:, r, 0] + d.u0, poses[:, r, 1] + d.v0)
+            bad |= k1 + k2 > 1e-9 * (np.abs(k1) + np.abs(k2))
+        if isinstance(j, CamContact) and j.follower == "roller":
+            bad |= _roller_cuts_elsewhere(mech, j, poses)
+    return bad
+
+
 def contact_row_count(j) -> int:
     """Equations of a higher pair's contact row (its 3 coordinates plus the freedoms it removes)."""
     return 3 + (2 if isinstance(j, RollingContact) else 1)
@@ -169,7 +280,8 @@ def report(sol, name: str) -> dict[str, np.ndarray]:
 
     `u`, `v`: contact parameters on the profile of links[0] and on the follower's element (the
     mate profile; the place along a flat face from its point; 0 for a roller or knife);
-    `point`: the contact point; `normal`: the unit common normal, from links[0]'s profile
+    `point`: the contact point; `point_on_profile`, `point_on_follower`: the same point in the
+    coordinates of links[0] and of links[1] (where it lies on each element); `normal`: the unit common normal, from links[0]'s profile
     towards the follower; `curvature`: the signed curvature of links[0]'s profile at the contact
     (positive where it turns left with increasing u); `profile_speed` and `follower_speed`: how
     fast the contact point runs along each element, relative to the link carrying it;
@@ -198,8 +310,8 @@ def report(sol, name: str) -> dict[str, np.ndarray]:
     kappa = (t_local[:, 0] * D[2][:, 1] - t_local[:, 1] * D[2][:, 0]) / speed**3
     normal = _perp(tangent) * d.sign if not (isinstance(j, CamContact) and j.follower == "flat") \
         else _perp(tangent) * np.sign(np.einsum("ij,ij->i", _perp(tangent), _normal_flat(sol, j, d)))[:, None]
-    out = {"u": u, "point": point, "normal": normal, "curvature": kappa,
-           "profile_speed": speed * u_dot}
+    out = {"u": u, "point": point, "point_on_profile": D[0], "point_on_follower": sol.local(b, point),
+           "normal": normal, "curvature": kappa, "profile_speed": speed * u_dot}
     # velocities of the two links' material points at the contact
     vb_point = sol.point_on(b, sol.local(b, point)).velocity
     va_point = sol.point_on(a, sol.local(a, point)).velocity

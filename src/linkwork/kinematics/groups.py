@@ -24,7 +24,7 @@ import numpy as np
 
 from ..model import ConstantSpeed, Driver, Mechanism, Prismatic, Revolute, Slot
 from ..topology import Group
-from . import contact
+from . import contact, intermittent
 from .constraints import driver_residual, joint_residuals
 from .jet import Jet
 
@@ -300,6 +300,12 @@ def _classify(mech: Mechanism, group: Group) -> tuple[str, dict]:
             l2 = c.links[0] if c.links[0] in g else c.links[1]
             if l1 != l2:
                 return "RRR", dict(a=a, b=inner[0], c=c, l1=l1, l2=l2)
+    if group.size == 1 and len(joints) == 2:
+        (ln,) = group.links
+        ind = [j for j in joints if intermittent.is_intermittent(j) and j.links[1] == ln]
+        rev = [j for j in joints if isinstance(j, Revolute)]
+        if ind and rev and set(rev[0].links) == {ln, ind[0].carrier}:
+            return "intermittent", dict(pair=ind[0], wheel=ln, pivot=rev[0])
     if group.size == 1:
         (ln,) = group.links
         rev = [j for j in joints if isinstance(j, Revolute)]
@@ -554,6 +560,18 @@ class GroupSolver:
         Ow, th = self._lever_angle(state, p["pivot"], lever, pin_w, pin_d, p["guide"].axis)
         state.set_pose(lever, Ow, P[p["pivot"].point], th)
         state.set_pose(block, pin_w, pin_d, th)
+        return np.isfinite(th)
+
+    def _pos_intermittent(self, state: State) -> np.ndarray:
+        """A wheel indexed by a Geneva or star-wheel pair: its angle in closed form from the
+        driver's rotation relative to the carrier (`intermittent.wheel_angle`)."""
+        p = self.parts
+        j, wheel = p["pair"], p["wheel"]
+        th_c = state.Q[0, :, state.li(j.carrier), 2]
+        delta = state.Q[0, :, state.li(j.links[0]), 2] - th_c
+        th = th_c + intermittent.wheel_angle(self.mech, j, delta)
+        C = self.mech.points[p["pivot"].point]
+        state.set_pose(wheel, state.world(j.carrier, C), C, th)
         return np.isfinite(th)
 
     def _pos_generic(self, state: State, guess: np.ndarray | None) -> np.ndarray:

@@ -36,6 +36,8 @@ EQUATIONS = {
     "gear": ("rolling",),
     "cam": ("contact",),
     "rolling": ("contact", "rolling"),
+    "geneva": ("index",),
+    "star-wheel": ("index",),
 }
 
 #: relative singular-value threshold below which a direction counts as free

@@ -17,7 +17,7 @@ import numpy as np
 
 from ..errors import ModelError
 from ..model import CircularSlot, Gear, Mechanism, Prismatic, Slot
-from . import contact
+from . import contact, intermittent
 
 
 _FACTORIALS = np.array([factorial(k) for k in range(8)], dtype=float)
@@ -208,6 +208,8 @@ class Solution:
         j = mech.joint(name)
         if contact.is_higher(j):
             return contact.report(self, name)
+        if intermittent.is_intermittent(j):
+            return intermittent.report(self, name)
         if isinstance(j, Gear):
             c = self.link(j.carrier)
             w1, w2 = self.link(j.links[0]), self.link(j.links[1])

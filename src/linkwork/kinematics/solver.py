@@ -16,7 +16,7 @@ from ..errors import InputError, StructureError
 from ..model import ConstantSpeed, Mechanism
 from ..topology import solution_order
 from .branches import branch_schedule
-from .contact import rows
+from .contact import interference, rows
 from .continuation import continuation_guesses
 from .groups import GroupSolver, State, input_coefficients
 from .precision import POLISH_LIMIT, TOLERANCE, ErrorBudget, polish, polishable
@@ -160,6 +160,12 @@ def solve(mech: Mechanism, inputs=None, *, times=None, velocities=None, accelera
             e, c = polish(mech, solvers, state.Q, state.T, state.inputs, sel, budget.E[0, sel])
             done = np.isfinite(e)  # else the double answer stays, with its bound
             err[sel[done]], cond[sel[done]] = e[done], c[done]
+    if n_rows > len(mech.link_names):  # higher pairs: a contact cut into is no contact
+        cut = interference(mech, Q[0])
+        if cut.any():
+            Q[:, cut] = np.nan
+            T[:, :, cut] = np.nan
+            assembled &= ~cut
     status = np.where(assembled, np.where(errors > TOLERANCE, Status.SINGULAR, Status.OK),
                       Status.UNREACHABLE).astype(np.int8)
     condition = np.where(assembled, condition, np.nan)

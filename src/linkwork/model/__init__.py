@@ -4,6 +4,8 @@ Nothing here computes motion; `linkwork.kinematics` solves a `Mechanism` into a 
 """
 
 from .higher_pairs import CamContact, DesignContact, HigherPair, RollingContact, design_contact
+from .intermittent import (GenevaPair, IndexingSchedule, IntermittentPair, StarWheelPair,
+                           indexing_schedule, is_intermittent)
 from .laws import ConstantSpeed, MotionLaw, PolynomialLaw, TabulatedLaw
 from .mechanism import (
     CircularSlot,
@@ -21,4 +23,6 @@ __all__ = [
     "CamContact", "CircularSlot", "ConstantSpeed", "DesignContact", "HigherPair", "RollingContact",
     "design_contact", "Driver", "Gear", "Joint", "Link", "Mechanism", "MotionLaw",
     "PolynomialLaw", "Prismatic", "Revolute", "Slot", "TabulatedLaw",
+    "GenevaPair", "IndexingSchedule", "IntermittentPair", "StarWheelPair", "indexing_schedule",
+    "is_intermittent",
 ]

@@ -131,7 +131,16 @@ def design_contact(mech: "Mechanism", pair: HigherPair) -> DesignContact:
                 f"follower touching the profile")
         sign = 1.0 if dist >= 0 else -1.0
         if pair.follower == "knife":
-            sign = 1.0
+            # the tip lies on the profile: the follower is outside a closed profile (the
+            # left normal points out of a clockwise one), else on the side of its other points
+            if prof.closed:
+                c = prof.derivatives(_samples(prof), 0)[0]
+                area2 = float(np.sum(c[:, 0] * np.roll(c[:, 1], -1) - c[:, 1] * np.roll(c[:, 0], -1)))
+                sign = 1.0 if area2 < 0 else -1.0
+            else:
+                others = [mech.points[p] for p in mech.link(pair.links[1]).points if p != pair.point]
+                side = float(np.dot(np.mean(others, axis=0) - d[0], n)) if others else 0.0
+                sign = -1.0 if side < 0 else 1.0
         return DesignContact(u, 0.0, d[0], sign * n, sign)
     if isinstance(pair, CamContact) and pair.follower == "flat":
         P = mech.points[pair.point]

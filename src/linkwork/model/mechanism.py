@@ -10,7 +10,8 @@ Pairs (German *Elementenpaare*, Latvian *kinēmatiskie pāri*):
 `Revolute` (hinge, *Drehpaar*), `Prismatic` (block on a guide, *Schubpaar*), `Slot` (pin in a
 straight slot, turning and sliding), `CircularSlot` (pin in a curved slot, *Kulisse*),
 `Gear` (pitch circles rolling, *Zahnräderpaar*); the higher pairs `CamContact` and
-`RollingContact` (`higher_pairs`) keep profiles (`geometry.profiles`) in contact.
+`RollingContact` (`higher_pairs`) keep profiles (`geometry.profiles`) in contact; the
+intermittent pairs `GenevaPair` and `StarWheelPair` (`intermittent`) change with the phase.
 """
 
 from __future__ import annotations
@@ -25,7 +26,8 @@ import numpy as np
 from ..errors import ModelError
 from ..geometry.profiles import Profile
 from .higher_pairs import CamContact, RollingContact, validate_higher_pair
-from .laws import ConstantSpeed, MotionLaw
+from .intermittent import GenevaPair, StarWheelPair, validate_intermittent
+from .laws import ConstantSpeed, MotionLaw, PolynomialLaw, TabulatedLaw
 
 _TOL = 1e-9
 
@@ -109,7 +111,8 @@ class Gear:
     kind = "gear"
 
 
-Joint = Union[Revolute, Prismatic, Slot, CircularSlot, Gear, CamContact, RollingContact]
+Joint = Union[Revolute, Prismatic, Slot, CircularSlot, Gear, CamContact, RollingContact, GenevaPair,
+              StarWheelPair]
 
 
 @dataclass(frozen=True)
@@ -151,6 +154,10 @@ class Mechanism:
               length_unit: str = "mm", description: str = "",
               profiles: Mapping[str, Profile] | None = None) -> "Mechanism":
         pts = {k: _ro(v) for k, v in points.items()}
+        for k, v in pts.items():
+            if v.shape != (2,) or not np.isfinite(v).all():
+                raise ModelError(f"point '{k}': give two finite coordinates [x, y], got "
+                                 f"{np.asarray(points[k]).tolist()}")
         link_objs = tuple(Link(n, tuple(p)) for n, p in links.items())
         joint_objs = tuple(joints)
         mech_drivers = tuple(d if isinstance(d, Driver) else _make_driver(d, joint_objs, frame, link_objs)
@@ -249,9 +256,15 @@ class Mechanism:
                     raise ModelError(f"link '{link.name}' lists point '{p}', which is not in [points]")
             if len(link.points) >= 2:
                 xy = np.array([self.points[p] for p in link.points])
-                if np.ptp(xy, axis=0).max() <= _TOL * self.length_scale:
-                    raise ModelError(f"link '{link.name}': all its points coincide, so its angle "
-                                     "is undefined")
+                spread = float(np.ptp(xy, axis=0).max())
+                if spread <= _TOL * self.length_scale:
+                    raise ModelError(
+                        f"link '{link.name}': all its points coincide, so its angle is undefined"
+                        if spread == 0 else
+                        f"link '{link.name}': its points lie within {spread:.3g} of each other, "
+                        f"which is no length next to the drawing's size {self.length_scale:.3g} "
+                        "(check the coordinates: a point far away shrinks every link)")
+        self._validate_pair_spans()
         seen: set[str] = set()
         for j in self.joints:
             if j.name in seen:
@@ -266,12 +279,38 @@ class Mechanism:
         for d in self.drivers:
             self._validate_driver(d)
 
+    def _validate_pair_spans(self) -> None:
+        """A moving link hinged at two or more points and held by nothing else must not have them
+        all in one place: it would be a link of zero length (its angle undefined, every dyad
+        through it unreachable). Coaxial hinges on a wheel that a gear, a guide or a higher pair
+        turns are fine."""
+        hinges: dict[str, set[str]] = {}
+        turned_otherwise: set[str] = set()  # links whose angle another pair sets (gear, guide, cam)
+        for j in self.joints:
+            if isinstance(j, Revolute) and j.point in self.points:
+                for ln in j.links:
+                    hinges.setdefault(ln, set()).add(j.point)
+            elif not isinstance(j, Revolute):
+                turned_otherwise.update(j.links)
+        for ln, pts in hinges.items():
+            if ln == self.frame or len(pts) < 2 or ln in turned_otherwise:
+                continue
+            xy = np.array([self.points[p] for p in sorted(pts)])
+            if np.ptp(xy, axis=0).max() <= _TOL * self.length_scale:
+                names = ", ".join(f"'{p}'" for p in sorted(pts))
+                raise ModelError(f"link '{ln}': its hinges {names} are at one place, so it has "
+                                 "zero length between them; draw them apart (or join the pairs at "
+                                 "one point)")
+
     def _has(self, link: str, point: str) -> bool:
         return point in self.link(link).points
 
     def _validate_joint(self, j: Joint) -> None:
         if isinstance(j, (CamContact, RollingContact)):
             validate_higher_pair(self, j)
+            return
+        if isinstance(j, (GenevaPair, StarWheelPair)):
+            validate_intermittent(self, j)
             return
         if isinstance(j, Gear):
             if j.carrier not in self.link_index:
@@ -280,7 +319,7 @@ class Mechanism:
             if j.gear_kind == "rack":
                 guide = self.rack_guide(j)
                 n = np.array([-guide.axis[1], guide.axis[0]])
-                if j.radii[0] <= 0:
+                if not j.radii[0] > 0:
                     raise ModelError(f"gear '{j.name}': the pinion radius must be positive")
                 # the rack's pitch line lies at distance r from the pinion centre
                 if j.point is not None:
@@ -292,7 +331,7 @@ class Mechanism:
             c2 = self.points[self.wheel_centre(j, j.links[1])]
             dist = float(np.hypot(*(c2 - c1)))
             r1, r2 = j.radii
-            if r1 <= 0 or r2 <= 0:
+            if not (r1 > 0 and r2 > 0 and np.isfinite(r1) and np.isfinite(r2)):
                 raise ModelError(f"gear '{j.name}': pitch radii must be positive, got {r1:g}, {r2:g}")
             want = r1 + r2 if j.gear_kind == "external" else abs(r1 - r2)
             if abs(dist - want) > 1e-6 * max(1.0, want):
@@ -302,6 +341,11 @@ class Mechanism:
             return
         if j.point not in self.points:
             raise ModelError(f"joint '{j.name}': point '{j.point}' is not in [points]")
+        if isinstance(j, (Prismatic, Slot)):
+            axis = np.asarray(j.axis, dtype=float)
+            if axis.shape != (2,) or not np.isfinite(axis).all() or not np.hypot(*axis) > 0:
+                raise ModelError(f"{j.kind} joint '{j.name}': the axis must be a finite, non-zero "
+                                 f"direction, got {axis.tolist()}")
         a, b = j.links
         if isinstance(j, Revolute):
             for ln in (a, b):
@@ -325,6 +369,19 @@ class Mechanism:
 
     def _validate_driver(self, d: Driver) -> None:
         j = self.joint(d.joint)
+        law = d.law
+        numbers = {ConstantSpeed: lambda: (law.speed, law.start),
+                   PolynomialLaw: lambda: (*law.coefficients, law.span),
+                   TabulatedLaw: lambda: (*law.times, *law.values)}.get(type(law), lambda: ())()
+        if not np.isfinite(np.asarray(numbers, dtype=float)).all():
+            raise ModelError(f"driver '{d.joint}': its motion law has a number that is not finite")
+        if isinstance(law, PolynomialLaw) and (not law.coefficients or not law.span > 0):
+            raise ModelError(f"driver '{d.joint}': a polynomial law needs at least one "
+                             "coefficient and a positive duration")
+        if isinstance(law, TabulatedLaw) and (len(law.times) != len(law.values) or len(law.times) < 2
+                                              or np.any(np.diff(law.times) <= 0)):
+            raise ModelError(f"driver '{d.joint}': a law table needs as many values as times, "
+                             "at least two, at increasing times")
         if not isinstance(j, (Revolute, Prismatic)):
             raise ModelError(f"driver joint '{d.joint}' is a {j.kind} pair; only revolute and "
                              "prismatic pairs can be drivers")
@@ -355,7 +412,9 @@ def _make_driver(spec: dict, joints: tuple[Joint, ...], frame: str,
         driven, base = b, a
     ref = spec.get("reference")
     if ref is None and isinstance(j, Revolute):
-        pts = next(link.points for link in links if link.name == driven)
+        pts = next((link.points for link in links if link.name == driven), None)
+        if pts is None:
+            raise ModelError(f"driver '{jname}': the driven link '{driven}' is not in [links]")
         others = [p for p in pts if p != j.point]
         if not others:
             raise ModelError(f"driver '{jname}': the driven link '{driven}' has no point besides "

@@ -207,7 +207,8 @@ def slider_groups(mech: Mechanism) -> int:
 
 def counts(mech: Mechanism) -> PairCounts:
     """The seed-style counts of `mech`: die blocks of slots unfolded, hinges at one point merged
-    into multiple hinges, gears and cam contacts as non-self-closed higher pairs, rolling
+    into multiple hinges, gears, cam contacts and the intermittent pairs of Geneva and star
+    wheels (h = 1 in every phase) as non-self-closed higher pairs, rolling
     contacts as self-closed ones (Rosenauer §109–110: the rolling lever h = 1, the Proell–Schwabe
     wheel on its lever h = 2)."""
     folded = [j for j in mech.joints if j.kind in ("slot", "circular-slot")]
@@ -222,7 +223,7 @@ def counts(mech: Mechanism) -> PairCounts:
     top = max(hinges) if hinges else 1
     ht = tuple(hinges.get(k, 0) for k in range(1, top + 1))
     s = sum(1 for j in mech.joints if j.kind == "prismatic") + len(folded)
-    h_n = sum(1 for j in mech.joints if j.kind in ("gear", "cam"))
+    h_n = sum(1 for j in mech.joints if j.kind in ("gear", "cam", "geneva", "star-wheel"))
     h_p = sum(1 for j in mech.joints if j.kind == "rolling")
     return PairCounts(n=len(mech.links) + len(folded), hinges=ht, s=s, h_n=h_n, h_p=h_p,
                       gamma=slider_groups(mech))

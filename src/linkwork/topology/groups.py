@@ -34,17 +34,18 @@ solver (`_check_slider_group`).
 from __future__ import annotations
 
 from dataclasses import dataclass
-from itertools import combinations
 
 import numpy as np
 
 from ..errors import StructureError
-from ..model import Gear, Joint, Mechanism
+from ..model import Gear, Joint, Mechanism, is_intermittent
 
 #: degrees of freedom each pair removes (Grübler's g₁ pairs count 2, point contact pairs 1; a
-#: cam contact h = 1, a rolling contact, self-closed, h = 2 as Rosenauer §110 counts it)
+#: cam contact h = 1, a rolling contact, self-closed, h = 2 as Rosenauer §110 counts it; the
+#: intermittent pairs of Geneva and star wheels h = 1 in every phase: the pin on its slot, the
+#: pin gear, or the locking arc each leave the wheel no freedom of its own)
 PAIR_CONSTRAINTS = {"revolute": 2, "prismatic": 2, "slot": 1, "circular-slot": 1, "gear": 1,
-                    "cam": 1, "rolling": 2}
+                    "cam": 1, "rolling": 2, "geneva": 1, "star-wheel": 1}
 
 
 @dataclass(frozen=True)
@@ -66,7 +67,7 @@ class Group:
 
 
 def _involved(j: Joint) -> tuple[str, ...]:
-    return tuple(j.links) + ((j.carrier,) if isinstance(j, Gear) else ())
+    return tuple(j.links) + ((j.carrier,) if isinstance(j, Gear) or is_intermittent(j) else ())
 
 
 def constraint_count(joints: list[Joint], driver_joints: set[str],
@@ -201,6 +202,59 @@ def _check_slider_group(mech: Mechanism, group: Group, rot: RotationClasses,
 
 
 # ---------------------------------------------------------------------------- the order
+#: at most this many candidate groups are tried for one group before the search gives up
+MAX_CANDIDATES = 200_000
+
+
+def _check_connected(mech: Mechanism) -> None:
+    """Connected components first: links that no chain of pairs joins to the frame are free
+    bodies, whatever the rest does; name them at once rather than search for their group."""
+    import networkx as nx
+
+    G = nx.Graph()
+    G.add_nodes_from(mech.link_names)
+    for j in mech.joints:
+        inv = _involved(j)
+        G.add_edges_from((a, b) for a in inv for b in inv if a != b)
+    loose = sorted(set(mech.link_names) - nx.node_connected_component(G, mech.frame),
+                   key=mech.link_names.index)
+    if loose:
+        raise StructureError(
+            f"under-constrained: the links {', '.join(loose)} are not determined by the drivers: "
+            f"no chain of pairs joins {'it' if len(loose) == 1 else 'them'} to the frame "
+            f"'{mech.frame}'")
+
+
+def _connected_subsets(unknown: list[str], joints: list[Joint], size: int):
+    """The sets of `size` unknown links that the pairs among them keep connected, in a fixed
+    order. A group is such a set: a set falling apart in two would have each part fixed (or
+    over-fixed) by its own pairs, and the smaller parts are tried first. So only connected sets
+    are tried, which keeps the search small where the links are many but joined sparsely."""
+    index = {ln: i for i, ln in enumerate(unknown)}
+    nbrs: dict[str, set[str]] = {ln: set() for ln in unknown}
+    for j in joints:
+        inv = [ln for ln in _involved(j) if ln in index]
+        for a in inv:
+            nbrs[a].update(b for b in inv if b != a)
+    layer = {frozenset([ln]) for ln in unknown}
+    tried = 0
+    for _ in range(size - 1):
+        grown = set()
+        for s in layer:
+            for a in s:
+                for b in nbrs[a] - s:
+                    grown.add(s | {b})
+            tried += 1
+            if len(grown) > MAX_CANDIDATES:
+                raise StructureError(
+                    f"the solution order: more than {MAX_CANDIDATES} candidate groups of {size} "
+                    f"links among {len(unknown)} undetermined ones; the chain is too large to "
+                    "order (split it, or check its drivers and pairs)")
+        layer = grown
+    yield from sorted((tuple(sorted(s, key=index.get)) for s in layer),
+                      key=lambda t: [index[ln] for ln in t])
+
+
 def solution_order(mech: Mechanism) -> tuple[Group, ...]:
     """The groups of `mech` in solution order, from the frame and the drivers.
 
@@ -218,10 +272,11 @@ def solution_order(mech: Mechanism) -> tuple[Group, ...]:
     rotations = RotationClasses(mech.link_names)
     solved: set[str] = set()
     groups: list[Group] = []
+    _check_connected(mech)
     while unknown:
         found = None
         for size in range(1, len(unknown) + 1):
-            for subset in combinations(unknown, size):
+            for subset in _connected_subsets(unknown, remaining, size):
                 reach = known.union(subset)
                 js = [j for j in remaining
                       if set(_involved(j)) <= reach and any(ln in subset for ln in j.links)]

@@ -28,7 +28,7 @@ def to_derivatives(a: np.ndarray) -> np.ndarray:
 def mul(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     """The product series (Cauchy product), truncated at the shorter order."""
     n = min(a.shape[0], b.shape[0])
-    out = np.zeros((n,) + np.broadcast_shapes(a.shape[1:], b.shape[1:]))
+    out = np.zeros((n,) + np.broadcast_shapes(a.shape[1:], b.shape[1:]), dtype=np.result_type(a, b, float))
     for k in range(n):
         for j in range(k + 1):
             out[k] += a[j] * b[k - j]
@@ -48,4 +48,17 @@ def power(a: np.ndarray, p: float) -> np.ndarray:
         for j in range(1, k + 1):
             acc += ((p + 1) * j - k) * a[j] * out[k - j]
         out[k] = acc / (k * a[0])
+    return out
+
+
+def expi(a: np.ndarray) -> np.ndarray:
+    """The series of e^{i·a} (complex) for a real series a: from f′ = i·a′·f,
+    f_k = (i/k) Σ_{j=1..k} j a_j f_{k−j} (the unit vector turned by a curve's angle)."""
+    out = np.zeros(a.shape, dtype=complex)
+    out[0] = np.exp(1j * a[0])
+    for k in range(1, a.shape[0]):
+        acc = np.zeros_like(out[0])
+        for j in range(1, k + 1):
+            acc += j * a[j] * out[k - j]
+        out[k] = 1j * acc / k
     return out
