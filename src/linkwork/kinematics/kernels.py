@@ -197,7 +197,7 @@ def propagate_errors(Q, links, L, omega, kappa, rho, m, E, eps):
     e = np.empty(K + 1)
     for n in range(E.shape[1]):
         for i in links:  # an angle of many turns rounds to ε times its size
-            a = abs(Q[0, i, 2, n])
+            a = abs(Q[0, i, 2, n]) * (1.0 / math.pi)
             if a > m[0, n]:
                 m[0, n] = a
         w = omega[n]
