@@ -122,7 +122,9 @@ def _follower_point(cf: CamFollower, state, q, p: np.ndarray):
 
 
 def _equations(cf: CamFollower, mech: Mechanism, state, q, u, d):
-    """The two equations and their partial derivatives by q and u (each (N,))."""
+    """The two equations and their partial derivatives by q and u (each (N,)), and the weights
+    that turn each equation into a length (as the generic rows are) and a profile parameter
+    into a length along the profile (|c′|)."""
     j = cf.pair
     prof = mech.profiles[j.profile]
     D = prof.derivatives(u, 2)
@@ -142,7 +144,7 @@ def _equations(cf: CamFollower, mech: Mechanism, state, q, u, d):
         g2 = _cross(tx, ty, dx, dy) - sr * nt
         g2u = _cross(kx, ky, dx, dy) - sr * (tx * kx + ty * ky) / nt
         g2q = _cross(tx, ty, dCx, dCy)
-        return g1, g2, g1q, g1u, g2q, g2u, nt
+        return g1, g2, g1q, g1u, g2q, g2u, (1.0 / nt, 1.0 / nt, nt)
     Px, Py, dPx, dPy = _follower_point(cf, state, q, mech.points[j.point])
     if cf.hinge is not None:
         c, s = np.cos(q), np.sin(q)
@@ -158,7 +160,8 @@ def _equations(cf: CamFollower, mech: Mechanism, state, q, u, d):
     g2 = _cross(tx, ty, ex, ey)
     g2u = _cross(kx, ky, ex, ey)
     g2q = _cross(tx, ty, dex, dey)
-    return g1, g2, g1q, g1u, g2q, g2u, np.hypot(tx, ty)
+    nt = np.hypot(tx, ty)
+    return g1, g2, g1q, g1u, g2q, g2u, (np.ones_like(nt), mech.length_scale / nt, nt)
 
 
 def _start(cf: CamFollower, state, guess: np.ndarray, u0: float):
@@ -192,9 +195,9 @@ def positions(cf: CamFollower, state, guess: np.ndarray | None, tol: float
     prof = mech.profiles[cf.pair.profile]
     u_span = (prof.domain[1] - prof.domain[0]) / 8 if np.isfinite(prof.domain).all() else np.inf
     for it in range(MAX_ITERATIONS):
-        g1, g2, g1q, g1u, g2q, g2u, nt = _equations(cf, mech, state, q, u, d)
+        g1, g2, g1q, g1u, g2q, g2u, (w1, w2, _) = _equations(cf, mech, state, q, u, d)
         with np.errstate(invalid="ignore", divide="ignore"):
-            err = np.maximum(np.abs(g1), np.abs(g2)) / nt
+            err = np.maximum(np.abs(g1) * w1, np.abs(g2) * w2)
         if it == 0:
             active &= np.isfinite(err)
         converged = active & (err <= tol)
@@ -214,9 +217,9 @@ def positions(cf: CamFollower, state, guess: np.ndarray | None, tol: float
         q = np.where(ok_step, q + damp * dq, q)
         u = np.where(ok_step, u + damp * du, u)
     else:
-        g1, g2, *_, nt = _equations(cf, mech, state, q, u, d)
+        g1, g2, *_, (w1, w2, _) = _equations(cf, mech, state, q, u, d)
         with np.errstate(invalid="ignore", divide="ignore"):
-            err = np.maximum(np.abs(g1), np.abs(g2)) / nt
+            err = np.maximum(np.abs(g1) * w1, np.abs(g2) * w2)
     q = np.where(converged, q, np.nan)
     u = np.where(converged, u, np.nan)
     _write_pose(cf, state, Jet(q[None]), fi)
@@ -311,12 +314,12 @@ def derivatives(cf: CamFollower, state, ok: np.ndarray, unreliable: float) -> np
     q0 = state.Q[0, :, fi, 2] if cf.hinge is not None else _start(
         cf, state, state.Q[0][:, [fi, ri]], d.u0)[0]
     u0 = state.Q[0, :, ri, 0] + d.u0
-    g1, g2, g1q, g1u, g2q, g2u, nt = _equations(cf, mech, state, q0, u0, d)
+    g1, g2, g1q, g1u, g2q, g2u, (w1, w2, nt) = _equations(cf, mech, state, q0, u0, d)
     det = g1q * g2u - g1u * g2q
-    # scaled Jacobian: rows divided by |t| (lengths), u column per length of profile, a hinge's
-    # q column per radian times the mechanism's size (as the generic path scales angles)
+    # scaled Jacobian: rows in lengths, the u column per length along the profile, a hinge's
+    # q column per radian over the mechanism's size (as the generic path scales angles)
     L = mech.length_scale if cf.hinge is not None else 1.0
-    m = np.stack([g1q / nt / L, g1u / nt / nt, g2q / nt / L, g2u / nt / nt], axis=-1)
+    m = np.stack([g1q * w1 / L, g1u * w1 / nt, g2q * w2 / L, g2u * w2 / nt], axis=-1)
     fro2 = np.einsum("ij,ij->i", m, m)
     dets = np.abs(m[:, 0] * m[:, 3] - m[:, 1] * m[:, 2])
     with np.errstate(invalid="ignore", divide="ignore"):
