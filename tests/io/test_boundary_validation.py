@@ -10,32 +10,8 @@ import linkwork
 from linkwork.errors import MechanismFileError, ModelError
 from linkwork.model import ConstantSpeed, Mechanism, PolynomialLaw, Revolute, TabulatedLaw
 
-FOURBAR = """\
-name = "test four-bar"
-units = { length = "mm" }
+from test_files import FOURBAR  # the same four-bar as the other file tests
 
-[points]
-O2 = [0, 0]
-A  = [0, 10]
-B  = [30, 30]
-O4 = [40, 0]
-
-[links]
-frame   = ["O2", "O4"]
-crank   = ["O2", "A"]
-coupler = ["A", "B"]
-rocker  = ["B", "O4"]
-
-[joints]
-O2 = { type = "revolute", links = ["frame", "crank"] }
-A  = { type = "revolute", links = ["crank", "coupler"] }
-B  = { type = "revolute", links = ["coupler", "rocker"] }
-O4 = { type = "revolute", links = ["rocker", "frame"] }
-
-[driver]
-joint = "O2"
-speed = "60 rpm"
-"""
 # line numbers of FOURBAR, counted once here by hand
 LINE = {"A": 6, "B": 7, "frame": 11, "coupler": 13, "joints.A": 18, "joints.B": 19,
         "driver": 22, "driver.joint": 23, "driver.speed": 24}
