@@ -228,3 +228,16 @@ def test_every_library_file_still_loads():
     from linkwork.io.files import library_names
     for name in library_names():
         assert np.isfinite(linkwork.load(f"library:{name}").length_scale)
+
+
+def test_profile_errors_carry_their_line():
+    from linkwork.io.files import library_names, resolve
+    assert "radial-roller-cam" in library_names()
+    text = resolve("library:radial-roller-cam")[1]
+    lines = text.splitlines()
+    at = lines.index("radius = 30") + 1  # the disc's radius, below [profiles.disc]
+    assert lines[at - 4] == "[profiles.disc]"
+    e = error(text.replace("radius = 30", "radius = nan", 1))
+    assert e.key == "profiles.disc.radius" and e.line == at and "finite" in str(e)
+    e = error(text.replace("radius = 30", "radius = 30\nfoo = 1", 1))
+    assert e.key == "profiles.disc.foo" and e.line == at + 1
