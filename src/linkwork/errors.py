@@ -46,6 +46,11 @@ class AssemblyError(LinkworkError):
     """A position at which the chain cannot be assembled, where the caller required it."""
 
 
+class SolveError(LinkworkError):
+    """A solve that cannot be carried out within its bounds (the continuation of the design's
+    branch needs more steps than its budget), named with the input where it stopped."""
+
+
 class InputError(LinkworkError):
     """A bad input value: an unparsable quantity, a sweep with zero step, a wrong unit."""
 

@@ -81,7 +81,28 @@ def _table(sol: Solution) -> str:
                 row += [f"{m.omega[n]:.5g}", f"{m.alpha[n]:.5g}"]
             t.add_row(*row)
         out.print(t)
+    _engagement_tables(out, sol)
     return out.export_text()
+
+
+def _engagement_tables(out: Console, sol: Solution) -> None:
+    """Per Geneva or star-wheel pair: the phase boundaries the motion passes, with the wheel's
+    one-sided velocities and accelerations (at the driver's constant speed)."""
+    from ..kinematics.intermittent import engagement
+    from ..model import is_intermittent
+
+    for j in sol.mechanism.joints:
+        if not is_intermittent(j):
+            continue
+        e = engagement(sol, j.name)
+        t = Table(title=f"{j.kind} pair {j.name}: the wheel advances {np.degrees(e.advance):.4g}° "
+                        f"per driver turn and rests {100 * e.dwell_fraction:.4g}% of it")
+        for c in ("boundary", "input [°]", "phases", "slot", "ω left", "ω right", "α left", "α right"):
+            t.add_column(c, justify="right")
+        for ev in e.events:
+            t.add_row(ev.kind, f"{np.degrees(ev.input):.4f}", f"{ev.before} → {ev.after}",
+                      str(ev.slot), *(f"{v + 0.0:.6g}" for v in (*ev.omega, *ev.alpha)))
+        out.print(t)
 
 
 @app.command()

@@ -45,6 +45,7 @@ def iter_samples(sol: Solution):
             "input": _num(sol.inputs[n, 0]) if single else _vec(sol.inputs[n]),
             "status": str(Status(int(sol.status[n]))),
             "condition": _num(sol.condition[n]),
+            "error": _num(sol.errors[n]),
         }
         if sol.time is not None:
             s["time"] = _num(sol.time[n])
@@ -70,6 +71,7 @@ def to_dataframe(sol: Solution):
         cols["time"] = sol.time
     cols["status"] = np.array([str(Status(int(s))) for s in sol.status])
     cols["condition"] = sol.condition
+    cols["error"] = sol.errors
     for p in mech.points:
         m = sol.point(p)
         for name, arr in (("x", m.position), ("vx", m.velocity), ("ax", m.acceleration)):

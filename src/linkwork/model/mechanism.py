@@ -280,15 +280,20 @@ class Mechanism:
             self._validate_driver(d)
 
     def _validate_pair_spans(self) -> None:
-        """A moving link hinged at two or more points must not have them all in one place: it
-        would be a link of zero length (its angle undefined, every dyad through it unreachable)."""
+        """A moving link hinged at two or more points and held by nothing else must not have them
+        all in one place: it would be a link of zero length (its angle undefined, every dyad
+        through it unreachable). Coaxial hinges on a wheel that a gear, a guide or a higher pair
+        turns are fine."""
         hinges: dict[str, set[str]] = {}
+        turned_otherwise: set[str] = set()  # links whose angle another pair sets (gear, guide, cam)
         for j in self.joints:
             if isinstance(j, Revolute) and j.point in self.points:
                 for ln in j.links:
                     hinges.setdefault(ln, set()).add(j.point)
+            elif not isinstance(j, Revolute):
+                turned_otherwise.update(j.links)
         for ln, pts in hinges.items():
-            if ln == self.frame or len(pts) < 2:
+            if ln == self.frame or len(pts) < 2 or ln in turned_otherwise:
                 continue
             xy = np.array([self.points[p] for p in sorted(pts)])
             if np.ptp(xy, axis=0).max() <= _TOL * self.length_scale:
