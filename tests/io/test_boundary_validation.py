@@ -241,3 +241,12 @@ def test_profile_errors_carry_their_line():
     assert e.key == "profiles.disc.radius" and e.line == at and "finite" in str(e)
     e = error(text.replace("radius = 30", "radius = 30\nfoo = 1", 1))
     assert e.key == "profiles.disc.foo" and e.line == at + 1
+
+
+@pytest.mark.parametrize("slots", ["1e12", "1000000", '"6"', "true", "2"])
+def test_geneva_slot_count_is_a_sane_integer(slots):
+    from linkwork.io.files import resolve
+    text = resolve("library:geneva-6")[1]
+    assert "slots = 6" in text
+    e = error(text.replace("slots = 6", f"slots = {slots}"))
+    assert e.key.endswith(".slots") and e.line is not None
