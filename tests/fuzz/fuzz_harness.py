@@ -83,6 +83,7 @@ def warm_up() -> None:
 # ----------------------------------------------------------------------------- mutations
 _NUMBER = re.compile(r'(?<![\w."\-])-?\d+(?:\.\d+)?(?:[eE][+-]?\d+)?(?![\w".])')
 _STRING = re.compile(r'"([^"\n]*)"')
+_POINT = re.compile(r'^\s*"?([\w-]+)"?\s*=\s*\[\s*(-?[\d.eE+-]+)\s*,\s*(-?[\d.eE+-]+)\s*\]', re.M)
 
 NUMBERS = ["nan", "inf", "-inf", "0", "0.0", "-0.0", "1e300", "-1e300", "1e-300", "1e12", "1e13",
            "123456789012345678901234567890", "true", "false", '"10"', '"1e400 deg"', "[]", "[1, 2]",
@@ -104,7 +105,7 @@ def mutate(text: str, rng: random.Random) -> tuple[bytes, list[str]]:
     raw: bytes | None = None
     for _ in range(rng.choice([1, 1, 1, 2, 2, 3])):
         what = rng.choice(["number", "number", "number", "string", "string", "string", "line",
-                           "line", "name", "byte"])
+                           "line", "name", "byte", "near", "near"])
         if what == "number" and _numbers(text):
             m = rng.choice(_numbers(text))
             orig = float(m.group())
@@ -126,6 +127,14 @@ def mutate(text: str, rng: random.Random) -> tuple[bytes, list[str]]:
             new = rng.choice(names)
             text = text[:m.start()] + f'"{new}"' + text[m.end():]
             done.append(f"name {m.group(1)!r} -> {new!r}")
+        elif what == "near" and len(_POINT.findall(text)) >= 2:
+            # a point drawn onto another, or almost: degenerate and near-singular geometry
+            pts = list(_POINT.finditer(text))
+            m, other = rng.sample(pts, 2)
+            eps = rng.choice([0.0, 1e-12, 1e-9, 1e-6, 1e-3])
+            x, y = float(other.group(2)) + eps * rng.uniform(-1, 1), float(other.group(3)) + eps * rng.uniform(-1, 1)
+            text = text[:m.start(2)] + repr(x) + ", " + repr(y) + text[m.end(3):]
+            done.append(f"point {m.group(1)} -> {other.group(1)} + {eps:g}")
         elif what == "line":
             lines = text.splitlines()
             i = rng.randrange(len(lines))

@@ -10,32 +10,8 @@ import linkwork
 from linkwork.errors import MechanismFileError, ModelError
 from linkwork.model import ConstantSpeed, Mechanism, PolynomialLaw, Revolute, TabulatedLaw
 
-FOURBAR = """\
-name = "test four-bar"
-units = { length = "mm" }
+from test_files import FOURBAR  # the same four-bar as the other file tests
 
-[points]
-O2 = [0, 0]
-A  = [0, 10]
-B  = [30, 30]
-O4 = [40, 0]
-
-[links]
-frame   = ["O2", "O4"]
-crank   = ["O2", "A"]
-coupler = ["A", "B"]
-rocker  = ["B", "O4"]
-
-[joints]
-O2 = { type = "revolute", links = ["frame", "crank"] }
-A  = { type = "revolute", links = ["crank", "coupler"] }
-B  = { type = "revolute", links = ["coupler", "rocker"] }
-O4 = { type = "revolute", links = ["rocker", "frame"] }
-
-[driver]
-joint = "O2"
-speed = "60 rpm"
-"""
 # line numbers of FOURBAR, counted once here by hand
 LINE = {"A": 6, "B": 7, "frame": 11, "coupler": 13, "joints.A": 18, "joints.B": 19,
         "driver": 22, "driver.joint": 23, "driver.speed": 24}
@@ -252,3 +228,25 @@ def test_every_library_file_still_loads():
     from linkwork.io.files import library_names
     for name in library_names():
         assert np.isfinite(linkwork.load(f"library:{name}").length_scale)
+
+
+def test_profile_errors_carry_their_line():
+    from linkwork.io.files import library_names, resolve
+    assert "radial-roller-cam" in library_names()
+    text = resolve("library:radial-roller-cam")[1]
+    lines = text.splitlines()
+    at = lines.index("radius = 30") + 1  # the disc's radius, below [profiles.disc]
+    assert lines[at - 4] == "[profiles.disc]"
+    e = error(text.replace("radius = 30", "radius = nan", 1))
+    assert e.key == "profiles.disc.radius" and e.line == at and "finite" in str(e)
+    e = error(text.replace("radius = 30", "radius = 30\nfoo = 1", 1))
+    assert e.key == "profiles.disc.foo" and e.line == at + 1
+
+
+@pytest.mark.parametrize("slots", ["1e12", "1000000", '"6"', "true", "2"])
+def test_geneva_slot_count_is_a_sane_integer(slots):
+    from linkwork.io.files import resolve
+    text = resolve("library:geneva-6")[1]
+    assert "slots = 6" in text
+    e = error(text.replace("slots = 6", f"slots = {slots}"))
+    assert e.key.endswith(".slots") and e.line is not None

@@ -87,7 +87,7 @@ def _line_of(text: str, loc: tuple) -> int | None:
             continue
         key = str(key)
         pat = re.compile(
-            rf'^\s*(\[{{1,2}}\s*([\w."-]*\.)?"?{re.escape(key)}"?\s*\]|"?{re.escape(key)}"?\s*=)'
+            rf'^\s*(\[{{1,2}}\s*([\w."-]*\.)?"?{re.escape(key)}"?\s*[\].]|"?{re.escape(key)}"?\s*=)'
             rf'|[{{,]\s*"?{re.escape(key)}"?\s*=')
         for i in range(start, len(lines)):
             if pat.search(lines[i]):
@@ -116,7 +116,13 @@ def load_text(text: str, *, source: str = "<text>", base_dir: Path | None = None
     check_references(spec, text, source)
     try:
         return _build(spec, text, source, base_dir)
-    except MechanismFileError:
+    except MechanismFileError as exc:
+        if exc.line is None and exc.key and exc.source == source:  # a profile's key: find its line
+            loc = tuple(int(k) if k.isdigit() else k for k in re.findall(r"[^.\[\]]+", exc.key))
+            prefix = f"{source}, key '{exc.key}': "
+            message = str(exc)[len(prefix):] if str(exc).startswith(prefix) else str(exc)
+            raise MechanismFileError(message, source=source, key=exc.key,
+                                     line=_line_of(text, loc)) from None
         raise
     except (ModelError, InputError) as exc:
         key = _key_of_message(str(exc), spec)

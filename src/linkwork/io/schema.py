@@ -8,7 +8,7 @@ from __future__ import annotations
 
 from typing import Annotated, Literal, Union
 
-from pydantic import BaseModel, ConfigDict, Field, field_validator, model_validator
+from pydantic import BaseModel, ConfigDict, Field, Strict, field_validator, model_validator
 
 from .profiles import ProfileSpec
 from .values import Number, PositiveNumber
@@ -91,7 +91,7 @@ class GenevaSpec(_Strict):
         description="the driver carrying the pin, then the slotted wheel (Malteserkreuz)")
     pin: str | None = Field(None, description="the pin (Triebstock), a point of the driver; "
                                               "defaults to the joint's name")
-    slots: int = Field(ge=3, description="number of radial slots of the wheel (at least 3); the "
+    slots: Annotated[int, Strict()] = Field(ge=3, le=360, description="number of radial slots of the wheel (3 to 360); the "
                                          "pin radius r and the centre distance D come from the "
                                          "drawing, r = D·sin(180°/slots) for shock-free entry")
     carrier: str = Field("frame", description="the link both are pivoted on")
