@@ -101,3 +101,13 @@ def test_contact_report_from_differences_of_the_contact_point(seed, follower):
         # a roller turning freely rolls off the follower's run: spin = −sliding/ρ
         rho = mech.joint("K").radius
         np.testing.assert_allclose(rep["roller_spin"][mid], -sliding / rho, rtol=0, atol=1e-7 * L / rho)
+
+
+def test_a_design_the_contact_leaves_undetermined_is_marked_not_a_crash():
+    """Elliptical gears drawn with the common normal through both pivots (the ellipses touching
+    at their vertices): the contact alone does not fix the speed ratio there, Newton's method
+    cannot start from the design, and every sample is marked unreachable (it used to raise a
+    shape error inside the continuation)."""
+    from spline_cams import elliptical_gears
+    sol = linkwork.solve(elliptical_gears(0.0), np.radians([0.0, 10.0, 20.0]))
+    assert (sol.status == linkwork.Status.UNREACHABLE).all()
