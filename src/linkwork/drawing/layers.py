@@ -31,7 +31,8 @@ import numpy as np
 from ..errors import InputError, LinkworkError
 from ..geometry import Circle, Line, Point
 from ..kinematics import Solution, solve, whole_motion
-from ..model import CircularSlot, Gear, Mechanism, Prismatic, Revolute, Slot
+from ..model import (CircularSlot, Gear, Mechanism, Prismatic, Revolute, Slot, indexing_schedule,
+                     is_intermittent)
 from ..constructions.construction import Arrow, Construction, Element, Polygon, Segment
 from ..constructions.scales import SHEET_MM, Scale, Scales, nice_ceil
 from .svg import COLOURS, Figure, Style, plain, style_for
@@ -183,6 +184,8 @@ def draw_mechanism(fig: Figure, sc: Scene, *, layer: str = "mechanism", labels: 
             if j.gear_kind != "rack":
                 c2 = P[mech.wheel_centre(j, j.links[1])]
                 fig.symbol("pitch-circle", at=c2, radius_world=j.radii[1], layer=layer)
+        elif is_intermittent(j):
+            _draw_indexing(fig, sc, j, layer)
     if any(j.kind in ("cam", "rolling") for j in mech.joints):
         from .higher_layers import draw_elements
         draw_elements(fig, sc, layer)
@@ -196,6 +199,23 @@ def draw_mechanism(fig: Figure, sc: Scene, *, layer: str = "mechanism", labels: 
                 prefer = np.array([1.0, 0.6])
             fig.label(xy, _point_label(p), prefer=prefer, ident=f"point-{p}",
                       clear=1.1 if p in joint_points else 0.3)
+
+
+def _draw_indexing(fig: Figure, sc: Scene, j, layer: str) -> None:
+    """A Geneva or star wheel, simply: its radial slots (from the foot to where the pin meets
+    them) turned with the wheel, its rim through the slots' mouths, and the pins."""
+    sch = indexing_schedule(sc.mech, j)
+    wheel = j.links[1]
+    C = sc.sol.point_on(j.carrier, sch.C).position[sc.index]
+    th = sc.theta(wheel)
+    lines = sch.slot_lines()
+    for k, (a, inner, outer) in enumerate(lines):
+        e = np.array([np.cos(a + th), np.sin(a + th)])
+        fig.symbol("slot", start=C + inner * e, end=C + outer * e, layer=layer,
+                   ident=f"joint-{j.name}" if k == 0 else None)
+    fig.circle(C, max(o for _, _, o in lines), style=Style(width=0.3), layer=layer)
+    for p in sch.pins:
+        fig.symbol("revolute", at=sc.pos(p), layer=layer)
 
 
 def _point_label(name: str) -> str:
