@@ -45,7 +45,7 @@ def stencil(seed: int, follower: str, order: int, n: int = 6):
     x0 = mech.driver_input_at_design(mech.drivers[0])
     phi = x0 + np.random.default_rng(1000 + seed).uniform(0.0, 2 * np.pi, n)
     sol = linkwork.solve(mech, (phi[None, :] + OFFSETS[:, None]).ravel(), order=order)
-    assert (sol.status == linkwork.Status.OK).all()
+    assert (sol.status != linkwork.Status.UNREACHABLE).all()  # assembled
     return mech, sol, lambda a: np.asarray(a).reshape((5, n) + np.shape(a)[1:]), slice(2 * n, 3 * n)
 
 
@@ -136,7 +136,7 @@ def test_random_cam_velocity_and_run_are_differences(radii, jitter, at, oscillat
     mech = cam_mechanism(prof, "rocker" if oscillating else "roller")
     x = mech.driver_input_at_design(mech.drivers[0]) + at + OFFSETS
     sol = linkwork.solve(mech, x, order=2)
-    assume((sol.status == linkwork.Status.OK).all())  # a rocker may reach a limit position
+    assume((sol.status != linkwork.Status.UNREACHABLE).all())  # a rocker may reach a limit position
     L = mech.length_scale
     C = sol.point("C")
     np.testing.assert_allclose(difference(C.position), C.velocity[2], rtol=0, atol=1e-7 * L)
