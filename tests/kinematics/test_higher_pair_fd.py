@@ -13,15 +13,20 @@ derivatives):
   differences of the contact point's coordinates in the cam's and in the follower's plane — is
   `profile_speed` along the cam and `follower_speed` along the follower's element; the
   difference of the two runs along the common tangent is the sliding velocity.
+- and, for any smooth cam Hypothesis draws, the same for the velocity, the acceleration and
+  the contact's run.
 """
 
 from __future__ import annotations
 
 import numpy as np
 import pytest
+from hypothesis import HealthCheck, assume, given, settings
+from hypothesis import strategies as st
 
 import linkwork
-from spline_cams import cam_mechanism, spline_cam
+from linkwork.geometry.profiles import SplineProfile, curvature
+from spline_cams import R0, RHO, cam_mechanism, spline_cam
 
 # the cams are quintic splines: the contact's position is C⁴ in the input but its seventh
 # derivative jumps at a knot, so a stencil straddling one misses the jerk by ~h²·(jump of the
@@ -40,7 +45,7 @@ def stencil(seed: int, follower: str, order: int, n: int = 6):
     x0 = mech.driver_input_at_design(mech.drivers[0])
     phi = x0 + np.random.default_rng(1000 + seed).uniform(0.0, 2 * np.pi, n)
     sol = linkwork.solve(mech, (phi[None, :] + OFFSETS[:, None]).ravel(), order=order)
-    assert (sol.status == linkwork.Status.OK).all()
+    assert (sol.status != linkwork.Status.UNREACHABLE).all()  # assembled
     return mech, sol, lambda a: np.asarray(a).reshape((5, n) + np.shape(a)[1:]), slice(2 * n, 3 * n)
 
 
@@ -101,3 +106,41 @@ def test_contact_report_from_differences_of_the_contact_point(seed, follower):
         # a roller turning freely rolls off the follower's run: spin = −sliding/ρ
         rho = mech.joint("K").radius
         np.testing.assert_allclose(rep["roller_spin"][mid], -sliding / rho, rtol=0, atol=1e-7 * L / rho)
+
+
+def test_a_design_the_contact_leaves_undetermined_is_marked_not_a_crash():
+    """Elliptical gears drawn with the common normal through both pivots (the ellipses touching
+    at their vertices): the contact alone does not fix the speed ratio there, Newton's method
+    cannot start from the design, and every sample is marked unreachable (it used to raise a
+    shape error inside the continuation)."""
+    from spline_cams import elliptical_gears
+    sol = linkwork.solve(elliptical_gears(0.0), np.radians([0.0, 10.0, 20.0]))
+    assert (sol.status == linkwork.Status.UNREACHABLE).all()
+
+
+# ---------------------------------------------------------------------------- Hypothesis
+
+@settings(max_examples=12, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(radii=st.lists(st.floats(R0 - 3.0, R0 + 3.0), min_size=6, max_size=10),
+       jitter=st.floats(-0.3, 0.3), at=st.floats(0.0, 2 * np.pi), oscillating=st.booleans())
+def test_random_cam_velocity_and_run_are_differences(radii, jitter, at, oscillating):
+    """Any smooth cam Hypothesis draws (a closed quintic spline through points around a circle,
+    no hollow sharper than the roller): the follower's velocity and acceleration and the
+    contact's run along the cam are the differences of the position, velocity and arc length."""
+    k = len(radii)
+    phi = (np.arange(k) + jitter * np.sin(np.arange(k))) * 2 * np.pi / k
+    prof = SplineProfile(np.column_stack([np.multiply(radii, np.cos(phi)), np.multiply(radii, np.sin(phi))]),
+                         closed=True)
+    u = np.linspace(*prof.domain, 2000, endpoint=False)
+    assume((curvature(prof, u) > -0.5 / RHO).all())
+    mech = cam_mechanism(prof, "rocker" if oscillating else "roller")
+    x = mech.driver_input_at_design(mech.drivers[0]) + at + OFFSETS
+    sol = linkwork.solve(mech, x, order=2)
+    assume((sol.status != linkwork.Status.UNREACHABLE).all())  # a rocker may reach a limit position
+    L = mech.length_scale
+    C = sol.point("C")
+    np.testing.assert_allclose(difference(C.position), C.velocity[2], rtol=0, atol=1e-7 * L)
+    np.testing.assert_allclose(difference(C.velocity), C.acceleration[2], rtol=0, atol=1e-7 * L)
+    rep = sol.joint("K")
+    np.testing.assert_allclose(difference(prof.arc_length(rep["u"])), rep["profile_speed"][2],
+                               rtol=0, atol=1e-7 * L)

@@ -172,7 +172,7 @@ def _draw_equivalent(fig: Figure, sc, j) -> None:
             continue
         c = C.xy[i]
         finite.append(c)
-        fig.symbol("revolute", at=c, layer=lay)
+        fig.symbol("revolute", at=c, colour=EQUIVALENT.stroke, layer=lay)
         fig.label(c, f"C_{k + 1}", colour=EQUIVALENT.stroke, size=3.0, ident=f"centre-{j.name}-{k + 1}")
         end = _pivot(sc, link, c)
         if end is not None and np.hypot(*(end - c)) > 1e-9 * L:
@@ -185,7 +185,8 @@ def _draw_equivalent(fig: Figure, sc, j) -> None:
                  layer=lay, ident=f"equivalent-coupler-{j.name}")
     else:  # a slider along the straight element, through the finite centre
         c, t = finite[0], eq.tangent[i]
-        fig.symbol("block", at=c, axis=t, layer=lay, ident=f"equivalent-slider-{j.name}")
+        fig.symbol("block", at=c, axis=t, colour=EQUIVALENT.stroke, layer=lay,
+                   ident=f"equivalent-slider-{j.name}")
         fig.line(c, t, [c - 0.2 * L * t, c + 0.2 * L * t], style=EQUIVALENT, layer=lay,
                  ident=f"equivalent-guide-{j.name}")
     length = "" if not np.isfinite(eq.coupler[i]) else f", C₁C₂ = {eq.coupler[i]:.4g} {sc.mech.length_unit}"

@@ -590,7 +590,7 @@ def convert(svg: str, path: Path, dpi: float = 200.0) -> None:
 
 def _symbol(name: str, a: dict) -> tuple[str, list]:
     if name == "revolute":
-        return sym.revolute(a["at"])
+        return sym.revolute(a["at"], a.get("colour", sym.INK))
     if name == "fixed-pivot":
         return sym.fixed_pivot(a["at"], a.get("down", (0, 1)))
     if name == "bar":
@@ -598,7 +598,7 @@ def _symbol(name: str, a: dict) -> tuple[str, list]:
     if name == "plate":
         return sym.plate(a["points"])
     if name == "block":
-        return sym.block(a["at"], a["axis"])
+        return sym.block(a["at"], a["axis"], a.get("colour", sym.INK))
     if name == "guide":
         return sym.guide(a["start"], a["end"], a["side"])
     if name == "slot":

@@ -537,7 +537,9 @@ def contact_curvature(solution: Solution, pair: str, *, tol: float = TOL) -> Con
     """Curvature theory of higher pair `pair` at every sample (the solution needs
     accelerations): the elements' curvature centres and their Euler–Savary conjugates in the
     relative motion of the two links. Where the relative motion is a translation (ω of the
-    two links equal) the pole is at infinity and the conjugates are undefined (NaN)."""
+    two links equal) the pole is at infinity, and where the two links are at relative rest (a
+    dwell: their relative velocities negligible beside the mechanism's) there is no pole; the
+    conjugates are undefined (NaN) there."""
     j = _higher_pair(solution, pair)
     a, b = j.links
     L = solution.mechanism.length_scale
@@ -547,5 +549,13 @@ def contact_curvature(solution: Solution, pair: str, *, tol: float = TOL) -> Con
     inv = instant(solution, a, b, tol=tol)
     conj2 = euler_savary(rel.pole, rel.inflection_pole, C2, scale=L, tol=tol)
     conj1 = euler_savary(inv.pole, inv.inflection_pole, C1, scale=L, tol=tol)
+    # the two links at relative rest (a dwell): no pole, no conjugates
+    rm = rel.motion
+    moving = norm(rm.point(rm.reference)[1]) + np.abs(rm.omega) * L
+    scale = np.max([norm(D[1, :, :2]) + np.abs(D[1, :, 2]) * L for D in
+                    (solution.pose_derivatives(ln) for ln in solution.mechanism.link_names)], axis=0)
+    rest = moving <= tol * scale
+    if rest.any():
+        conj2, conj1 = (Point(np.where(rest[:, None], np.nan, c.coords)) for c in (conj2, conj1))
     return ContactCurvature(pair, (a, b), rep["point"], rep["normal"], (C1, C2), rel, inv,
                             inflection_circle(solution, b, a, tol=tol), (conj2, conj1))

@@ -195,6 +195,7 @@ class _Lane:
         d = np.diff(v, axis=0)
         length = np.sqrt((d * d).sum(axis=1))
         self.vertices = v
+        self.size = gen.size  # generic links: the poses' rows, also when nothing was marched
         # a lone vertex: no direction to go, the tangent is taken along the first input
         self.dirs = d / length[:, None] if d.shape[0] else np.eye(1, v.shape[1])
         if ray:  # one driver: a ray from the design value, marched as far as asked
@@ -298,7 +299,7 @@ class _Lane:
         """Poses (N, G, 3) at λ ≥ 0 by cubic Hermite interpolation of the marched poses and
         tangents (linear on a span whose tangents are unknown: singular ends); NaN beyond the
         last marched point."""
-        G = self.P[0].shape[0] if self.P else 0
+        G = self.size
         out = np.full((lam.size, G, 3), np.nan)
         if not self.P or lam.size == 0:
             return out
@@ -321,7 +322,7 @@ class _Lane:
 
     def at_vertices(self) -> np.ndarray:
         """Poses (V, G, 3) at the given vertices (NaN where the march did not get)."""
-        out = np.full((self.n_given, self.P[0].shape[0] if self.P else 0, 3), np.nan)
+        out = np.full((self.n_given, self.size, 3), np.nan)
         if self.P:
             K, P, _ = self.arrays()
             j = np.searchsorted(K, self.knots)
