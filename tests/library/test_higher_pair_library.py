@@ -1,10 +1,18 @@
 """The library's mechanisms with higher pairs, each against its seed facts and an independent
-closed form.
+closed form (derived here from the design dimensions, never from the solver).
 
 - Eccentric disc cams (Pöschl §43, Abb. 46 Nr. 20; §49, Abb. 56, 57, 59): an eccentric circle
   with a roller is exactly the slider-crank (centric or offset) through the disc's centre, with a
-  flat face the Scotch yoke, with an oscillating roller lever the four-bar; the closed forms are
-  derived here from the design dimensions, not from the solver.
+  flat face the Scotch yoke, with an oscillating roller lever the four-bar.
+- Pöschl's circular-arc cam (§22d, §49): on each arc the slider-crank (or, under a lever, the
+  four-bar) through the arc's centre; two accelerations at every join; ∫ b dr = 0 over the lift.
+- Elliptical gears (Pöschl §46): tan(ψ/2) = (1 + e)/(1 − e)·tan(φ/2) and the speed-ratio extremes.
+- The rolling-lever valve gear (Rosenauer 1937 paper 8, §98, §109, §121; Pöschl §53): counts, the
+  equivalent six-bar, the pole, the sliding speed, Euler–Savary's inflection point, the pole
+  acceleration.
+- The Sulzer gear (Rosenauer §121 Task 4) and the Proell–Schwabe gear (§98 Ex. 33, §110): counts,
+  dwells, the valve's motion through the exact equivalent four-bars, rolling, the pole 35.
+- A real (spline) profile: velocities and accelerations against finite differences.
 """
 
 from __future__ import annotations
