@@ -172,8 +172,8 @@ def _concavities(mech: Mechanism, j, u: np.ndarray, v: np.ndarray) -> tuple[np.n
     return k1, -float(np.sign(mate_left @ d.normal)) * np.asarray(_curvature(mate, v))
 
 
-def _curvature(profile, u: np.ndarray) -> np.ndarray:
-    D = profile.derivatives(u, 2)
+def _curvature(profile, u: np.ndarray, side: int = 1) -> np.ndarray:
+    D = profile.derivatives(u, 2, side=side)
     t = D[1]
     return (t[..., 0] * D[2][..., 1] - t[..., 1] * D[2][..., 0]) / np.hypot(t[..., 0], t[..., 1]) ** 3
 
@@ -226,6 +226,33 @@ def _roller_cuts_elsewhere(mech: Mechanism, j, poses: np.ndarray) -> np.ndarray:
     return out
 
 
+@lru_cache(maxsize=256)
+def _convex_outside(mech: Mechanism, name: str) -> bool:
+    """A roller or flat face outside a convex closed profile (the common disc cam) can touch it
+    nowhere but at the contact: the common tangent separates them. Convex: the curvature,
+    on both sides of every join, bends away from the follower all round, and the tangent turns
+    once."""
+    j = mech.joint(name)
+    if not (isinstance(j, CamContact) and j.follower in ("roller", "flat")):
+        return False
+    prof = mech.profiles[j.profile]
+    if not prof.closed or not np.isfinite(prof.domain).all():
+        return False
+    d = _design(mech, name)
+    D1 = prof.derivatives(np.array(d.u0), 1)
+    towards = float(np.sign(np.array([-D1[1][1], D1[1][0]]) @ d.normal))
+    u = np.linspace(prof.domain[0], prof.domain[1], 4096, endpoint=False)
+    breaks = np.asarray(prof.breaks, dtype=float)
+    k = np.concatenate([_curvature(prof, u), _curvature(prof, breaks, side=-1),
+                        _curvature(prof, breaks, side=1)])
+    if not (np.all(np.isfinite(k)) and np.all(towards * k <= 0.0)):
+        return False
+    t = prof.derivatives(u, 1)[1]
+    heading = np.unwrap(np.arctan2(t[:, 1], t[:, 0]))
+    last = np.angle(np.exp(1j * (heading[0] - heading[-1])))  # from the last sample round to the first
+    return abs(abs(heading[-1] - heading[0] + last) - 2 * np.pi) < 1e-6
+
+
 def interference(mech: Mechanism, poses: np.ndarray) -> np.ndarray:
     """Samples (N,) at which some higher pair's elements would cut into each other: next to the
     contact (a roller larger than the hollow of the profile it sits in — the undercut cam —, a
@@ -239,6 +266,8 @@ def interference(mech: Mechanism, poses: np.ndarray) -> np.ndarray:
     index = row_index(mech)
     for j in mech.joints:
         if not is_higher(j) or (isinstance(j, CamContact) and j.follower == "knife"):
+            continue
+        if _convex_outside(mech, j.name):
             continue
         d = _design(mech, j.name)
         r = index[row_name(j)]
