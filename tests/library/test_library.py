@@ -2,7 +2,8 @@
 sample, and the four-bars move as Grashof's inequality says they must.
 
 Expected values come from outside the solver: pair closure is an identity the solved poses must
-satisfy, Grashof's class and the swing angles follow from the link lengths (cosine law), the
+satisfy (for a cam or rolling pair: the reported contact point lies on both elements, tangent to
+both, and the links' points there do not separate, nor slip when rolling), Grashof's class and the swing angles follow from the link lengths (cosine law), the
 Jansen lengths are Jansen's holy numbers, the Römer slide velocity comes from Rosenauer's
 Construction I (projection theorem), the Whitworth time ratio and the ellipsograph's ellipse are
 closed forms of their drawings.
