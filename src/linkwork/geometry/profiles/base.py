@@ -183,15 +183,16 @@ class BaseProfile:
         """(u inside the domain, whole turns taken off, mask of samples inside the domain)."""
         a, b = self.domain
         if self.closed:
-            turns = np.floor((u - a) / self.period)
-            r = u - turns * self.period
+            with np.errstate(invalid="ignore"):  # ±∞ wraps to NaN, then marked outside
+                turns = np.floor((u - a) / self.period)
+                r = u - turns * self.period
             over, under = r >= b, r < a  # rounding at the seam
             r = np.where(over, r - self.period, np.where(under, r + self.period, r))
             turns = turns + over - under
             inside = np.isfinite(u)
         else:
             turns = np.zeros_like(u)
-            inside = (u >= a) & (u <= b)
+            inside = (u >= a) & (u <= b) & np.isfinite(u)  # ±∞ is no parameter, even of a line
             r = u
         return np.where(inside, r, a if np.isfinite(a) else 0.0), turns, inside
 
