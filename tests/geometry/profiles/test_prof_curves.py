@@ -102,9 +102,14 @@ def test_circle_curvature_length_nearest():
     np.testing.assert_allclose(quad_length(CIRCLE, 0, 2.5), 7.5 * 2.5, rtol=1e-12)
     p = np.array([[10.0, 5.0], [-4.0, -2.0], [3.0, 1.0]])  # the nearest point lies on the ray from C
     np.testing.assert_allclose(CIRCLE.nearest(p), [np.pi / 4, np.pi, np.pi / 2], atol=1e-14)
-    u, vec = CircleProfile((0.0, 0.0), 1.0), np.array([[1.0, 1.0]])
-    assert np.isnan(u.nearest(np.array([np.nan, 0.0])))
-    assert np.allclose(u.nearest(vec), np.pi / 4)
+    unit = CircleProfile((0.0, 0.0), 1.0)
+    np.testing.assert_allclose(unit.nearest(np.array([[1.0, 1.0]])), [np.pi / 4])
+    # non-finite input is marked, not answered: NaN (and no warning)
+    assert np.all(np.isnan(unit.nearest(np.array([[np.nan, 0.0], [np.inf, 0.0]]))))
+    assert np.all(np.isnan(unit.derivatives(np.array([np.inf, -np.inf, np.nan]), 2)))
+    assert np.all(np.isnan(unit.arc_length(np.array([np.inf, np.nan]))))
+    with pytest.raises(GeometryError, match=r"shape \(\.\.\., 2\)"):
+        unit.nearest(np.zeros(3))
 
 
 @pytest.mark.parametrize("center,radius", [((0, 0), 0.0), ((0, 0), -1.0), ((0, 0), np.inf), ((np.nan, 0), 1.0)])
