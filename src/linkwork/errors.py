@@ -46,6 +46,11 @@ class AssemblyError(LinkworkError):
     """A position at which the chain cannot be assembled, where the caller required it."""
 
 
+class SolveError(LinkworkError):
+    """A solve that cannot be carried out within its bounds (the continuation of the design's
+    branch needs more steps than its budget), named with the input where it stopped."""
+
+
 class InputError(LinkworkError):
     """A bad input value: an unparsable quantity, a sweep with zero step, a wrong unit."""
 
@@ -53,3 +58,8 @@ class InputError(LinkworkError):
 class LinkworkWarning(UserWarning):
     """Something the user should know about their input that does not stop the work (the
     command line prints it as one line on stderr)."""
+
+
+class OutputError(LinkworkError):
+    """An output that cannot be written (no such folder, a folder given as file, a full disk,
+    no permission) or that would be larger than the limit without --force."""

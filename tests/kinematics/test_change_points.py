@@ -45,8 +45,13 @@ def test_kite_change_points_and_continuous_motion_over_two_turns():
     u = math.radians(60) + h * np.arange(2 * 1440 + 1)  # two turns, through four change points
     sol = linkwork.solve(mech, u, velocities=np.ones(u.shape))
     singular = sol.status == Status.SINGULAR
-    at_change = np.minimum(np.mod(u, np.pi), np.pi - np.mod(u, np.pi)) < 1e-9
-    np.testing.assert_array_equal(singular, at_change)
+    distance = np.minimum(np.mod(u, np.pi), np.pi - np.mod(u, np.pi))
+    at_change = distance < 1e-9
+    # singular at the change points and next to them, where the error bound exceeds the
+    # tolerance (`precision`: within two degrees here; more on the second turn, whose angles
+    # round to more), ok elsewhere
+    assert singular[at_change].all()
+    assert not singular[distance > 8.5 * h].any()
     for ln in ("coupler", "follower"):
         angle = np.unwrap(sol.link(ln).angle)
         omega = sol.link(ln).omega
@@ -54,7 +59,7 @@ def test_kite_change_points_and_continuous_motion_over_two_turns():
         inner = ~(singular[2:] | singular[1:-1] | singular[:-2])
         np.testing.assert_allclose(omega[1:-1][inner], fd[inner], rtol=0, atol=1e-4, err_msg=ln)
         # at the change points themselves the rates are indeterminate: NaN, not invented
-        assert np.isnan(omega[singular]).all()
+        assert np.isnan(omega[at_change]).all()
 
 
 def test_kite_keeps_its_branch_where_the_design_sign_would_switch():

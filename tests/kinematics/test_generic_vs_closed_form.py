@@ -136,6 +136,9 @@ def _generic_kind(mech, group):
 def _solve(text, u, *, generic_positions=False, generic_derivatives=False, monkeypatch):
     solver.plan.cache_clear()
     with monkeypatch.context() as mp:
+        # the two paths are compared as they compute; near a singular position each would be
+        # re-solved in extended precision (`precision.polish`), the same way for both
+        mp.setattr(solver, "polishable", lambda mech: False)
         if generic_positions:
             mp.setattr(groups, "_classify", _generic_kind)
             # Newton stops at the first iterate within NEWTON_TOL·L (1e-12), leaving up to
@@ -193,7 +196,9 @@ def _compare(mech, a, b, ok):
 def _usable(*sols):
     ok = np.ones(len(sols[0]), dtype=bool)
     for s in sols:
-        ok &= (s.status == Status.OK) & (s.condition < MAX_CONDITION)
+        # assembled and well-conditioned (the error bound of `precision` may exceed the 1e-9 of
+        # an `ok` with a Newton path's residual at κ ≈ 30; the comparison itself is the check)
+        ok &= (s.status != Status.UNREACHABLE) & (s.condition < MAX_CONDITION)
     return ok
 
 

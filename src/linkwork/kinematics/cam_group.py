@@ -145,9 +145,11 @@ def _start(cf: CamFollower, state, guess: np.ndarray, u0: float):
     return (guess[:, 0, 0] - bx) * ax + (guess[:, 0, 1] - by) * ay, u
 
 
-def positions(cf: CamFollower, state, guess: np.ndarray | None, tol: float) -> np.ndarray:
+def positions(cf: CamFollower, state, guess: np.ndarray | None, tol: float
+              ) -> tuple[np.ndarray, np.ndarray]:
     """Place the follower and the contact row in Q[0] (Newton from `guess`, the generic
-    rows' starting poses); return the samples that converged."""
+    rows' starting poses); return the samples that converged and the residual (a length) of
+    the equations at the poses placed (the backward error of the estimate in `precision`)."""
     mech = state.mech
     d = contact._design(mech, cf.pair.name)
     N = state.Q.shape[1]
@@ -171,7 +173,7 @@ def positions(cf: CamFollower, state, guess: np.ndarray | None, tol: float) -> n
         converged = active & (err <= tol)
         todo = active & ~(converged & polished)
         if not todo.any():
-            break
+            break  # err is the residual at the final q, u
         polished |= converged  # one more step after convergence leaves only rounding
         with np.errstate(invalid="ignore", divide="ignore"):
             det = g1q * g2u - g1u * g2q
@@ -184,12 +186,16 @@ def positions(cf: CamFollower, state, guess: np.ndarray | None, tol: float) -> n
         active &= ~(todo & ~ok_step)
         q = np.where(ok_step, q + damp * dq, q)
         u = np.where(ok_step, u + damp * du, u)
+    else:
+        g1, g2, *_, nt = _equations(cf, mech, state, q, u, d)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            err = np.maximum(np.abs(g1), np.abs(g2)) / nt
     q = np.where(converged, q, np.nan)
     u = np.where(converged, u, np.nan)
     _write_pose(cf, state, Jet(q[None]), fi)
     state.Q[0, :, ri, 0] = u - d.u0
     state.Q[0, :, ri, 1:] = np.where(converged, 0.0, np.nan)[:, None]
-    return converged
+    return converged, np.where(converged, err, np.nan)
 
 
 def _write_pose(cf: CamFollower, state, q: Jet, fi: int) -> None:

@@ -35,6 +35,7 @@ from collections import OrderedDict
 
 import numpy as np
 
+from ..errors import SolveError
 from ..model import Mechanism
 from . import groups
 from .contact import row_index
@@ -50,6 +51,8 @@ CORRECTOR_ITERATIONS = 12
 STEP_TOL = 1e-6                      # a Newton step this small (in L) ends the corrector
 FOLD_APPROACH = 0.9                  # fraction of the distance to a limit position ahead
 CACHE_SIZE = 32
+MAX_ATTEMPTS = 2000                  # steps (accepted or not) per lane and march: bounded cost
+PERIOD_TURNS = 4                     # turns of a revolute input searched for the motion's period
 
 # (mechanism, its group solvers) -> {+1: lane upwards, -1: lane downwards}. Both are compared
 # by identity, so a new Mechanism or a new plan (`solver.plan`) starts a new march.
@@ -66,12 +69,23 @@ def continuation_guesses(mech: Mechanism, solvers, values: np.ndarray) -> dict:
         lanes = _one_driver_lanes(mech, solvers, gen, design)
         lam = (values[:, 0] - design[0]) * gen.weights[0]
         finite = np.isfinite(lam)
+        turns = None
+        if mech.joint(mech.drivers[0].joint).kind == "revolute" and \
+                np.abs(lam[finite]).max(initial=0.0) > np.pi:
+            found = _period(mech, solvers, gen, lanes)
+            if found is not None:  # inputs far out: the same poses some periods nearer
+                period, advance = found
+                near = np.where(finite, np.mod(lam + period / 2, period) - period / 2, lam)
+                turns = np.where(finite, np.round((lam - near) / period), 0.0)
+                lam = near
         reach = {+1: lam[finite].max(initial=0.0), -1: -lam[finite].min(initial=0.0)}
         _march(mech, solvers, gen, list(lanes.values()), reach)
         g = np.full((values.shape[0], gen.size, 3), np.nan)
         up, down = finite & (lam >= 0), finite & (lam < 0)
         g[up] = lanes[+1].interpolate(lam[up])
         g[down] = lanes[-1].interpolate(-lam[down])
+        if turns is not None:  # the links' angles as turned through the periods left out
+            g[..., 2] += turns[:, None] * advance
         return gen.split(g)
     # several drivers: march through the samples in their order
     lane = _Lane(gen, np.vstack([design[None], values]) * gen.weights)
@@ -92,6 +106,28 @@ def march_limit(mech: Mechanism, solvers, sense: int, span: float) -> float | No
     if not lane.stopped or end >= target:
         return None
     return float(design[0] + sense * end / gen.weights[0])
+
+
+def _period(mech: Mechanism, solvers, gen: "_Generic", lanes: dict) -> tuple | None:
+    """The period of the Newton-solved groups' motion in a revolute input: the first of 1 …
+    `PERIOD_TURNS` turns P for which the marches upwards and downwards meet, the poses at
+    +P/2 and −P/2 alike (angles modulo a turn; the marches to ±P/2 are what the samples
+    reduced into one period need anyway), and the angles (G,) the links turn through in a
+    period; None (no period within them, or a march stops at a limit position)."""
+    for turns in range(1, PERIOD_TURNS + 1):
+        half = np.pi * turns
+        _march(mech, solvers, gen, [lanes[+1], lanes[-1]], {+1: half, -1: half})
+        ends = []
+        for lane in (lanes[+1], lanes[-1]):
+            if lane.stopped and (not lane.lam or lane.lam[-1] < half):
+                return None
+            ends.append(lane.interpolate(np.array([half]))[0])
+        d = ends[0] - ends[1]
+        advance = 2 * np.pi * np.round(d[:, 2] / (2 * np.pi))
+        d[:, 2] = (d[:, 2] - advance) * gen.L
+        if np.abs(d).max(initial=0.0) <= 1e-6 * gen.L:
+            return 2 * half, advance
+    return None
 
 
 def _one_driver_lanes(mech: Mechanism, solvers, gen: "_Generic", design: np.ndarray) -> dict:
@@ -302,11 +338,27 @@ def _march(mech: Mechanism, solvers: tuple, gen: _Generic, lanes: list[_Lane], r
     reach[lane.sense] or stopped. Every attempt solves all groups in order at the proposed
     input — the generic ones by `_correct` from the predicted poses — then their velocities at
     unit input rate along the lane: the tangent for the next prediction."""
+    from .branches import branch_schedule  # imports the solver, which imports this module
+
     n_links = len(row_index(mech))  # links and contact rows
+    budget = {id(ln): MAX_ATTEMPTS for ln in lanes}
+    # closed-form groups take the assembly the real motion takes across change points, as in
+    # `solve` (a parallelogram under an over-closing crank stays a parallelogram)
+    schedule = branch_schedule(mech) if len(mech.drivers) == 1 else {}
     while True:
         todo = [ln for ln in lanes if not ln.reached(reach[ln.sense])]
         if not todo:
             return
+        for ln in todo:
+            budget[id(ln)] -= 1
+            if budget[id(ln)] < 0:
+                at = ln.point(ln.lam[-1]) / gen.weights if ln.lam else ln.vertices[0] / gen.weights
+                raise SolveError(
+                    f"mechanism '{mech.name}': following the design's assembly branch took "
+                    f"{MAX_ATTEMPTS} continuation steps and got only to input "
+                    f"{', '.join(f'{v:.6g}' for v in at)} (the poses change too fast to follow "
+                    "there: nearly parallel guides, or a group close to a singular position all "
+                    "along); ask for inputs nearer the design position or redraw the mechanism")
         props = [ln.proposal(gen) for ln in todo]
         u = np.array([ln.point(p[1]) for ln, p in zip(todo, props)]) / gen.weights
         # input rates per unit λ: the tangents dq/dλ come out as velocities
@@ -317,7 +369,8 @@ def _march(mech: Mechanism, solvers: tuple, gen: _Generic, lanes: list[_Lane], r
         # second order, so that the driver and RRR dyads take their closed-form velocities;
         # the sample axis last in memory, as `solve` lays out Q for the compiled kernels
         state = State(mech, np.zeros((3, n_links, 3, N)).transpose(0, 3, 1, 2),
-                      input_coefficients(mech, u, arrive, None, None, 2))
+                      input_coefficients(mech, u, arrive, None, None, 2),
+                      branches={g: sch.signs(u[:, 0]) for g, sch in schedule.items()})
         ok = np.ones(N, dtype=bool)
         jacobians = {}
         with np.errstate(invalid="ignore", divide="ignore", over="ignore"):

@@ -24,16 +24,28 @@ def _joint_fields(sol: Solution) -> dict[str, dict[str, np.ndarray]]:
 
 def to_document(sol: Solution) -> dict:
     mech = sol.mechanism
+    return {
+        "mechanism": mech.name,
+        "units": {"length": mech.length_unit, "angle": "rad", "time": "s"},
+        "drivers": [d.joint for d in mech.drivers],
+        "samples": list(iter_samples(sol)),
+    }
+
+
+def iter_samples(sol: Solution):
+    """The samples of `to_document`, one dict at a time (so that a long solution can be written
+    as it is read: JSON Lines, a streamed JSON document)."""
+    mech = sol.mechanism
     points = {p: sol.point(p) for p in mech.points}
     links = {ln: sol.link(ln) for ln in mech.link_names}
     joints = _joint_fields(sol)
     single = sol.inputs.shape[1] == 1
-    samples = []
     for n in range(len(sol)):
         s = {
             "input": _num(sol.inputs[n, 0]) if single else _vec(sol.inputs[n]),
             "status": str(Status(int(sol.status[n]))),
             "condition": _num(sol.condition[n]),
+            "error": _num(sol.errors[n]),
         }
         if sol.time is not None:
             s["time"] = _num(sol.time[n])
@@ -45,13 +57,7 @@ def to_document(sol: Solution) -> dict:
                       for ln, m in links.items() if ln != mech.frame}
         s["joints"] = {jn: {k: (_vec(v[n]) if v.ndim == 2 else _num(v[n])) for k, v in f.items()}
                        for jn, f in joints.items()}
-        samples.append(s)
-    return {
-        "mechanism": mech.name,
-        "units": {"length": mech.length_unit, "angle": "rad", "time": "s"},
-        "drivers": [d.joint for d in mech.drivers],
-        "samples": samples,
-    }
+        yield s
 
 
 def to_dataframe(sol: Solution):
@@ -65,6 +71,7 @@ def to_dataframe(sol: Solution):
         cols["time"] = sol.time
     cols["status"] = np.array([str(Status(int(s))) for s in sol.status])
     cols["condition"] = sol.condition
+    cols["error"] = sol.errors
     for p in mech.points:
         m = sol.point(p)
         for name, arr in (("x", m.position), ("vx", m.velocity), ("ax", m.acceleration)):

@@ -29,7 +29,6 @@ from .constraints import driver_residual, joint_residuals
 from .jet import Jet
 
 NEWTON_TOL = 1e-12  # relative to the mechanism's length scale
-SINGULAR_CONDITION = 1e8
 # above this the linear solve for the rates loses every digit (condition × ε ~ 1): the rates of
 # such samples are NaN, not invented (the sample is singular either way)
 UNRELIABLE_CONDITION = 1e14
@@ -66,6 +65,7 @@ class State:
     known: set = field(default_factory=set)
     rots: dict = field(default_factory=dict)
     branches: dict = field(default_factory=dict)  # group -> (N,) assembly signs (`branches`)
+    residuals: dict = field(default_factory=dict)  # group -> (N,) Newton's final residual / L
 
     def __post_init__(self) -> None:
         if self.T is None:
@@ -199,7 +199,7 @@ def residual_and_jacobian(state: State, group: Group) -> tuple[np.ndarray, np.nd
     residuals are the jets' values). rows = 3k, less one per wedge pair."""
     N, k = state.Q.shape[1], group.size
     m = 3 * k
-    U = np.zeros((2, N, m, k, 3))
+    U = np.zeros((2, N, m, k, 3), dtype=state.Q.dtype)  # extended precision stays so
     U[0] = state.Q[0][:, [state.li(ln) for ln in group.links]][:, None]
     U[1] = np.eye(m).reshape(m, k, 3)[None]
     # only the unknowns' directions are wanted: known links and inputs held still
@@ -230,23 +230,50 @@ def least_squares(J: np.ndarray, b: np.ndarray) -> np.ndarray:
     """x with J·x = b, per sample: by LU when every J is square and regular, else in the least
     squares sense (a singular sample in the batch, or more constraint rows than unknowns where
     sliding pairs repeat a rotation row)."""
-    try:
-        return np.linalg.solve(J, b[..., None])[..., 0]
-    except np.linalg.LinAlgError:
-        return (np.linalg.pinv(J) @ b[..., None])[..., 0]
+    out = np.full(b.shape[:-1] + J.shape[-1:], np.nan, dtype=np.result_type(J, b))
+    if J.shape[-1] == J.shape[-2]:
+        try:
+            return np.linalg.solve(J, b[..., None])[..., 0]
+        except np.linalg.LinAlgError:
+            pass
+    # samples with NaN in them (a contact run off the end of its profile) stay NaN: the SVD of
+    # pinv would not converge on them; of the others only the singular ones by the
+    # pseudo-inverse, so that the others' answers do not depend on what else is in the batch
+    good = np.isfinite(J).all(axis=(-2, -1)) & np.isfinite(b).all(axis=-1)
+    Jg, bg = J[good], b[good]
+    if J.shape[-1] != J.shape[-2]:
+        out[good] = (np.linalg.pinv(Jg) @ bg[..., None])[..., 0]
+        return out
+    sv = np.linalg.svd(Jg, compute_uv=False)
+    regular = sv[..., -1] > 1e-15 * sv[..., 0]
+    res = np.empty(bg.shape, dtype=out.dtype)
+    if regular.any():
+        res[regular] = np.linalg.solve(Jg[regular], bg[regular][..., None])[..., 0]
+    if (~regular).any():
+        res[~regular] = (np.linalg.pinv(Jg[~regular]) @ bg[~regular][..., None])[..., 0]
+    out[good] = res
+    return out
 
 
-def _scaled(J: np.ndarray, scale: float) -> np.ndarray:
-    """Jacobian with angle columns in length units, so its condition number is unit-free."""
+def _scaled(J: np.ndarray, scale: float, links: tuple[str, ...] = ()) -> np.ndarray:
+    """Jacobian with angle columns in length units, so its condition number is unit-free; the
+    columns of contact coordinates (rows named in `links` with `contact.PREFIX`: profile
+    parameters of any unit) scaled to unit length."""
     Js = J.copy()
     Js[..., 2::3] /= scale
+    for i, ln in enumerate(links):
+        if ln.startswith(contact.PREFIX):
+            cols = Js[..., 3 * i:3 * i + 3]
+            norm = np.sqrt((cols * cols).sum(axis=-2, keepdims=True))
+            cols /= np.where(norm > 0, norm, 1.0)
     return Js
 
 
 def _solve(J: np.ndarray, r: np.ndarray, ok: np.ndarray) -> np.ndarray:
-    out = np.full(r.shape, np.nan)
+    out = np.full(r.shape[:1] + J.shape[2:], np.nan)
     if ok.any():
-        out[ok] = np.linalg.solve(J[ok], r[ok][..., None])[..., 0]
+        # more rows than unknowns (an over-closed group): least squares, exact where consistent
+        out[ok] = least_squares(J[ok], r[ok])
     return out
 
 
@@ -257,7 +284,7 @@ def derivatives_generic(state: State, group: Group, ok: np.ndarray) -> np.ndarra
     finite = ok & np.isfinite(J).all(axis=(1, 2))
     cond = np.full(J.shape[0], np.inf)
     if finite.any():
-        cond[finite] = np.linalg.cond(_scaled(J[finite], state.mech.length_scale))
+        cond[finite] = np.linalg.cond(_scaled(J[finite], state.mech.length_scale, group.links))
     good = finite & (cond < UNRELIABLE_CONDITION)
     for k in range(1, state.order + 1):
         sol = _solve(J, -rate_residuals(state, group, k), good)
@@ -375,13 +402,13 @@ class GroupSolver:
         A, B, C = P[p["a"].point], P[p["b"].point], P[p["c"].point]
         L1, L2 = np.hypot(*(B - A)), np.hypot(*(B - C))
         phi1, phi2 = _angle(B - A), _angle(B - C)
-        # cos θ = (r·(cos φ, sin φ))/L, sin θ = (r × (cos φ, sin φ))/L for the hinge vector r
-        # of a link drawn at angle φ; the condition number needs only L1², L2² and c1·c2
+        # cos θ = (r·(cos φ, sin φ))/|r|, sin θ = (r × (cos φ, sin φ))/|r| for the hinge
+        # vector r of a link drawn at angle φ; the condition number needs only L1², L2², c1·c2
         return dict(
             A=A, C=C, BA=B - A, BC=B - C, L1sq=L1 * L1, diff=L1 * L1 - L2 * L2, tol=-1e-12 * L1 * L1,
             branch=_design_branch(_cross(C - A, B - A)), phi1=phi1, phi2=phi2,
-            k1=np.array([np.cos(phi1), np.sin(phi1)]) / L1,
-            k2=np.array([np.cos(phi2), np.sin(phi2)]) / L2,
+            k1=np.array([np.cos(phi1), np.sin(phi1)]),
+            k2=np.array([np.cos(phi2), np.sin(phi2)]),
             mid=0.5 * (L1 * L1 + L2 * L2), hd2=(0.5 * (L1 * L1 - L2 * L2)) ** 2,
             i1=li[p["l1"]], i2=li[p["l2"]],
             iA=li[_other(p["a"], p["l1"])], iC=li[_other(p["c"], p["l2"])])
@@ -562,7 +589,9 @@ class GroupSolver:
     def _pos_generic(self, state: State, guess: np.ndarray | None) -> np.ndarray:
         """Newton's method on the group alone, from `guess` (N, k, 3) poses."""
         if self.cam is not None:
-            return cam_group.positions(self.cam, state, guess, NEWTON_TOL * self.mech.length_scale)
+            ok, err = cam_group.positions(self.cam, state, guess, NEWTON_TOL * self.mech.length_scale)
+            state.residuals[self.group] = err / self.mech.length_scale
+            return ok
         idx = [state.li(ln) for ln in self.group.links]
         N = state.Q.shape[1]
         q = np.zeros((N, self.group.size, 3)) if guess is None else guess.copy()
@@ -580,7 +609,7 @@ class GroupSolver:
             converged = active & (err <= NEWTON_TOL * scale)
             todo = active & ~(converged & polished)
             if not todo.any():
-                break
+                break  # err is the residual at the final poses
             # a converged sample takes one more step: Newton's quadratic convergence then leaves
             # only rounding, which the acceleration solve needs (its error scales with it)
             polished |= converged
@@ -589,9 +618,14 @@ class GroupSolver:
             big = np.abs(step[:, 2::3]).max(axis=1, initial=0.0)
             step *= np.minimum(1.0, 1.0 / np.maximum(big, 1e-300))[:, None]
             q[todo] += step.reshape(-1, self.group.size, 3)
+        else:
+            state.Q[0][:, idx, :] = q
+            err = np.abs(residual_and_jacobian(state, self.group)[0]).max(axis=1, initial=0.0)
         q[~converged] = np.nan
         state.Q[0][:, idx, :] = q
         state.forget_trig(idx)
+        # the backward error of the poses, for the forward error estimate (`precision`)
+        state.residuals[self.group] = err / scale
         return converged
 
     # ------------------------------------------------------------------ derivatives
@@ -603,7 +637,41 @@ class GroupSolver:
             return self._der_driver(state, ok)
         if self.cam is not None:
             return cam_group.derivatives(self.cam, state, ok, UNRELIABLE_CONDITION)
+        if self.kind == "intermittent":
+            return self._der_intermittent(state)
         return derivatives_generic(state, self.group, ok)
+
+    def _der_intermittent(self, state: State) -> np.ndarray:
+        """Rates of a wheel indexed by an intermittent pair, in closed form: its angle relative
+        to the carrier is T(δ) of the driver's relative angle δ, so its jet is T composed with
+        δ's jet (the transmission's derivatives, `intermittent.transmission`); its origin follows
+        from its pivot C on the carrier. The same rates as the phase equations' linear solve
+        (`derivatives_generic`, the independent check in the tests), without it. The condition
+        number is the one of that solve's scaled Jacobian, in closed form: the pivot's rows
+        [I | v] and the pair's row (0, 0, g), g = 1 locked, (D − r)/L in the pin gear, |CB|/L on
+        a slot, whose singular values are 1 and those of [[1, |v|], [0, g]]."""
+        p = self.parts
+        j, wheel, mech = p["pair"], p["wheel"], self.mech
+        K = state.order
+        ic, iw = state.li(j.carrier), state.li(wheel)
+        Qc = state.Q[: K + 1, :, ic]
+        th_c = Jet(Qc[..., 2])
+        delta = Jet(state.Q[: K + 1, :, state.li(j.links[0]), 2]) - th_c
+        th = th_c + delta.compose(intermittent.transmission(mech, j, delta.c[0], order=K))
+        C = mech.points[p["pivot"].point]
+        cc, sc = th_c.cos_sin()
+        cw, sw = th.cos_sin()
+        state.Q[1: K + 1, :, iw, 0] = (Jet(Qc[..., 0]) + (cc - cw) * C[0] - (sc - sw) * C[1]).c[1:]
+        state.Q[1: K + 1, :, iw, 1] = (Jet(Qc[..., 1]) + (sc - sw) * C[0] + (cc - cw) * C[1]).c[1:]
+        state.Q[1: K + 1, :, iw, 2] = th.c[1:]
+        L = mech.length_scale
+        g = intermittent.row_slope(mech, j, state.Q[0, :, state.li(j.links[0]), 2] - Qc[0, :, 2]) / L
+        v2 = (C[0] ** 2 + C[1] ** 2) / L**2
+        t = 1.0 + v2 + g * g
+        root = np.sqrt(np.maximum(t * t - 4 * g * g, 0.0))
+        s_hi, s_lo = np.sqrt(0.5 * (t + root)), np.abs(g) / np.sqrt(0.5 * (t + root))
+        with np.errstate(divide="ignore", invalid="ignore"):
+            return np.maximum(s_hi, 1.0) / np.minimum(s_lo, 1.0)
 
     def _der_driver(self, state: State, ok: np.ndarray) -> np.ndarray:
         """Revolute driver (`kernels.driver_rates`); its condition number is the design one."""

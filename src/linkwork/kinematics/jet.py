@@ -69,7 +69,9 @@ class Jet:
         if not isinstance(other, Jet):
             return Jet(self.c * np.asarray(other, dtype=float))
         K = self.order
-        out = np.empty(np.broadcast_shapes(self.c.shape, other.c.shape))
+        # the wider of the two dtypes: jets in extended precision stay extended (`precision`)
+        out = np.empty(np.broadcast_shapes(self.c.shape, other.c.shape),
+                       dtype=np.result_type(self.c, other.c))
         for k in range(K + 1):  # Cauchy product, K is 1..3
             out[k] = sum(self.c[i] * other.c[k - i] for i in range(k + 1))
         return Jet(out)

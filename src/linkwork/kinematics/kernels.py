@@ -21,6 +21,7 @@ from __future__ import annotations
 import math
 
 import numba as nb
+import numpy as np
 
 _jit = nb.njit(cache=True, nogil=True, error_model="numpy", fastmath={"contract", "arcp", "nsz"})
 
@@ -29,9 +30,13 @@ _jit = nb.njit(cache=True, nogil=True, error_model="numpy", fastmath={"contract"
 def rrr_positions(Q0, T, iA, A, iC, C, i1, i2, diff, L1sq, tol, branch, k1, k2, r, ok):
     """Circle–circle intersection: the hinge B of links i1 (through A) and i2 (through C) at
     |AB| = L1 and |CB| = L2 on the side branch[n] = ±1 of AC (diff = L1² − L2²). The
-    links' cos θ and sin θ follow from the hinge vectors (k = (cos φ, sin φ)/L for a link drawn
-    at angle φ); the hinge vectors B − A, B − C go to r[0:2], r[2:4], whose angles the caller
-    takes with NumPy's vectorised arctan2 (a scalar atan2 here would cost more than the rest)."""
+    links' cos θ and sin θ follow from the hinge vectors r (k = (cos φ, sin φ) for a link drawn
+    at angle φ: cos θ = r·k/|r|, sin θ = r×k/|r|), divided by the vectors' own lengths so that
+    they are exactly a rotation: near a dead centre |B − C| differs from L2 by the dyad's
+    forward error, and a rotation off unit length would carry that error, magnified by the
+    link's size over L2, into every point of the link; the hinge vectors B − A, B − C go to
+    r[0:2], r[2:4], whose angles the caller takes with NumPy's vectorised arctan2 (a scalar
+    atan2 here would cost more than the rest)."""
     for n in range(Q0.shape[2]):
         cA, sA, cC, sC = T[iA, 0, n], T[iA, 1, n], T[iC, 0, n], T[iC, 1, n]
         ax = Q0[iA, 0, n] + cA * A[0] - sA * A[1]
@@ -49,8 +54,10 @@ def rrr_positions(Q0, T, iA, A, iC, C, i1, i2, diff, L1sq, tol, branch, k1, k2, 
         a *= inv
         r1x, r1y = a * dx - h * dy, a * dy + h * dx  # B − A
         r2x, r2y = ax + r1x - cx, ay + r1y - cy  # B − C
-        c1, s1 = r1x * k1[0] + r1y * k1[1], r1y * k1[0] - r1x * k1[1]
-        c2, s2 = r2x * k2[0] + r2y * k2[1], r2y * k2[0] - r2x * k2[1]
+        n1 = 1.0 / math.sqrt(r1x * r1x + r1y * r1y)
+        n2 = 1.0 / math.sqrt(r2x * r2x + r2y * r2y)
+        c1, s1 = (r1x * k1[0] + r1y * k1[1]) * n1, (r1y * k1[0] - r1x * k1[1]) * n1
+        c2, s2 = (r2x * k2[0] + r2y * k2[1]) * n2, (r2y * k2[0] - r2x * k2[1]) * n2
         T[i1, 0, n], T[i1, 1, n], T[i2, 0, n], T[i2, 1, n] = c1, s1, c2, s2
         Q0[i1, 0, n] = ax - (c1 * A[0] - s1 * A[1])
         Q0[i1, 1, n] = ay - (s1 * A[0] + c1 * A[1])
@@ -169,3 +176,71 @@ def point_motion(C, c, s, sx, sy, out):
                 jt, wa = 6.0 * C[3, n, 2] - w * w * w, 3.0 * w * a
                 out[3, 0, n] = 6.0 * C[3, n, 0] - jt * ry - wa * rx
                 out[3, 1, n] = 6.0 * C[3, n, 1] + jt * rx - wa * ry
+
+
+@_jit
+def propagate_errors(Q, links, L, omega, kappa, rho, m, E, eps):
+    """First-order forward error of one group's pose coefficients, added to the running bounds
+    E[k, n]: the largest error of the k-th Taylor coefficients so far, in the natural units
+    L·Ω^k (angles Ω^k), Ω = omega[n] the inputs' rate. m[0, n] is the size of the drawing's
+    coordinates over L (raised here to the links' angles, whose rounding grows with the turns),
+    m[k, n] (k ≥ 1) the size of the k-th coefficients so far, raised here to those of the
+    group's `links`.
+
+    The group's k-th coefficients solve J·x_k = −r_k, with κ = kappa[n] the condition number
+    of the scaled J: positions carry κ times their backward error (the residual rho[n], or none
+    for a closed form when rho is empty; the rounding eps·m[0] of the constraints; the errors
+    E[0] of the links they hang on); x_k carries κ times the error of its right-hand side, whose
+    terms are products of lower coefficients (the jets' Cauchy products: errors e_j times sizes
+    m[k − j]), plus δJ·x_k (e_0·m[k]) and its own rounding."""
+    K = E.shape[0] - 1
+    e = np.empty(K + 1)
+    for n in range(E.shape[1]):
+        for i in links:  # an angle of many turns rounds to ε times its size
+            a = abs(Q[0, i, 2, n]) * (1.0 / math.pi)
+            if a > m[0, n]:
+                m[0, n] = a
+        w = omega[n]
+        scale = 1.0
+        for k in range(1, K + 1):
+            scale *= w
+            top = m[k, n]
+            for i in links:
+                v = max(max(abs(Q[k, i, 0, n]), abs(Q[k, i, 1, n])) / L, abs(Q[k, i, 2, n]))
+                v /= scale
+                if v > top:
+                    top = v
+            m[k, n] = top
+        k_ = kappa[n]
+        if not k_ < math.inf:
+            for k in range(K + 1):
+                E[k, n] = math.inf
+            continue
+        r = rho[n] if rho.size else 0.0
+        e[0] = k_ * (r + eps * m[0, n] + E[0, n])
+        for k in range(1, K + 1):
+            s = E[k, n] + e[0] * m[k, n]
+            rounding = 0.0
+            for j in range(k):
+                s += max(e[j], E[j, n]) * m[k - j, n]
+            for j in range(k + 1):
+                rounding += m[j, n] * m[k - j, n]
+            e[k] = k_ * (s + eps * rounding)
+        for k in range(K + 1):
+            if e[k] > E[k, n]:
+                E[k, n] = e[k]
+
+
+@_jit
+def relative_errors(E, m, eps, out):
+    """out[n]: the largest E[k, n] (k ≤ out's orders: positions, velocities, accelerations)
+    over the larger of 1 and m[k, n], plus eps (the rounding of the stored answer); inf where
+    NaN."""
+    K = min(E.shape[0], 3)
+    for n in range(E.shape[1]):
+        top = 0.0
+        for k in range(K):  # positions against the scale L; rates against their size too
+            v = E[k, n] / max(m[k, n], 1.0) if k else E[0, n]
+            if not v <= top:  # NaN too
+                top = v if v == v else math.inf
+        out[n] = top + eps

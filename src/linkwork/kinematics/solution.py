@@ -24,8 +24,8 @@ _FACTORIALS = np.array([factorial(k) for k in range(8)], dtype=float)
 
 
 class Status(enum.IntEnum):
-    OK = 0
-    SINGULAR = 1  # dead centre / change point: the group Jacobian is (nearly) singular
+    OK = 0  # the forward error bound (`Solution.errors`) is within `precision.TOLERANCE`
+    SINGULAR = 1  # near a dead centre / change point: the bound is larger (the pose is given)
     UNREACHABLE = 2  # the chain cannot be assembled at this input
 
     def __str__(self) -> str:
@@ -66,7 +66,8 @@ class Solution:
 
     def __init__(self, mechanism: Mechanism, inputs: np.ndarray, time: np.ndarray | None,
                  coefficients: np.ndarray, status: np.ndarray, condition: np.ndarray, *,
-                 trig: tuple[np.ndarray, np.ndarray] | None = None) -> None:
+                 trig: tuple[np.ndarray, np.ndarray] | None = None,
+                 errors: np.ndarray | None = None) -> None:
         """`coefficients` C[k, n, link, (x, y, θ)]: the Taylor coefficients q⁽ᵏ⁾/k! (k = 0 …
         order) of every link's pose in time, as the solver computes them (turned into
         derivatives per link on demand, not all at once); `trig`: (cos θ, sin θ) of every
@@ -81,6 +82,9 @@ class Solution:
         self._pose_cache: dict[int, np.ndarray] = {}
         self.status = status
         self.condition = condition
+        # bound on each sample's forward error, relative to the natural scale (L, L·Ω, …) or
+        # to the answer where that is larger (`precision`); NaN where unreachable
+        self.errors = np.full(status.shape, np.nan) if errors is None else errors
 
     @classmethod
     def concatenate(cls, parts: list[Solution]) -> Solution:
@@ -90,7 +94,8 @@ class Solution:
         return cls(first.mechanism, np.concatenate([p.inputs for p in parts]), time,
                    np.concatenate([p._C for p in parts], axis=1),
                    np.concatenate([p.status for p in parts]),
-                   np.concatenate([p.condition for p in parts]))
+                   np.concatenate([p.condition for p in parts]),
+                   errors=np.concatenate([p.errors for p in parts]))
 
     # ------------------------------------------------------------------ basics
     def __len__(self) -> int:

@@ -12,13 +12,14 @@ from functools import lru_cache
 
 import numpy as np
 
-from ..errors import InputError
+from ..errors import InputError, StructureError
 from ..model import ConstantSpeed, Mechanism
 from ..topology import solution_order
 from .branches import branch_schedule
 from .contact import interference, rows
 from .continuation import continuation_guesses
-from .groups import SINGULAR_CONDITION, GroupSolver, State, input_coefficients
+from .groups import GroupSolver, State, input_coefficients
+from .precision import POLISH_LIMIT, TOLERANCE, ErrorBudget, polish, polishable
 from .solution import Solution, Status
 
 BLOCK = 8192  # samples per block when every group has a closed form
@@ -26,8 +27,16 @@ BLOCK = 8192  # samples per block when every group has a closed form
 
 @lru_cache(maxsize=64)
 def plan(mech: Mechanism) -> tuple[GroupSolver, ...]:
-    """The group solvers of `mech` in solution order (computed once per mechanism)."""
-    return tuple(GroupSolver(mech, g) for g in solution_order(mech))
+    """The group solvers of `mech` in solution order (computed once per mechanism); an
+    over-closed chain is ordered by `overclosed` (its redundant links last, least squares)."""
+    try:
+        order = solution_order(mech)
+    except StructureError as exc:
+        if not str(exc).startswith("over-constrained"):
+            raise
+        from .overclosed import overclosed_order
+        order = overclosed_order(mech, exc)
+    return tuple(GroupSolver(mech, g) for g in order)
 
 
 def _pose_array(order: int, N: int, n_links: int, frame: int) -> np.ndarray:
@@ -110,6 +119,7 @@ def solve(mech: Mechanism, inputs=None, *, times=None, velocities=None, accelera
     guesses = continuation_guesses(mech, solvers, values) if generic else {}
     assembled = np.ones(N, dtype=bool)
     condition = np.ones(N)
+    errors = np.zeros(N)
     T = np.empty((n_rows, 2, N))  # cos θ, sin θ of every link, rows contiguous
     T[frame, 0], T[frame, 1] = 1.0, 0.0
     # Closed-form groups in NumPy work sample by sample, so the samples are solved in blocks
@@ -118,6 +128,7 @@ def solve(mech: Mechanism, inputs=None, *, times=None, velocities=None, accelera
     # Newton path wants one batch.
     one_batch = generic or (order == 2 and all(s.compiled for s in solvers))
     block = max(N, 1) if one_batch else BLOCK
+    can_polish = polishable(mech)
     for lo in range(0, N, block):
         sl = slice(lo, lo + block)
         state = State(mech, Q[:, sl], {j: c[:, sl] for j, c in inputs.items()}, T=T[:, :, sl],
@@ -127,19 +138,37 @@ def solve(mech: Mechanism, inputs=None, *, times=None, velocities=None, accelera
             g = guesses.get(s.group)
             ok &= s.positions(state, None if g is None else g[sl])
         if not ok.all():
+            # NaN marks them; the other samples keep their cos θ, sin θ (not recomputed: a
+            # sample's answer does not depend on the others in its batch)
             state.Q[:, ~ok] = np.nan
-            state.forget_trig()
+            state.T[:, :, ~ok] = np.nan
+            state.rots.clear()
         cond = condition[sl]
+        budget = ErrorBudget(mech, state)
         for s in solvers:
-            np.maximum(cond, s.derivatives(state, ok), out=cond)
+            kappa = s.derivatives(state, ok)
+            np.maximum(cond, kappa, out=cond)
+            budget.add(state, s, kappa)
+        if not ok.all():
+            state.Q[1:, ~ok] = np.nan
         _finish_block(state)
+        err = budget.relative(errors[sl])
+        # samples near a singular position: once more in extended precision
+        sel = np.flatnonzero(ok & (err > TOLERANCE) & (cond < POLISH_LIMIT)) if can_polish \
+            else np.zeros(0, dtype=int)
+        if sel.size:
+            e, c = polish(mech, solvers, state.Q, state.T, state.inputs, sel, budget.E[0, sel])
+            done = np.isfinite(e)  # else the double answer stays, with its bound
+            err[sel[done]], cond[sel[done]] = e[done], c[done]
     if n_rows > len(mech.link_names):  # higher pairs: a contact cut into is no contact
         cut = interference(mech, Q[0])
         if cut.any():
             Q[:, cut] = np.nan
             T[:, :, cut] = np.nan
             assembled &= ~cut
-    status = np.where(assembled, np.where(condition > SINGULAR_CONDITION, Status.SINGULAR, Status.OK),
+    status = np.where(assembled, np.where(errors > TOLERANCE, Status.SINGULAR, Status.OK),
                       Status.UNREACHABLE).astype(np.int8)
     condition = np.where(assembled, condition, np.nan)
-    return Solution(mech, values, t, Q, status, condition, trig=(T[:, 0].T, T[:, 1].T))
+    errors = np.where(assembled, errors, np.nan)
+    return Solution(mech, values, t, Q, status, condition, trig=(T[:, 0].T, T[:, 1].T),
+                    errors=errors)

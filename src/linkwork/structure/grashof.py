@@ -510,7 +510,12 @@ def _slider_crank(mech: Mechanism, cyc, edges, effective, notes) -> LoopReport:
     tol = TOL * max(len_X, len_Y, e)
     # the crank is the hinge-hinge link that turns fully (the shorter one if neither does);
     # the guide is the sliding link next to it, the block the one next to the rod
-    if len_X + e <= len_Y + tol or (len_Y + e > len_X + tol and len_X <= len_Y):
+    # (crank = rod: the one hinged to the frame's sliding link is the crank, type I)
+    if abs(len_X - len_Y) <= tol and mech.frame in (pl_a, pl_b):
+        use_X = pl_a == mech.frame
+    else:
+        use_X = len_X + e <= len_Y + tol or (len_Y + e > len_X + tol and len_X <= len_Y)
+    if use_X:
         crank, rod, guide, block = X, Y, pl_a, pl_b
         r, l = len_X, len_Y
         H_cg, H_cr, H_rb = R_a, hinge_xy, R_b  # hinges crank-guide, crank-rod, rod-block
@@ -581,6 +586,8 @@ def _stroke_limits(mech: Mechanism, drv, D, O, A, B, u, r, l, turns) -> dict:
         return {"input_limits": (off + max(below), off + min(above))}
     sign = 1.0 if s0 - float(np.dot(A - O, u)) >= 0 else -1.0  # side of the pin along u
     s_ext = sign * math.sqrt(max(0.0, (l + r) ** 2 - e_signed ** 2))
+    if abs(l - r) <= TOL * l and abs(e_signed) <= TOL * l:
+        return _isosceles_stroke(mech, drv, O, A, u, n, s_ext, e_signed, s0, joint)
     s_fold = sign * math.sqrt(max(0.0, (l - r) ** 2 - e_signed ** 2))
     # crank angles at the dead centres: D points at (stretched) or away from the pin
     B_ext = O + s_ext * u + e_signed * n
@@ -599,6 +606,26 @@ def _stroke_limits(mech: Mechanism, drv, D, O, A, B, u, r, l, turns) -> dict:
                                "slider_position": [s_ext, s_fold], "stroke": stroke,
                                "dead_position_angle": delta,
                                "time_ratio": (math.pi + delta) / (math.pi - delta)}}
+
+
+def _isosceles_stroke(mech: Mechanism, drv, O, A, u, n, s_ext, e_signed, s0, joint) -> dict:
+    """The centric slider-crank whose rod is as long as its crank: its "folded dead centre"
+    puts the slider on the crank pivot O, where the slider may also stay for good (every crank
+    angle then closes the chain), a change position (*Verzweigungslage*) at the crank normal to
+    the stroke. Followed through it, as the solver's branches do, the slider runs on to the
+    other side: two stretched dead centres half a turn apart, stroke 2(l + r) = 4r, no quick
+    return."""
+    if joint.kind == "prismatic":
+        ax = float(np.dot(joint.axis, u))
+        lo, hi = sorted(((-abs(s_ext) - s0) * ax, (abs(s_ext) - s0) * ax))
+        return {"input_limits": (lo, hi)}
+    th = _angle(O + s_ext * u + e_signed * n - O)
+    offset = _input_offset(mech, drv, O, A)
+    return {"dead_positions": {"input": [th + offset, th + math.pi + offset],
+                               "slider_position": [s_ext, -s_ext], "stroke": 2 * abs(s_ext),
+                               "dead_position_angle": 0.0, "time_ratio": 1.0,
+                               "change_positions": [th + math.pi / 2 + offset,
+                                                    th - math.pi / 2 + offset]}}
 
 
 def _lever_limits(mech: Mechanism, drv, C, A, B, u, r, d, e) -> dict:

@@ -282,6 +282,7 @@ class Mobility:
     inputs_needed: int
     finite_motion: bool | None = None
     off_design_mobility: int | None = None
+    free_spins: tuple[tuple[str, str], ...] = ()  # (link, its pivot's joint)
 
     @property
     def count_mobility(self) -> int:
@@ -326,6 +327,9 @@ class Mobility:
             parts.append(f"over-closed (übergeschlossen, pārāk slēgta ķēde): moves only by its "
                          f"special dimensions; {self.overclosure} redundant constraint"
                          f"{'s' if self.overclosure > 1 else ''} ({names})")
+        for link, pivot in self.free_spins:
+            parts.append(f"free spin: link '{link}' turns freely about its pivot {pivot} (its "
+                         "own turning moves no other link: not an input the mechanism needs)")
         if self.inputs_needed > 0:
             parts.append(f"under-constrained: needs {self.inputs_needed} more input"
                          f"{'s' if self.inputs_needed > 1 else ''}"
@@ -354,6 +358,7 @@ class Mobility:
             "inputs_needed": self.inputs_needed,
             "finite_motion": self.finite_motion,
             "off_design_mobility": self.off_design_mobility,
+            "free_spins": [{"link": ln, "pivot": p} for ln, p in self.free_spins],
             "constrained": self.constrained,
             "verdict": self.verdict(),
         }
@@ -408,7 +413,8 @@ def mobility(mech: Mechanism, *, check_finite: bool = True) -> Mobility:
     all_rank = numerical_rank(J.scaled, RANK_TOL)
     surplus_rows = _greedy_dependent(J.scaled, J.scaled, list(range(len(J.rows))), RANK_TOL)
     surplus = tuple(J.rows[i][0] for i in surplus_rows if i >= n_pair_rows)
-    needed = 3 * k - all_rank
+    spins = _free_spins(mech, J)
+    needed = max(0, 3 * k - all_rank - len(spins))
     finite, off = (None, None)
     if check_finite and real > 0 and (dep or real > len(mech.drivers)):
         finite, off = _finite_step(mech, real)
@@ -416,7 +422,33 @@ def mobility(mech: Mechanism, *, check_finite: bool = True) -> Mobility:
                     rank=rank, real_mobility=real, redundant=redundant,
                     dependent_pairs=dependent_pairs, drivers=tuple(d.joint for d in mech.drivers),
                     surplus_drivers=surplus, inputs_needed=needed, finite_motion=finite,
-                    off_design_mobility=off)
+                    off_design_mobility=off, free_spins=spins)
+
+
+def _free_spins(mech: Mechanism, J) -> tuple[tuple[str, str], ...]:
+    """Links that can turn about one of their hinges while everything else stands still: the
+    turning about the hinge P, pose rates θ̇·(P_y, −P_x, 1) of that link alone (at the design
+    position, where a point s of the link moves as (ẋ − θ̇ s_y, ẏ + θ̇ s_x)), lies in the null
+    space of the constraint Jacobian with the drivers (a wheel on its axle that nothing else
+    turns, as the Proell–Schwabe wheel would without its rolling condition)."""
+    from ..kinematics.jacobian import RANK_TOL
+
+    col = {c: i for i, c in enumerate(J.columns)}
+    top = np.linalg.norm(J.scaled, 2) if J.scaled.size else 0.0
+    out = []
+    for ln in mech.moving_links:
+        for j in mech.joints:
+            if j.kind != "revolute" or ln not in j.links:
+                continue
+            P = mech.points[j.point]
+            v = np.zeros(len(J.columns))
+            v[[col[(ln, "x")], col[(ln, "y")], col[(ln, "θ")]]] = (P[1], -P[0], 1.0)
+            vs = v.copy()
+            vs[2::3] *= mech.length_scale  # the scaled Jacobian's coordinates
+            if np.linalg.norm(J.scaled @ vs) <= RANK_TOL * top * np.linalg.norm(vs):
+                out.append((ln, j.name))
+                break
+    return tuple(out)
 
 
 def _finite_step(mech: Mechanism, real: int, step: float = 1e-3) -> tuple[bool, int | None]:
@@ -516,6 +548,9 @@ def structure_report(mech: Mechanism, *, limits: bool = True) -> StructureReport
         groups = assur_groups(mech)
     except LinkworkError as exc:
         err = str(exc)
+        if mob.free_spins:
+            err += "; of these, " + ", ".join(f"'{ln}' spins freely about its pivot {p}"
+                                              for ln, p in mob.free_spins) + " (a free spin)"
     lim, note = None, None
     if limits and groups is not None and len(mech.drivers) == 1 and mob.constrained:
         from ..kinematics.motion import input_limits

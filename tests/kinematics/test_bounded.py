@@ -1,0 +1,45 @@
+"""Bounded solves: the continuation has a step budget (a clear `SolveError` where the poses
+change too fast to follow), and inputs far out are reduced by the motion's period."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import linkwork
+from linkwork.errors import SolveError
+from linkwork.io.files import resolve
+
+
+def test_nearly_parallel_guides_end_in_a_clear_error():
+    """The ellipsograph with guide B turned to [1, 1e-9]: both guides nearly horizontal, so AB
+    (50 long, B held 40 above A's line) can hardly turn; following the rod's input would take
+    steps of 1e-13. The budget ends it with the input where the march stopped."""
+    _, text = resolve("library:ellipsograph")
+    mech = linkwork.load_text(text.replace("axis = [0, 1]", "axis = [1, 1e-9]"))
+    u0 = mech.driver_input_at_design(mech.drivers[0])
+    with pytest.raises(SolveError, match="continuation steps"):
+        linkwork.solve(mech, [u0 + np.radians(10.0)])
+
+
+def test_far_inputs_are_reduced_by_the_period():
+    """The Römer mechanism (gears 40 : 20) repeats after one turn of gear I: an input 1e9° out
+    (2 777 777 turns and 280°) gives the poses of 280°, not a march of 1e9 degrees. Positions
+    compared with the sample one period's multiple nearer; its own bound marks what the input's
+    rounding (ε·1.7e7 rad) costs."""
+    mech = linkwork.load("library:roemer-mechanism")
+    L = mech.length_scale
+    u0 = mech.driver_input_at_design(mech.drivers[0])
+    far = u0 + np.radians(1e9)
+    k = np.floor((far - u0) / (2 * np.pi))
+    near = far - 2 * np.pi * k  # exact enough: the same rounding as the solver's reduction
+    sol = linkwork.solve(mech, [far, near])
+    assert (sol.status != linkwork.Status.UNREACHABLE).all()
+    for p in mech.points:
+        np.testing.assert_allclose(sol.point(p).position[0], sol.point(p).position[1], rtol=0,
+                                   atol=1e-6 * L, err_msg=p)
+    # the gears' angles are the turned ones, not reduced: gear II turns twice as fast, back
+    w1 = sol.link("gear_1").angle
+    w2 = sol.link("gear_2").angle
+    np.testing.assert_allclose((w2[0] - w2[1]) / (w1[0] - w1[1]), -2.0, rtol=1e-9)
+    assert sol.errors[0] > sol.errors[1]  # the far input's rounding is in its bound
