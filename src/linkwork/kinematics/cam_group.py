@@ -50,11 +50,22 @@ def recognise(mech: Mechanism, group: Group) -> CamFollower | None:
     """The group as a cam follower, or None (the generic path then solves it)."""
     if group.size != 1 or group.drivers or group.wedge_pairs or len(group.joints) != 2:
         return None
-    (f,) = group.links
-    joints = [mech.joint(j) for j in group.joints]
+    return _follower(mech, group.links[0], [mech.joint(j) for j in group.joints])
+
+
+def of_pair(mech: Mechanism, pair: CamContact) -> CamFollower | None:
+    """The follower of cam pair `pair` if it is held by nothing but one hinge or guide."""
+    f = pair.links[1]
+    joints = [j for j in mech.joints if f in getattr(j, "links", ())]
+    if any(d.driven == f for d in mech.drivers):
+        return None
+    return _follower(mech, f, joints)
+
+
+def _follower(mech: Mechanism, f: str, joints: list) -> CamFollower | None:
     cams = [j for j in joints if isinstance(j, CamContact)]
     lower = [j for j in joints if isinstance(j, (Revolute, Prismatic))]
-    if len(cams) != 1 or len(lower) != 1:
+    if len(cams) != 1 or len(lower) != 1 or len(joints) != 2:
         return None
     k, low = cams[0], lower[0]
     if k.follower not in ("roller", "knife", "flat") or k.links[1] != f or k.links[0] == f:
@@ -64,6 +75,22 @@ def recognise(mech: Mechanism, group: Group) -> CamFollower | None:
         return CamFollower(f, base, k.links[0], k, np.asarray(mech.points[low.point], float), None, 1.0)
     return CamFollower(f, base, k.links[0], k, None, np.asarray(low.axis, float),
                        1.0 if low.links[1] == f else -1.0)
+
+
+def motion_direction(cf: CamFollower, sol, point: np.ndarray) -> np.ndarray:
+    """(N, 2) unit direction in which the follower's point at `point` (frame coordinates, per
+    sample) moves when the follower moves forwards (its angle or slide growing): defined in a
+    dwell too, where the point's velocity is zero and gives no direction."""
+    pose = sol.pose_derivatives(cf.base)[0]
+    c, s = np.cos(pose[:, 2]), np.sin(pose[:, 2])
+    if cf.hinge is None:
+        a = cf.axis * cf.sense
+        d = np.stack([c * a[0] - s * a[1], s * a[0] + c * a[1]], axis=1)
+    else:
+        h = cf.hinge
+        r = point - (pose[:, :2] + np.stack([c * h[0] - s * h[1], s * h[0] + c * h[1]], axis=1))
+        d = np.stack([-r[:, 1], r[:, 0]], axis=1)
+    return d / np.hypot(d[:, 0], d[:, 1])[:, None]
 
 
 # ---------------------------------------------------------------------------- plain arrays

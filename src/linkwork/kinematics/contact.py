@@ -318,7 +318,9 @@ def report(sol, name: str) -> dict[str, np.ndarray]:
     along the common tangent (zero for rolling); `roller_spin` (rollers): the angular velocity
     relative to the follower with which a roller turning freely rolls without slip;
     `pressure_angle`: between the common normal (the line of action of the contact force) and
-    the velocity of the follower's point (a roller's centre, else the contact point), in [0, π/2].
+    the direction in which the follower's point (a roller's centre or knife tip, else the
+    contact point) moves, in [0, π/2]: for a follower held by one hinge or guide the direction
+    its pair allows (defined in dwells too), otherwise its velocity's.
     """
     mech = sol.mechanism
     j = mech.joint(name)
@@ -371,6 +373,13 @@ def report(sol, name: str) -> dict[str, np.ndarray]:
         out["v"] = v
         out["follower_speed"] = np.hypot(*mate.derivatives(v, 1)[1].T) * C[1, :, row, 1]
         v_f = vb_point
+    # the direction the follower's point moves in: from the follower's own hinge or guide where
+    # it has only that (so also in a dwell, where its velocity is zero), else its velocity
+    from .cam_group import motion_direction, of_pair
+    cf = of_pair(mech, j) if isinstance(j, CamContact) else None
+    if cf is not None:
+        v_f = motion_direction(cf, sol, sol.point(j.point).position if follower in ("roller", "knife")
+                               else point)
     with np.errstate(invalid="ignore", divide="ignore"):
         cos_a = np.abs(np.einsum("ij,ij->i", normal, v_f)) / np.hypot(v_f[:, 0], v_f[:, 1])
     out["pressure_angle"] = np.arccos(np.clip(cos_a, 0.0, 1.0))
