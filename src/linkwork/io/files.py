@@ -22,7 +22,7 @@ from ..model import (CamContact, CircularSlot, ConstantSpeed, Gear, GenevaPair, 
                      TabulatedLaw)
 from ..units import check_length_unit, parse_quantity, unit_dimension
 from . import schema
-from .profiles import build_profile
+from .profiles import build_profile, clean_profile_loc, profile_error_message
 
 LIBRARY_PREFIX = "library:"
 #: mechanism files are a few kilobytes; anything this large is not one
@@ -153,17 +153,25 @@ def _clean(loc: tuple) -> tuple:
                  if not (i >= 2 and loc[i - 2] == "segments" and isinstance(loc[i - 1], int) and k in _SEGMENT_TAGS))
 
 
+def _clean_key(loc: tuple) -> tuple:
+    """`_clean`, and inside a `[profiles]` table without its own tags (`io.profiles`)."""
+    if loc[:1] == ("profiles",) and len(loc) >= 2:
+        rest = tuple(k for k in loc[2:] if not str(k).startswith(("function-", "union[", "list[")))
+        return loc[:2] + clean_profile_loc(rest)
+    return _clean(loc)
+
+
 def _file_error(exc: ValidationError, text: str, source: str) -> MechanismFileError:
     """One message for the most telling error: a misspelt key before the key it misses."""
     errors = exc.errors()
     extra = [e for e in errors if e["type"] == "extra_forbidden"]
     err = extra[0] if extra else errors[0]
-    clean = _clean(tuple(err["loc"]))
+    clean = _clean_key(tuple(err["loc"]))
     key = _dotted(clean)
-    msg = err["msg"]
+    msg = profile_error_message(err) if clean[:1] == ("profiles",) else err["msg"]
     if err["type"] == "extra_forbidden":
         missing = [str(_clean(tuple(e["loc"]))[-1]) for e in errors
-                   if e["type"] == "missing" and _clean(tuple(e["loc"]))[:-1] == clean[:-1]]
+                   if e["type"] == "missing" and _clean_key(tuple(e["loc"]))[:-1] == clean[:-1]]
         close = difflib.get_close_matches(str(clean[-1]), missing, n=1)
         msg = "unknown key" + (f" (did you mean '{close[0]}'?)" if close else " (check its spelling)")
     elif err["type"] == "missing":

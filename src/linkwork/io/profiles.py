@@ -310,13 +310,19 @@ def profile_file_schema() -> dict:
     return _ADAPTER.json_schema()
 
 
+def clean_profile_loc(loc: tuple) -> tuple:
+    """A pydantic error location inside one profile table without the tags of the unions (the
+    profile's type first, a segment's kind after its index); the mechanism-file loader uses it
+    for errors in `[profiles]` too."""
+    return tuple(part for i, part in enumerate(loc)
+                 if not ((i == 0 and part in _TYPES)
+                         or (i >= 2 and loc[i - 2] == "segments" and part in ("line", "arc", "rise", "dwell", "return"))))
+
+
 def _key(name: str, loc: tuple = ()) -> str:
-    """The dotted key of a pydantic error location, without the tags of the unions (the profile's
-    type first, a segment's kind after its index)."""
+    """The dotted key of a pydantic error location inside the table of profile `name`."""
     key = f"profiles.{name}"
-    for i, part in enumerate(loc):
-        if (i == 0 and part in _TYPES) or (i >= 2 and loc[i - 2] == "segments" and part in ("line", "arc", "rise", "dwell", "return")):
-            continue
+    for part in clean_profile_loc(loc):
         key += f"[{part}]" if isinstance(part, int) else f".{part}"
     return key
 
@@ -325,17 +331,22 @@ def _given_type(err: dict) -> Any:
     return err["input"].get("type") if isinstance(err.get("input"), dict) else None
 
 
+def profile_error_message(err: dict) -> str:
+    """The message of one pydantic error inside a profile table (a missing or unknown `type`
+    said in words)."""
+    kinds = ", ".join(sorted(_TYPES))
+    return {"extra_forbidden": "unknown key (check its spelling)",
+            "missing": "required key is missing",
+            "union_tag_not_found": f"a profile needs a 'type': one of {kinds}",
+            "union_tag_invalid": f"unknown profile type {_given_type(err)!r} (one of {kinds})"}.get(
+                err["type"], err["msg"].removeprefix("Value error, "))
+
+
 def _validation_error(exc: ValidationError, name: str, source: str | None) -> MechanismFileError:
     errors = exc.errors(include_url=False)
     extra = [e for e in errors if e["type"] == "extra_forbidden"]
     err = extra[0] if extra else errors[0]
-    kinds = ", ".join(sorted(_TYPES))
-    msg = {"extra_forbidden": "unknown key (check its spelling)",
-           "missing": "required key is missing",
-           "union_tag_not_found": f"a profile needs a 'type': one of {kinds}",
-           "union_tag_invalid": f"unknown profile type {_given_type(err)!r} (one of {kinds})"}.get(
-               err["type"], err["msg"].removeprefix("Value error, "))
-    return MechanismFileError(msg, source=source, key=_key(name, tuple(err["loc"])))
+    return MechanismFileError(profile_error_message(err), source=source, key=_key(name, tuple(err["loc"])))
 
 
 def parse_profile_spec(name: str, table: dict, source: str | None = None):

@@ -131,7 +131,8 @@ class CircleProfile:
     def derivatives(self, u: np.ndarray, order: int, side: int = 1) -> np.ndarray:
         order, _ = check_order(order), check_side(side)
         u = np.asarray(u, dtype=float)
-        c, s = np.cos(u), np.sin(u)
+        with np.errstate(invalid="ignore"):  # ±∞ gives NaN, as for every closed profile
+            c, s = np.cos(u), np.sin(u)
         out = np.empty((order + 1,) + u.shape + (2,))
         # d^k/du^k (cos u, sin u) cycles through (c, s), (−s, c), (−c, −s), (s, −c)
         cycle = ((c, s), (-s, c), (-c, -s), (s, -c))
@@ -144,11 +145,15 @@ class CircleProfile:
         return out
 
     def arc_length(self, u: np.ndarray) -> np.ndarray:
-        return self.radius * (np.asarray(u, dtype=float) - self.domain[0])
+        u = np.asarray(u, dtype=float)
+        return np.where(np.isfinite(u), self.radius * (u - self.domain[0]), np.nan)
 
     def nearest(self, p: np.ndarray) -> np.ndarray:
         p = np.asarray(p, dtype=float)
-        return np.arctan2(p[..., 1] - self.center[1], p[..., 0] - self.center[0])
+        if p.shape[-1:] != (2,):
+            raise GeometryError(f"nearest needs points of shape (..., 2), got {p.shape}")
+        u = np.arctan2(p[..., 1] - self.center[1], p[..., 0] - self.center[0])
+        return np.where(np.all(np.isfinite(p), axis=-1), u, np.nan)
 
 
 # Gauss–Legendre rule of the arc-length quadrature: exact for polynomials of degree 47, so on a
@@ -183,15 +188,16 @@ class BaseProfile:
         """(u inside the domain, whole turns taken off, mask of samples inside the domain)."""
         a, b = self.domain
         if self.closed:
-            turns = np.floor((u - a) / self.period)
-            r = u - turns * self.period
+            with np.errstate(invalid="ignore"):  # ±∞ wraps to NaN, then marked outside
+                turns = np.floor((u - a) / self.period)
+                r = u - turns * self.period
             over, under = r >= b, r < a  # rounding at the seam
             r = np.where(over, r - self.period, np.where(under, r + self.period, r))
             turns = turns + over - under
             inside = np.isfinite(u)
         else:
             turns = np.zeros_like(u)
-            inside = (u >= a) & (u <= b)
+            inside = (u >= a) & (u <= b) & np.isfinite(u)  # ±∞ is no parameter, even of a line
             r = u
         return np.where(inside, r, a if np.isfinite(a) else 0.0), turns, inside
 

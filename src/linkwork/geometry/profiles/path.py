@@ -74,6 +74,9 @@ class PathProfile(BaseProfile):
         segments = list(segments)
         if not segments:
             raise ProfileError("a path needs at least one segment")
+        for i, s in enumerate(segments):
+            if not isinstance(s, (LineTo, ArcTo)):
+                raise ProfileError(f"segment {i}: not a LineTo or ArcTo but {type(s).__name__}", i)
         given = [start] + [np.asarray(s.point, dtype=float) for s in segments]
         for i, s in enumerate(segments):
             if given[i + 1].shape != (2,) or not np.all(np.isfinite(given[i + 1])):
@@ -86,10 +89,8 @@ class PathProfile(BaseProfile):
             end = given[i + 1]
             if isinstance(seg, LineTo):
                 rows.append(self._line(i, current, end, tol_abs))
-            elif isinstance(seg, ArcTo):
-                rows.append(self._arc(i, current, end, seg, tol_abs))
             else:
-                raise ProfileError(f"segment {i}: not a LineTo or ArcTo but {type(seg).__name__}", i)
+                rows.append(self._arc(i, current, end, seg, tol_abs))
             current = end
         if closed and np.hypot(*(current - start)) > tol_abs:
             raise ProfileError(f"a closed path must end at its start {start.tolist()}, "

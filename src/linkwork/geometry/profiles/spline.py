@@ -52,6 +52,9 @@ class SplineProfile(BaseProfile):
                                f"least {need} distinct points, got {len(pts)}")
         if closed:
             closing = float(np.hypot(*(pts[0] - pts[-1])))
+            if closing <= 1e-12 * scale:  # the first point given twice more at the end
+                raise ProfileError(f"point {len(pts) - 1}: repeats point 0 ({pts[0].tolist()}); a closed "
+                                   "spline may repeat its first point once at the end", len(pts) - 1)
             chords = np.append(chords, closing)
             pts = np.vstack([pts, pts[:1]])
         u = np.concatenate([[0.0], np.cumsum(chords)])
@@ -66,8 +69,10 @@ class SplineProfile(BaseProfile):
         self._pieces_edges = np.unique(t[(t >= u[0]) & (t <= u[-1])])
 
     def _quadrature_edges(self) -> np.ndarray:
-        # each polynomial piece in four: the speed is the root of a polynomial, smooth on each
-        e = self._pieces_edges
+        # each polynomial piece in four: the speed is the root of a polynomial, smooth on each;
+        # the points too, for an open spline's end pieces span several of them (not-a-knot) and
+        # its speed may dip there (2e-10 of the length lost without them)
+        e = np.union1d(self._pieces_edges, self.knots)
         return np.union1d(e, (e[:-1, None] + np.diff(e)[:, None] * np.array([0.25, 0.5, 0.75])).ravel())
 
     def _eval(self, u: np.ndarray, order: int, side: int) -> np.ndarray:
