@@ -13,7 +13,8 @@ where the circle touches the track without leaving it, as in the slider-crank wh
 long as its crank.
 
 For a mechanism with one driver, `branch_schedule` finds the change points of every such group
-along the input once per mechanism: a scan of the input over its period (one turn, or two when
+along the input once per mechanism, also below Newton-solved groups (whose poses along the scan
+come from the continuation of the groups above, `continuation`): a scan of the input over its period (one turn, or two when
 an upstream group flips an odd number of times per turn, so that the chain repeats only after
 two), each touching minimum of h² refined by Brent's method and accepted when h vanishes there.
 `Schedule.signs` then gives the sign at any input value: the design's sign times −1 for every
@@ -66,16 +67,21 @@ class Schedule:
 def _positions(mech: Mechanism, solvers: tuple[GroupSolver, ...], upto: GroupSolver,
                u: np.ndarray, branches: dict) -> State:
     """Positions of every group before and including `upto` at inputs u (one driver); NaN
-    where a group cannot assemble (the closed forms leave finite values there)."""
+    where a group cannot assemble (the closed forms leave finite values there). Newton groups
+    upstream start from the continuation of these groups alone, with the change points found
+    so far (all of them upstream of `upto`)."""
+    from .continuation import continuation_guesses
+
     N = u.shape[0]
     Q = np.zeros((1, N, len(rows(mech)), 3))
     state = State(mech, Q, input_coefficients(mech, u[:, None], None, None, None, 0),
                   branches={g: s.signs(u) for g, s in branches.items()})
+    upstream = solvers[:solvers.index(upto) + 1]
+    guesses = (continuation_guesses(mech, upstream, u[:, None], schedule=branches)
+               if any(s.kind == "generic" for s in upstream) else {})
     ok = np.ones(N, dtype=bool)
-    for s in solvers:
-        ok &= s.positions(state)
-        if s is upto:
-            break
+    for s in upstream:
+        ok &= s.positions(state, guesses.get(s.group)) if s.kind == "generic" else s.positions(state)
     if not ok.all():
         state.Q[:, ~ok] = np.nan
         state.forget_trig()
@@ -97,8 +103,6 @@ def branch_schedule(mech: Mechanism) -> dict:
     found: dict = {}
     period = 2 * np.pi if revolute else None
     for k, s in enumerate(solvers):
-        if s.kind == "generic" and any(t.kind in BRANCHING for t in solvers[k + 1:]):
-            break  # Newton groups upstream need continuation: keep the design signs below
         if s.kind not in BRANCHING:
             continue
         span = period if revolute else 8 * mech.length_scale
