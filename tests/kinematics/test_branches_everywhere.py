@@ -85,3 +85,34 @@ def test_hart_straight_line_keeps_its_branch(newton, monkeypatch):
     scale = np.abs(Q.velocity[1:-1]).max(axis=1) + 1.0
     err = np.abs(Q.velocity[1:-1] - fd).max(axis=1) / scale
     assert (err[ok] < 1e-3).all()
+
+
+def triad_text():
+    """A crank O2A drives link AR of a triad: ternary PQR held by the rockers O4P and O6Q (an
+    Assur group of class III, solved by Newton's method); the crank rocks between two limits."""
+    pts = dict(O2=(0, 0), O4=(40, -5), O6=(60, 30), A=(0, 12), R=(22, 28), P=(38, 12), Q=(52, 40))
+    links = dict(frame=["O2", "O4", "O6"], crank=["O2", "A"], ar=["A", "R"], tri=["P", "Q", "R"],
+                 r4=["O4", "P"], r6=["O6", "Q"])
+    joints = [revolute("O2", "frame", "crank"), revolute("A", "crank", "ar"),
+              revolute("R", "ar", "tri"), revolute("P", "tri", "r4"), revolute("O4", "r4", "frame"),
+              revolute("Q", "tri", "r6"), revolute("O6", "r6", "frame")]
+    return mechanism_text(name="Stephenson six-bar with a triad", points=pts, links=links,
+                          joints=joints, driver="O2", speed="1 rad/s")
+
+
+def test_limit_samples_of_a_triad_come_with_their_pose():
+    mech = linkwork.load_text(triad_text())
+    assert [s.kind for s in solver.plan(mech)] == ["driver", "generic"]
+    sol = linkwork.whole_motion(mech)
+    lo, hi = sol.input.min(), sol.input.max()
+    at_limit = (sol.input == lo) | (sol.input == hi)
+    assert at_limit.sum() >= 2
+    # the limit samples: singular (a fold of the triad), not unreachable, and their pairs closed
+    assert (sol.status[at_limit] == Status.SINGULAR).all()
+    assert (sol.status != Status.UNREACHABLE).all()
+    L = mech.length_scale
+    for j in mech.joints:
+        a, b = j.links
+        P = mech.points[j.point]
+        gap = np.hypot(*(sol.point_on(a, P).position - sol.point_on(b, P).position).T)
+        assert (gap[at_limit] <= 1e-7 * L).all(), j.name

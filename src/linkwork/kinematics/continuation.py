@@ -306,6 +306,9 @@ class _Lane:
         if not self.P or lam.size == 0:
             return out
         K, P, T = self.arrays()
+        # a limit position at the march's end, computed back from λ: up to rounding beyond it
+        end = K[-1] * (1 + 1e-12) + 1e-15
+        lam = np.where((lam > K[-1]) & (lam <= end), K[-1], lam)
         inside = lam <= K[-1]
         if K.size == 1:
             out[inside] = P[0]

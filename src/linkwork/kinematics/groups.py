@@ -29,6 +29,7 @@ from .constraints import driver_residual, joint_residuals
 from .jet import Jet
 
 NEWTON_TOL = 1e-12  # relative to the mechanism's length scale
+LIMIT_RESIDUAL = 1e-8  # … a pose closed this well at a limit position is returned (singular)
 # above this the linear solve for the rates loses every digit (condition × ε ~ 1): the rates of
 # such samples are NaN, not invented (the sample is singular either way)
 UNRELIABLE_CONDITION = 1e14
@@ -605,6 +606,10 @@ class GroupSolver:
         else:
             state.Q[0][:, idx, :] = q
             err = np.abs(residual_and_jacobian(state, self.group)[0]).max(axis=1, initial=0.0)
+        # a limit position (a fold of the group): Newton's method slows down to a crawl there,
+        # but the poses are closed to within LIMIT_RESIDUAL; they are returned, the residual in
+        # the error bound marking the sample singular (`precision`), not invented as unreachable
+        converged |= active & (err <= LIMIT_RESIDUAL * scale)
         q[~converged] = np.nan
         state.Q[0][:, idx, :] = q
         state.forget_trig(idx)
