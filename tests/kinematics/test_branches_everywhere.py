@@ -116,3 +116,31 @@ def test_limit_samples_of_a_triad_come_with_their_pose():
         P = mech.points[j.point]
         gap = np.hypot(*(sol.point_on(a, P).position - sol.point_on(b, P).position).T)
         assert (gap[at_limit] <= 1e-7 * L).all(), j.name
+
+
+def test_galloway_kite_passes_its_fold_without_a_jump():
+    """Galloway's kite (Rosenauer §100): crank = frame = 40, coupler = rocker = 20. At crank
+    angle 0 the crank pin A lies on the rocker pivot O4; the line A–O4 turns over there, so the
+    coupler's hinge B keeps its place only by changing sides of it. B must move on continuously
+    (its velocity the derivative of its path), the fold sample itself marked, never an `ok`
+    sample carrying the other assembly."""
+    from mechanism_texts import four_bar_from_lengths
+
+    mech = linkwork.load_text(four_bar_from_lengths(40, 40, 20, 20, 30, speed="1 rad/s",
+                                                    links=("frame", "crank", "coupler", "rocker")))
+    h = np.radians(0.25)
+    u = np.radians(-10.0) + h * np.arange(81)  # −10° … +10°, through the fold at 0
+    sol = linkwork.solve(mech, u, velocities=np.ones(u.shape))
+    fold = np.abs(u) < 1e-12
+    # the fold sample is marked (its rates NaN: B may be anywhere on its circle there)
+    assert fold.sum() == 1 and sol.status[fold][0] != Status.OK
+    assert np.isnan(sol.link("rocker").omega[fold]).all()
+    B = sol.point("B")
+    ok = sol.status == Status.OK
+    both = ok[1:] & ok[:-1]
+    step = np.hypot(*np.diff(B.position, axis=0).T)
+    speed = np.hypot(*B.velocity.T)
+    assert (step[both] <= 1.5 * h * np.maximum(speed[1:], speed[:-1])[both] + 1e-9).all()
+    fd = (B.position[2:] - B.position[:-2]) / (2 * h)
+    inner = ok[1:-1] & ok[2:] & ok[:-2]
+    np.testing.assert_allclose(B.velocity[1:-1][inner], fd[inner], atol=1e-3 * 20)

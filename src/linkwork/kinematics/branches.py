@@ -10,7 +10,9 @@ flips. Keeping the design's sign would silently turn a parallelogram into an ant
 after the change point. The circle–line groups (RRP, rod in slot) choose the same way between
 the two points where the rod's circle cuts the guided point's track; their change points are
 where the circle touches the track without leaving it, as in the slider-crank whose rod is as
-long as its crank.
+long as its crank. A dyad whose outer hinges A and C meet (the Galloway kite, Rosenauer §100:
+crank as long as the frame, coupler as long as the rocker) flips too: the line AC turns over
+there, and B keeps its place only on the other side of it.
 
 For a mechanism with one driver, `branch_schedule` finds the change points of every such group
 along the input once per mechanism, also below Newton-solved groups (whose poses along the scan
@@ -118,19 +120,24 @@ def branch_schedule(mech: Mechanism) -> dict:
                 "at a change or dead position (its pivots in line), so it does not define the "
                 "assembly branch there; linkwork takes one side and follows it continuously",
                 LinkworkWarning, stacklevel=2)
-        g = h2(grid)
-        inner = np.arange(1, n)
-        touch = inner[(g[inner] <= g[inner - 1]) & (g[inner] <= g[inner + 1]) & (g[inner] < TOUCH)
-                      & (g[inner - 1] > 0) & (g[inner + 1] > 0)]
-        points = []
-        if len(touch):
-            from scipy.optimize import minimize_scalar  # rarely needed; slow to import
-        for i in touch:
-            r = minimize_scalar(lambda x: float(h2(np.array([x]))[0]), method="bounded",
-                                bounds=(grid[i - 1], grid[i + 1]),
-                                options=dict(xatol=1e-13 * max(1.0, abs(grid[i]))))
-            if r.fun < CHANGE and not any(abs(r.x - p) < span / n for p in points):
-                points.append(float(r.x))
+        def gap(u: np.ndarray) -> np.ndarray:
+            return s.pivot_gap(_positions(mech, solvers, s, u, found))
+
+        points: list[float] = []
+        # where h² touches zero (a change point), and for a dyad where its outer hinges meet
+        for fn in (h2, gap) if s.kind == "RRR" else (h2,):
+            g = fn(grid)
+            inner = np.arange(1, n)
+            touch = inner[(g[inner] <= g[inner - 1]) & (g[inner] <= g[inner + 1])
+                          & (g[inner] < TOUCH) & (g[inner - 1] > 0) & (g[inner + 1] > 0)]
+            if len(touch):
+                from scipy.optimize import minimize_scalar  # rarely needed; slow to import
+            for i in touch:
+                r = minimize_scalar(lambda x: float(fn(np.array([x]))[0]), method="bounded",
+                                    bounds=(grid[i - 1], grid[i + 1]),
+                                    options=dict(xatol=1e-13 * max(1.0, abs(grid[i]))))
+                if r.fun < CHANGE and not any(abs(r.x - p) < span / n for p in points):
+                    points.append(float(r.x))
         if points:
             found[s.group] = Schedule(s.design_sign, tuple(sorted(points)), period, u0)
             if revolute and len(points) % 2 == 1:

@@ -486,6 +486,16 @@ class GroupSolver:
             a = (f["diff"] + D2) / (2 * np.sqrt(D2))
         return 1.0 - a * a / f["L1sq"]
 
+    def pivot_gap(self, state: State) -> np.ndarray:
+        """Of an RRR dyad whose neighbours are placed: |AC|²/|AB|², the squared distance of its
+        two outer hinges. Zero: they coincide (the Galloway kite's fold, Rosenauer §100), the
+        line AC turns over, and with it the side of AC its hinge B keeps."""
+        f = self.fast
+        Q0 = state.Q[0]
+        (ax, ay), (cx, cy) = ((Q0[:, i, 0] + state.rot(i, s)[0], Q0[:, i, 1] + state.rot(i, s)[1])
+                              for i, s in ((f["iA"], f["A"]), (f["iC"], f["C"])))
+        return ((cx - ax) ** 2 + (cy - ay) ** 2) / f["L1sq"]
+
     def _track(self, state: State) -> tuple:
         """A circle–line group (RRP, rod in slot): the rod's pivot A and its guided point P
         (design), A in the world, P's track (a point q on it and its unit direction e), |AP|."""
