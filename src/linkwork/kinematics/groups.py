@@ -628,27 +628,37 @@ class GroupSolver:
         return converged
 
     # ------------------------------------------------------------------ derivatives
-    def derivatives(self, state: State, ok: np.ndarray) -> np.ndarray:
-        """Fill velocity and acceleration (and jerk) coefficients; return condition numbers."""
+    def derivatives(self, state: State, ok: np.ndarray, budget=None) -> np.ndarray:
+        """Fill velocity and acceleration (and jerk) coefficients; return condition numbers.
+        `budget` (`precision.ErrorBudget`): the forward error bounds, carried on for this
+        group (by the compiled kernels in the same pass)."""
         if state.order == 2 and self.fast is not None:
+            if budget is None:  # (the continuation's tangents: no bound wanted)
+                from .precision import ErrorBudget
+                budget = ErrorBudget(self.mech, state)
             if self.kind == "RRR":
-                return self._der_RRR(state, ok)
-            return self._der_driver(state, ok)
-        return derivatives_generic(state, self.group, ok)
+                return self._der_RRR(state, ok, budget)
+            return self._der_driver(state, ok, budget)
+        cond = derivatives_generic(state, self.group, ok)
+        if budget is not None:
+            budget.add(state, self, cond)
+        return cond
 
-    def _der_driver(self, state: State, ok: np.ndarray) -> np.ndarray:
+    def _der_driver(self, state: State, ok: np.ndarray, b) -> np.ndarray:
         """Revolute driver (`kernels.driver_rates`); its condition number is the design one."""
         f = self.fast
         u = state.inputs[f["joint"]]
         from . import kernels
-        kernels.driver_rates(state.Qm, state.T, f["b"], f["i"], f["H"], u[1], u[2])
+        kernels.driver_rates(state.Qm, state.T, f["b"], f["i"], f["H"], u[1], u[2], f["cond"],
+                             self.mech.length_scale, b.omega, b.m, b.E, b.eps)
         return np.full(state.Q.shape[1], f["cond"])
 
-    def _der_RRR(self, state: State, ok: np.ndarray) -> np.ndarray:
+    def _der_RRR(self, state: State, ok: np.ndarray, b) -> np.ndarray:
         """Velocities and accelerations of an RRR dyad (`kernels.rrr_rates`)."""
         f = self.fast
         cond = np.ones(state.Q.shape[1])
         from . import kernels
         kernels.rrr_rates(state.Qm, state.T, f["iA"], f["A"], f["iC"], f["C"], f["i1"], f["i2"],
-                          f["BA"], f["BC"], f["mid"], f["hd2"], UNRELIABLE_CONDITION, cond)
+                          f["BA"], f["BC"], f["mid"], f["hd2"], UNRELIABLE_CONDITION, cond,
+                          self.mech.length_scale, b.omega, b.m, b.E, b.eps)
         return cond

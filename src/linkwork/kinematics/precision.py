@@ -56,16 +56,14 @@ def coordinate_size(mech: Mechanism) -> float:
 def rate_scale(mech: Mechanism, inputs: dict) -> np.ndarray:
     """Ω per sample: the inputs' rate (rad/s; a slide's in L/s), the k-th Taylor coefficients
     counted as Ω^k; 1 where the inputs stand still (every rate is zero then)."""
-    omega = None
-    for d in mech.drivers:
-        c = inputs[d.joint]
-        per = mech.length_scale if mech.joint(d.joint).kind == "prismatic" else 1.0
-        for k in range(1, c.shape[0]):
-            w = (np.abs(c[k]) / per) ** (1.0 / k)
-            omega = w if omega is None else np.maximum(omega, w)
-    if omega is None:
-        return np.ones(next(iter(inputs.values())).shape[1] if inputs else 0)
-    return np.where(omega > 0, omega, 1.0)
+    from . import kernels
+
+    C = np.stack([np.asarray(inputs[d.joint], dtype=np.float64) for d in mech.drivers])
+    per = np.array([mech.length_scale if mech.joint(d.joint).kind == "prismatic" else 1.0
+                    for d in mech.drivers])
+    out = np.empty(C.shape[2])
+    kernels.rate_scales(C, per, out)
+    return out
 
 
 class ErrorBudget:
@@ -76,8 +74,8 @@ class ErrorBudget:
         self.mech, self.eps = mech, eps
         self.E = np.zeros((K + 1, N))
         self.m = np.zeros((K + 1, N))
-        self.m[0] = coordinate_size(mech)
-        self.omega = np.ascontiguousarray(rate_scale(mech, state.inputs), dtype=np.float64)
+        self.m[0] = coordinate_size(mech)  # the sizes start at the drawing's coordinates
+        self.omega = rate_scale(mech, state.inputs)
 
     def add(self, state: State, solver: GroupSolver, kappa: np.ndarray) -> None:
         """Account for one group just solved (poses and rates in state.Q) with condition

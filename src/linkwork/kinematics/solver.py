@@ -146,9 +146,7 @@ def solve(mech: Mechanism, inputs=None, *, times=None, velocities=None, accelera
         cond = condition[sl]
         budget = ErrorBudget(mech, state)
         for s in solvers:
-            kappa = s.derivatives(state, ok)
-            np.maximum(cond, kappa, out=cond)
-            budget.add(state, s, kappa)
+            np.maximum(cond, s.derivatives(state, ok, budget), out=cond)
         if not ok.all():
             state.Q[1:, ~ok] = np.nan
         _finish_block(state)
