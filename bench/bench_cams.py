@@ -13,8 +13,8 @@ Accuracy against closed forms, derived here and not by either library:
   y″ = R″ω² from the law's derivatives;
 - roller: the roller centre sits where a circle of radius ρ, centred on the follower's line,
   last touches the cam: y = max over the profile points p(θ) of p·e + √(ρ² − (p × e)²) (e the
-  line's direction in the cam), found per sample by a grid, a golden-section search and Newton's method; its
-  velocity by the envelope theorem (the partial derivative at the touching point). pylinkage
+  line's direction in the cam), found per sample by a grid, a golden-section search and
+  Newton's method; its velocity by the envelope theorem (the partial derivative at the touching point). pylinkage
   puts the roller centre at R(φ) + ρ, which is right only where the radius does not change.
 
     uv run --group bench python bench/bench_cams.py [--samples 100000] [--repeats 3]
@@ -234,7 +234,7 @@ def main(argv=None) -> int:
                       f"{first:.2f} s")
     console.print(acc)
     console.print("Closed forms: knife y = R(φ); roller y = max over the profile of the touching "
-                  "circle's height (golden-section search), y′ by the envelope theorem. "
+                  "circle's height (grid, golden section, Newton), y′ by the envelope theorem. "
                   "pylinkage puts the roller centre at R(φ) + ρ.")
     console.print(speed)
     load = max(load, os.getloadavg()[0])

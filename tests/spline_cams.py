@@ -129,3 +129,70 @@ def rolling_ellipses() -> Mechanism:
                 RollingContact("T", ("frame", "wheel"), ("track", "rim"))],
         drivers=[{"joint": "O2"}],
         profiles={"track": EllipseProfile((0.0, 0.0), (a1, b1)), "rim": EllipseProfile(tuple(W), (a2, b2))})
+
+
+# ---------------------------------------------------------------------------- as files
+def _xy(p) -> str:
+    return f"[{float(p[0])!r}, {float(p[1])!r}]"
+
+
+def cam_file(seed: int, follower: str) -> str:
+    """`cam_mechanism(spline_cam(seed), follower)` written as a mechanism file (the spline's
+    points in a [profiles] table; 'roller', 'knife' or 'flat')."""
+    prof = spline_cam(seed, convex=follower != "roller")
+    mech = cam_mechanism(prof, follower)
+    pts = "\n".join(f"{k} = {_xy(v)}" for k, v in mech.points.items())
+    spline = ", ".join(_xy(p) for p in prof.points)
+    extra = {"roller": f'follower = "roller", point = "C", radius = {RHO!r}',
+             "knife": 'follower = "knife", point = "C"',
+             "flat": 'follower = "flat", point = "C", axis = 0'}[follower]
+    return f"""name = "spline cam, {follower}"
+[points]
+{pts}
+[profiles.cam]
+type = "spline"
+closed = true
+points = [{spline}]
+[links]
+frame = ["O"]
+cam = ["O", "A"]
+follower = ["C", "F"]
+[joints]
+O = {{ type = "revolute", links = ["frame", "cam"] }}
+F = {{ type = "prismatic", links = ["frame", "follower"], axis = 90 }}
+K = {{ type = "cam", links = ["cam", "follower"], profile = "cam", {extra} }}
+[driver]
+joint = "O"
+reference = "A"
+"""
+
+
+def rolling_ellipses_file() -> str:
+    """`rolling_ellipses()` as a mechanism file."""
+    mech = rolling_ellipses()
+    pts = "\n".join(f"{k} = {_xy(v)}" for k, v in mech.points.items())
+    (a1, b1), (a2, b2) = ROLL_E1, ROLL_E2
+    return f"""name = "rolling ellipses"
+[points]
+{pts}
+[profiles.track]
+type = "ellipse"
+center = [0, 0]
+semi_axes = [{a1}, {b1}]
+[profiles.rim]
+type = "ellipse"
+center = {_xy(mech.points["W"])}
+semi_axes = [{a2}, {b2}]
+[links]
+frame = ["O", "O2"]
+crank = ["O2", "A"]
+rod = ["A", "W"]
+wheel = ["W", "M"]
+[joints]
+O2 = {{ type = "revolute", links = ["frame", "crank"] }}
+A = {{ type = "revolute", links = ["crank", "rod"] }}
+W = {{ type = "revolute", links = ["rod", "wheel"] }}
+T = {{ type = "rolling", links = ["frame", "wheel"], profiles = ["track", "rim"] }}
+[driver]
+joint = "O2"
+"""

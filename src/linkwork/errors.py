@@ -58,3 +58,8 @@ class InputError(LinkworkError):
 class LinkworkWarning(UserWarning):
     """Something the user should know about their input that does not stop the work (the
     command line prints it as one line on stderr)."""
+
+
+class OutputError(LinkworkError):
+    """An output that cannot be written (no such folder, a folder given as file, a full disk,
+    no permission) or that would be larger than the limit without --force."""

@@ -45,3 +45,14 @@ def test_poles_structure_plot(name, tmp_path):
     wheel = "cross" if name == "geneva-4" else "star"
     run("plot", f"library:{name}", "--link", wheel, "-o", str(tmp_path / "p.svg"))
     run("analyze", f"library:{name}")
+
+
+def test_analyze_table_lists_entry_and_exit_with_the_acceleration_jump():
+    """60 rpm: ω = 2π/s; the 4-slot wheel jumps to ω²·tan 45° at entry (and from it at exit)."""
+    out = run("analyze", "library:geneva-4").output
+    assert "advances 90° per driver turn and rests 75% of it" in out
+    jump = f"{(2 * np.pi) ** 2:.6g}"
+    entry = next(line for line in out.splitlines() if "dwell → engaged" in line)
+    exit_ = next(line for line in out.splitlines() if "engaged → dwell" in line)
+    assert "315.0000" in entry and f"-{jump}" in entry
+    assert "45.0000" in exit_ and jump in exit_

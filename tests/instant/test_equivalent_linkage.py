@@ -214,3 +214,72 @@ def test_errors_name_the_problem():
     with pytest.raises(InputError, match="sample 7 is out of range"):
         equivalent_mechanism(sol, 7)
     assert set(KINDS) == {"RR", "RP", "PR", "PP"}
+
+
+# ---------------------------------------------------------------------------- the library
+def _library_with_higher_pairs() -> list[str]:
+    from linkwork.io.files import library_names
+    out = []
+    for name in library_names():
+        mech = linkwork.load(f"library:{name}")
+        if any(j.kind in ("cam", "rolling") for j in mech.joints):
+            out.append(name)
+    return out
+
+
+@pytest.mark.parametrize("name", _library_with_higher_pairs())
+def test_library_higher_pairs_have_their_equivalent_linkages(name):
+    """Every shipped mechanism with a cam or rolling pair: at six positions over its whole
+    motion the substitute gives the same ω, α, velocities and accelerations, and the
+    profiles' curvature centres are conjugate points of the relative motion."""
+    from linkwork.instant import contact_curvature
+    from linkwork.instant.poles import pole_discrepancy
+    mech = linkwork.load(f"library:{name}")
+    sol = linkwork.whole_motion(mech, order=2)
+    ok = np.flatnonzero(sol.status == linkwork.Status.OK)
+    assert ok.size > 10
+    picks = ok[np.linspace(0, ok.size - 1, 6).astype(int)]
+    for pair in (j.name for j in mech.joints if j.kind in ("cam", "rolling")):
+        cc = contact_curvature(sol, pair)
+        gap = pole_discrepancy(cc.conjugates[0], cc.centres[0], mech.length_scale)[picks]
+        assert (gap < 1e-9).all(), (pair, gap)
+    for n in picks:
+        assert_same_rates(sol, int(n), solve_equivalent(sol, int(n)), mech.length_scale)
+
+
+def test_unreachable_samples_are_marked_not_invented():
+    """A follower line 38 from the pivot is reached by the roller (R + ρ = 35 about a centre
+    e = 10 from it) only where e cos φ ≥ 3: elsewhere the substitute is undefined."""
+    mech = eccentric("roller", offset=38.0)
+    phi = np.radians(np.arange(0.0, 360.0, 30.0))
+    sol = linkwork.solve(mech, phi)
+    far = sol.status == linkwork.Status.UNREACHABLE
+    assert far.any() and (E * np.cos(phi[~far]) >= 38.0 - (R + RHO) - 1e-12).all()
+    eq = equivalent_linkage(sol, "K")
+    assert (eq.kind[far] == "").all() and np.isnan(eq.coupler[far]).all()
+    assert (eq.kind[~far] == "RR").all() and np.allclose(eq.coupler[~far], R + RHO)
+    with pytest.raises(InputError, match="not assembled at sample"):
+        equivalent_mechanism(sol, int(np.flatnonzero(far)[0]))
+
+
+def test_one_of_two_higher_pairs_replaced():
+    """A disc driving a roller follower above it and a flat-faced follower beside it: either
+    pair alone, or both, replaced; a pair kept is carried into the new drawing (its profile
+    turned with the disc) and still solved as a cam."""
+    y0 = np.sqrt((R + RHO) ** 2 - E**2)
+    mech = Mechanism.build(
+        name="two followers",
+        points={"O": [0, 0], "E": [E, 0], "C": [0, y0], "F": [0, -20], "Q": [E + R, 0], "G": [E + R + 15, 0]},
+        links={"frame": ["O"], "cam": ["O", "E"], "lifter": ["C", "F"], "pusher": ["Q", "G"]},
+        joints=[Revolute("O", "O", ("frame", "cam")),
+                Prismatic("F", "F", ("frame", "lifter"), np.array([0.0, 1.0])),
+                Prismatic("G", "G", ("frame", "pusher"), np.array([1.0, 0.0])),
+                CamContact("K1", ("cam", "lifter"), "disc", "roller", point="C", radius=RHO),
+                CamContact("K2", ("cam", "pusher"), "disc", "flat", point="Q", axis=np.array([0.0, 1.0]))],
+        drivers=[{"joint": "O", "reference": "E"}], profiles={"disc": CircleProfile((E, 0.0), R)})
+    sol = linkwork.solve(mech, np.radians([20.0, 75.0, 130.0]), velocities=[1.5] * 3)
+    for pairs, kept in ((["K1"], {"K2"}), (["K2"], {"K1"}), (None, set())):
+        for n in range(3):
+            sub = solve_equivalent(sol, n, pairs)
+            assert {j.name for j in sub.mechanism.joints if j.kind == "cam"} == kept
+            assert_same_rates(sol, n, sub, 60.0)

@@ -32,21 +32,16 @@ STENCIL = np.array([1.0, -8.0, 0.0, 8.0, -1.0]) / (12.0 * H)  # fâ€² from f(x âˆ
 OFFSETS = np.array([-2.0, -1.0, 0.0, 1.0, 2.0]) * H
 
 
-def build(seed: int, follower: str):
-    return cam_mechanism(spline_cam(seed, convex=follower in ("flat", "knife")), follower)
-
-
-def samples(mech, seed: int, n: int = 6) -> np.ndarray:
+def stencil(seed: int, follower: str, order: int, n: int = 6):
+    """The cam of `seed` with `follower`, solved in one call at the five stencil points of n
+    random cam angles: (mechanism, solution, a reshaper of arrays to (5, n, ...), the slice of
+    the middle points)."""
+    mech = cam_mechanism(spline_cam(seed, convex=follower in ("flat", "knife")), follower)
     x0 = mech.driver_input_at_design(mech.drivers[0])
-    return x0 + np.random.default_rng(1000 + seed).uniform(0.0, 2 * np.pi, n)
-
-
-def stencil(mech, phi: np.ndarray, order: int):
-    """One solve at all five stencil points of every sample: solution, and a reshaper to
-    (5, N, ...)."""
+    phi = x0 + np.random.default_rng(1000 + seed).uniform(0.0, 2 * np.pi, n)
     sol = linkwork.solve(mech, (phi[None, :] + OFFSETS[:, None]).ravel(), order=order)
     assert (sol.status == linkwork.Status.OK).all()
-    return sol, lambda a: np.asarray(a).reshape((5, phi.size) + np.shape(a)[1:])
+    return mech, sol, lambda a: np.asarray(a).reshape((5, n) + np.shape(a)[1:]), slice(2 * n, 3 * n)
 
 
 def difference(f5: np.ndarray) -> np.ndarray:
@@ -59,11 +54,8 @@ CASES = [pytest.param(seed, f, id=f"{f}-{seed}") for seed in (0, 1, 2, 3) for f 
 
 @pytest.mark.parametrize("seed,follower", CASES)
 def test_rates_are_differences_of_lower_orders(seed, follower):
-    mech = build(seed, follower)
-    phi = samples(mech, seed)
-    sol, r = stencil(mech, phi, 3)
+    mech, sol, r, mid = stencil(seed, follower, 3)
     L = mech.length_scale
-    mid = slice(2 * phi.size, 3 * phi.size)
     for p in ("C",) + (("F",) if "F" in mech.points else ("B0",)):
         m = sol.point(p)
         for lo, hi in (("position", "velocity"), ("velocity", "acceleration"), ("acceleration", "jerk")):
@@ -75,10 +67,6 @@ def test_rates_are_differences_of_lower_orders(seed, follower):
         np.testing.assert_allclose(difference(r(D[k - 1, :, 2])), D[k, mid, 2], rtol=0, atol=1e-7)
 
 
-def _local(sol, link, xy):
-    return sol.local(link, xy)
-
-
 def _turn(theta, v):
     c, s = np.cos(theta), np.sin(theta)
     return np.stack([c * v[:, 0] - s * v[:, 1], s * v[:, 0] + c * v[:, 1]], axis=1)
@@ -86,11 +74,8 @@ def _turn(theta, v):
 
 @pytest.mark.parametrize("seed,follower", CASES)
 def test_contact_report_from_differences_of_the_contact_point(seed, follower):
-    mech = build(seed, follower)
-    phi = samples(mech, seed)
-    sol, r = stencil(mech, phi, 1)
+    mech, sol, r, mid = stencil(seed, follower, 1)
     L = mech.length_scale
-    mid = slice(2 * phi.size, 3 * phi.size)
     rep = sol.joint("K")
     prof = mech.profiles["cam"]
     # the run along the cam: the difference quotient of the arc length at the contact
@@ -102,12 +87,12 @@ def test_contact_report_from_differences_of_the_contact_point(seed, follower):
     th_cam = sol.pose_derivatives("cam")[0, mid, 2]
     th_fol = sol.pose_derivatives("follower")[0, mid, 2]
     tangent = _turn(th_cam, t / np.hypot(*t.T)[:, None])
-    on_cam = _turn(th_cam, difference(r(_local(sol, "cam", X))))
-    on_follower = _turn(th_fol, difference(r(_local(sol, "follower", X))))
+    on_cam = _turn(th_cam, difference(r(sol.local("cam", X))))
+    on_follower = _turn(th_fol, difference(r(sol.local("follower", X))))
     np.testing.assert_allclose(on_cam, rep["profile_speed"][mid, None] * tangent, rtol=0, atol=1e-7 * L)
     # along the follower's element: a roller's or a knife's run is counted along the common
     # tangent, a flat face's along its own axis
-    along = _turn(th_fol, np.tile(mech.joint("K").axis, (phi.size, 1))) if follower == "flat" else tangent
+    along = _turn(th_fol, np.tile(mech.joint("K").axis, (len(th_fol), 1))) if follower == "flat" else tangent
     np.testing.assert_allclose(on_follower, rep["follower_speed"][mid, None] * along, rtol=0,
                                atol=1e-7 * L)
     sliding = np.einsum("ij,ij->i", on_cam - on_follower, tangent)

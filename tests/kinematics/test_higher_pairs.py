@@ -215,3 +215,17 @@ def test_unknown_profile_is_named():
                     Prismatic("F", "F", ("frame", "follower"), np.array([0.0, 1.0])),
                     CamContact("K", ("cam", "follower"), "disk", "roller", point="C", radius=RHO)],
             drivers=[{"joint": "O"}], profiles={"disc": CircleProfile((E, 0.0), R)})
+
+
+def test_pressure_angle_in_a_dwell():
+    """In a dwell the pitch curve is a circle about the cam's centre O, so the common normal
+    passes through O; the follower moves along x = e (offset e = 5): sin α = e/|OC| there,
+    although the follower's velocity is zero and gives no direction."""
+    mech = linkwork.load("library:designed-cam-offset-roller")
+    sol = linkwork.solve(mech, np.radians(np.arange(0.0, 360.0, 2.0)))
+    v = sol.point("C").velocity
+    dwell = np.hypot(*v.T) < 1e-9 * mech.length_scale
+    assert dwell.sum() > 20
+    C = sol.point("C").position[dwell]
+    np.testing.assert_allclose(np.sin(sol.joint("K")["pressure_angle"][dwell]), 5.0 / np.hypot(*C.T),
+                               rtol=1e-9)

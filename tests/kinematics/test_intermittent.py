@@ -382,3 +382,68 @@ def test_star_wheel_pins_run_on_epicycloids_in_the_gear_phase(star):
         assert min(np.max(e_) for e_ in err) < 1e-9
         assert np.all(t[1:-1] > 1e-3)  # away from the cusp: a real test of the angle
         assert gear.sum() > 10
+
+
+# ---------------------------------------------------------------------------- two code paths
+@pytest.mark.parametrize("name", ["geneva-4", "geneva-6", "star-wheel"])
+def test_closed_form_rates_equal_the_phase_equations_on_jets(name, monkeypatch):
+    """The solver's closed-form rates (the transmission composed with the driver's jet) against
+    the linear solve on the jets of each sample's phase equation (`derivatives_generic`), up to
+    the snap, with the same condition numbers."""
+    from linkwork.kinematics import groups
+
+    mech = linkwork.load(f"library:{name}")
+    u = mech.driver_input_at_design(mech.drivers[0]) + np.linspace(0.0, 2 * np.pi, 721)[:-1] + 1e-3
+    fast = linkwork.solve(mech, u, velocities=np.full_like(u, 1.3), accelerations=np.full_like(u, 0.7),
+                          jerks=np.full_like(u, -0.4), order=4)
+    original = groups.GroupSolver.derivatives
+
+    def on_jets(self, state, ok):
+        if self.kind == "intermittent":
+            return groups.derivatives_generic(state, self.group, ok)
+        return original(self, state, ok)
+
+    monkeypatch.setattr(groups.GroupSolver, "derivatives", on_jets)
+    slow = linkwork.solve(mech, u, velocities=np.full_like(u, 1.3), accelerations=np.full_like(u, 0.7),
+                          jerks=np.full_like(u, -0.4), order=4)
+    wheel = mech.joints[-1].links[1]
+    a, b = fast.pose_derivatives(wheel), slow.pose_derivatives(wheel)
+    for k in range(5):
+        scale = np.abs(b[k]).max() or 1.0
+        np.testing.assert_allclose(a[k], b[k], rtol=0, atol=1e-10 * scale, err_msg=f"order {k}")
+    np.testing.assert_allclose(fast.condition, slow.condition, rtol=1e-9)
+
+
+@pytest.mark.parametrize("n,pin_over_a,engaged_deg", [(3, np.sqrt(3), 60.0), (4, 1.0, 90.0),
+                                                      (6, 1 / np.sqrt(3), 120.0)])
+def test_poeschls_design_relation(n, pin_over_a, engaged_deg):
+    """Pöschl §25a: wheel radius a and centre distance D_n = a/cos(π/n) (D₃ = 2a, D₄ = a√2);
+    the seed digest's derived checks: crank radius a·tan(π/n) (a√3 for n = 3, a for n = 4),
+    engagement 60° and 90°. The pin enters and leaves the wheel on its rim, |CB| = a."""
+    a = 40.0
+    Dn = a / np.cos(np.pi / n)
+    if n in (3, 4):
+        assert Dn == pytest.approx({3: 2 * a, 4: a * np.sqrt(2)}[n])
+    mech = geneva(n, a * pin_over_a, centre=Dn)  # the shock-free pin: r = D·sin(π/n) = a·tan(π/n)
+    phi = np.radians(np.arange(-180.0, 180.0, 0.5))
+    sol = linkwork.solve(mech, phi)
+    e = engagement(sol, "G")
+    (eng,) = [iv for iv in e.intervals if iv[0] == "engaged"]
+    assert np.degrees(eng[2] - eng[1]) == pytest.approx(engaged_deg, abs=1e-9)
+    for ev in e.events:
+        B = linkwork.solve(mech, [ev.input]).point("B").position[0]
+        assert np.hypot(*(B - [Dn, 0.0])) == pytest.approx(a, rel=1e-12)
+        assert ev.omega == pytest.approx((0.0, 0.0), abs=1e-12)
+
+
+@pytest.mark.parametrize("at", [0.0, np.pi, 0.5])
+def test_mobility_counts_the_pair_in_every_phase(at):
+    """Drawn engaged (φ = 0, 0.5) or locked (φ = π): the Jacobian's rank leaves one freedom, as
+    Kutzbach's count with h = 1 says: F = 3·(3 − 1) − 2·2 − 1 = 1."""
+    from linkwork.structure.mobility import counts, mobility
+
+    mech = geneva(4, at=at)
+    c = counts(mech)
+    assert (c.n, c.g, c.h) == (3, 2, 1) and c.mobility == 1
+    m = mobility(mech)
+    assert m.real_mobility == 1 and not m.redundant and m.count_mobility == 1

@@ -430,3 +430,305 @@ def _circumcentre(A, B, C):
     ux = (a2 * (B[:, 1] - C[:, 1]) + b2 * (C[:, 1] - A[:, 1]) + c2 * (A[:, 1] - B[:, 1])) / d
     uy = (a2 * (C[:, 0] - B[:, 0]) + b2 * (A[:, 0] - C[:, 0]) + c2 * (B[:, 0] - A[:, 0])) / d
     return np.c_[ux, uy]
+
+
+# ---------------------------------------------------------------------------- Sulzer valve gear
+def _circles_upper(P, r1, Q, r2):
+    """The intersection of circle(P, r1) and circle(Q, r2) with the larger y (rows: samples)."""
+    d = Q - P
+    D = np.hypot(*d.T)
+    a = (r1 * r1 - r2 * r2 + D * D) / (2 * D)
+    with np.errstate(invalid="ignore"):  # NaN where they do not meet (an arc out of reach)
+        h = np.sqrt(r1 * r1 - a * a)
+    ex = d / D[:, None]
+    perp = np.c_[-ex[:, 1], ex[:, 0]]
+    X1 = P + a[:, None] * ex + h[:, None] * perp
+    X2 = P + a[:, None] * ex - h[:, None] * perp
+    return np.where((X1[:, 1] >= X2[:, 1])[:, None], X1, X2)
+
+
+def _rot(theta, v):
+    c, s = np.cos(theta), np.sin(theta)
+    return np.c_[c * v[..., 0] - s * v[..., 1], s * v[..., 0] + c * v[..., 1]]
+
+
+def sulzer_closed_form(phi):
+    """Valve pin height y_B of the Sulzer gear, by Rosenauer's Method II (§121) made exact: on
+    each cam arc (centre A, radius R) the four-bar O–A–C–F (coupler R + ρ), then the four-bar
+    F–D–E–G through the faces' centres (coupler 30 + 40), then the pin on x = 220 in the guide of
+    lever 3 through G. The cam (design numbers of the file): base circle 30 about O, flanks R 60,
+    nose R 12 about (0, −28), lift 10, arcs derived from their tangency. Returns y_B and the
+    index of the cam arc in contact (3: the base circle, the dwell)."""
+    r0, h, R1, R2, rho = 30.0, 10.0, 60.0, 12.0, 8.0
+    ok1, ok2, k12 = R1 - r0, r0 + h - R2, R1 - R2
+    K2 = np.array([0.0, -ok2])
+    g = np.arccos((ok1**2 + ok2**2 - k12**2) / (2 * ok1 * ok2))
+    K1 = ok1 * np.array([np.cos(-np.pi / 2 + g), np.sin(-np.pi / 2 + g)])
+    T0, T2 = -K1 * r0 / ok1, K1 + R1 * (K2 - K1) / k12
+    mir = np.array([-1.0, 1.0])
+    pts = [T0, T2, T2 * mir, T0 * mir, T0]
+    arcs = []
+    for c, r, p, q in zip([K1, K2, K1 * mir, np.zeros(2)], [R1, R2, R1, r0], pts[:-1], pts[1:]):
+        a0 = np.arctan2(*(p - c)[::-1])
+        arcs.append((c, r, a0, np.mod(np.arctan2(*(q - c)[::-1]) - a0, 2 * np.pi)))
+    F, C0, D0 = np.array([-60.0, 38.0]), np.array([0.0, 38.0]), np.array([60.0, 20.0])
+    G, E0, xB = np.array([160.0, 50.0]), np.array([60.0, 90.0]), 220.0
+    n = len(phi)
+    C = np.full((n, 2), np.nan)
+    which = np.full(n, -1)
+    for i, (c, r, a0, sweep) in enumerate(arcs):
+        A = _rot(phi, np.broadcast_to(c, (n, 2)))
+        Ci = _circles_upper(np.broadcast_to(F, (n, 2)), 60.0, A, r + rho)
+        contact = _rot(-phi, Ci - A)  # the contact's direction from the arc's centre, in the cam
+        inside = np.mod(np.arctan2(contact[:, 1], contact[:, 0]) - a0, 2 * np.pi) <= sweep
+        sel = inside & (which < 0)
+        C[sel], which[sel] = Ci[sel], i
+    th2 = np.arctan2(*(C - F).T[::-1]) - np.arctan2(*(C0 - F)[::-1])
+    D = F + _rot(th2, np.broadcast_to(D0 - F, (n, 2)))
+    E = _circles_upper(np.broadcast_to(G, (n, 2)), np.hypot(*(E0 - G)), D, 70.0)
+    th3 = np.arctan2(*(E - G).T[::-1]) - np.arctan2(*(E0 - G)[::-1])
+    return G[1] + (xB - G[0]) * np.tan(th3), which
+
+
+def test_sulzer_counts():
+    """Rosenauer §121 Task 4: h = 2 (non-self-closed), n = 6, g = 4, s = 2, z = 6:
+    2 + 2·6 − 3·6 + 4 = 0."""
+    from linkwork.structure.mobility import counts
+
+    c = counts(mech("sulzer-valve-gear"))
+    assert (c.n, c.g, c.s, c.h_n, c.h_p, c.h, c.z) == (6, 4, 2, 2, 0, 2, 6)
+    assert c.criterion == 0 and c.constrained
+
+
+def test_sulzer_valve_motion_and_dwell():
+    m = mech("sulzer-valve-gear")
+    w = m.drivers[0].law.speed
+    phi = np.radians(np.arange(0.0, 360.0, 1.0) + 0.3)
+    sol = linkwork.solve(m, phi)
+    assert (sol.status == Status.OK).all()
+    yB, which = sulzer_closed_form(phi)
+    assert set(which) == {0, 1, 2, 3}
+    got = sol.point("B")
+    np.testing.assert_allclose(got.position[:, 1], yB, atol=1e-9 * 100)
+    np.testing.assert_allclose(got.position[:, 0], 220.0, atol=1e-9)
+    hstep = 1e-6
+    vB = (sulzer_closed_form(phi + hstep)[0] - sulzer_closed_form(phi - hstep)[0]) / (2 * hstep)
+    np.testing.assert_allclose(got.velocity[:, 1], w * vB, atol=1e-6 * 100 * w)
+    # the dwell: on the base circle everything but the cam rests, the valve is shut
+    dwell = which == 3
+    assert 180 < dwell.sum() < 300
+    np.testing.assert_allclose(got.position[dwell, 1], 50.0, atol=1e-9)
+    for link in ("lever2", "lever3", "spindle"):
+        np.testing.assert_allclose(sol.link(link).omega[dwell], 0.0, atol=1e-9)
+    # outside it the valve opens (moves down) by the lever ratios
+    assert got.position[~dwell, 1].min() < 50.0 - 10.0
+
+
+# ---------------------------------------------------------------------------- Proell–Schwabe
+PS = dict(P18=np.array([0.0, 0.0]), P38=np.array([200.0, 100.0]), P58=np.array([100.0, 60.0]),
+          crank=25.0, lever=80.0, track=65.0, wheel=15.0, join=np.radians(-112.0), x67=-80.0)
+
+
+def proell_schwabe_closed_form(phi):
+    """The wheel centre W (the four-bar 1238: crank 25 about 18, rod |12–234|, lever 80 about 38;
+    W below 38), the angle θ5 of lever 5 and the valve pin's height. The track (design numbers of
+    the file): an arc of radius 65 about 38 up to 112° below the horizontal, then its tangent J + s·t.
+    On the arc lever 5 rests (θ5 = 0); on the line, the line turned by θ5 about 58 lies at the
+    wheel's radius from W on the wheel's side n = (cos β_J, sin β_J):
+    |q| cos(∠q − β_J − θ5) = n·(J − 58) + r_w, q = W − 58. The pin rides the guide through 58."""
+    P18, P38, P58 = PS["P18"], PS["P38"], PS["P58"]
+    A0 = P18 + PS["crank"] * np.array([-1.0, 0.0])
+    W0 = np.array([146.3917525773196, 40.61855670103087])  # the file's design wheel centre
+    rod = np.hypot(*(W0 - A0))
+    assert np.hypot(*(W0 - P38)) == pytest.approx(PS["lever"])
+    A = P18 + PS["crank"] * np.c_[np.cos(phi), np.sin(phi)]
+    d = P38 - A
+    D = np.hypot(*d.T)
+    a = (rod**2 - PS["lever"] ** 2 + D * D) / (2 * D)
+    h = np.sqrt(rod**2 - a * a)
+    ex = d / D[:, None]
+    cands = [A + a[:, None] * ex + s * h[:, None] * np.c_[-ex[:, 1], ex[:, 0]] for s in (1, -1)]
+    W = np.where((cands[0][:, 1] < cands[1][:, 1])[:, None], cands[0], cands[1])
+    beta = np.arctan2(W[:, 1] - P38[1], W[:, 0] - P38[0])
+    bJ = PS["join"]
+    n = np.array([np.cos(bJ), np.sin(bJ)])
+    J = P38 + PS["track"] * n
+    q = W - P58
+    c = n @ (J - P58) + PS["wheel"]
+    ang = np.arctan2(q[:, 1], q[:, 0]) - bJ
+    roots = np.stack([ang - np.arccos(c / np.hypot(*q.T)), ang + np.arccos(c / np.hypot(*q.T))])
+    roots = np.angle(np.exp(1j * roots))
+    th5 = np.where(np.abs(roots[0]) < np.abs(roots[1]), roots[0], roots[1])
+    on_arc = beta <= bJ
+    th5 = np.where(on_arc, 0.0, th5)
+    y67 = P58[1] + (PS["x67"] - P58[0]) * np.tan(th5)
+    return W, th5, y67, on_arc
+
+
+def test_proell_schwabe_counts():
+    """Rosenauer §98 Ex. 33: n = 8; simple hinges 18, 12, 38, 58, 67 (g1 = 5), the double hinge
+    234 (g2 = 1): g = 7; sliders 65 and 78: z = 9; one self-closed pair: h = 2h_p = 2;
+    2 + 2·9 − 3·8 + 4 = 0."""
+    from linkwork.structure.mobility import counts
+
+    c = counts(mech("proell-schwabe-valve-gear"))
+    assert (c.n, c.g1, c.g2, c.g, c.s, c.z, c.h_n, c.h_p, c.h) == (8, 5, 1, 7, 2, 9, 0, 1, 2)
+    assert c.criterion == 0 and c.constrained
+
+
+def test_proell_schwabe_motion_dwell_and_rolling():
+    """§98, §110: while the wheel rolls on the arc about 38 lever 5 is not moved, links 6 and 7
+    rest and the gear is the four-bar 1238; then the wheel pushes the track and opens the valve.
+    The wheel rolls without slip: on the arc it turns by (65 + 15)/15 times the angle its centre
+    turns about 38 (epicycloidal rolling on a fixed circle)."""
+    m = mech("proell-schwabe-valve-gear")
+    phi = np.radians(np.arange(0.0, 360.0, 1.0) + 0.3)
+    sol = linkwork.solve(m, phi)
+    assert (sol.status == Status.OK).all()
+    W, th5, y67, on_arc = proell_schwabe_closed_form(phi)
+    assert 60 < on_arc.sum() < 300  # a dwell and an opening in every turn
+    np.testing.assert_allclose(sol.point("P234").position, W, atol=1e-9 * 200)
+    np.testing.assert_allclose(sol.pose_derivatives("lever5")[0, :, 2], th5, atol=1e-10)
+    np.testing.assert_allclose(sol.point("P67").position[:, 1], y67, atol=1e-9 * 200)
+    for link in ("lever5", "block", "valve"):
+        np.testing.assert_allclose(sol.link(link).omega[on_arc], 0.0, atol=1e-9)
+    assert y67.min() < 60.0 - 5.0
+    # rolling on the dwell arc: the wheel's turn against the turn of its centre about 38
+    beta = np.unwrap(np.arctan2(W[:, 1] - 100.0, W[:, 0] - 200.0))
+    turn = sol.pose_derivatives("wheel")[0, :, 2]
+    i = np.flatnonzero(on_arc)
+    np.testing.assert_allclose(turn[i] - turn[i[0]], (80.0 / 15.0) * (beta[i] - beta[i[0]]), atol=1e-9)
+
+
+def test_proell_schwabe_pole_35():
+    """§110: the relative pole 35 of the levers lies on the contact normal between wheel 4 and
+    lever 5 (through the wheel's centre 234) and on the line 58–38 (Aronhold–Kennedy): there the
+    points of levers 3 and 5 move alike."""
+    m = mech("proell-schwabe-valve-gear")
+    phi = np.radians(np.arange(0.0, 360.0, 3.0) + 0.3)
+    sol = linkwork.solve(m, phi)
+    rep = sol.joint("roll")
+    W = sol.point("P234").position
+    n = rep["point"] - W
+    P35 = _line_cross(W, n, np.broadcast_to(PS["P38"], W.shape), np.broadcast_to(PS["P58"] - PS["P38"], W.shape))
+    v3 = sol.point_on("lever3", sol.local("lever3", P35)).velocity
+    v5 = sol.point_on("lever5", sol.local("lever5", P35)).velocity
+    moving = np.abs(sol.link("lever5").omega) > 1e-6
+    assert moving.sum() > 10
+    np.testing.assert_allclose(v3[moving], v5[moving], atol=1e-8 * 200 * 3 * np.pi)
+
+
+def test_a_contact_run_off_its_profile_is_unreachable_not_a_crash():
+    """The Proell–Schwabe track's straight end cut short: where the wheel would roll beyond it
+    the samples are marked unreachable (NaN), the others solve as before."""
+    from importlib.resources import files
+
+    text = (files("linkwork") / "library" / "proell-schwabe-valve-gear.toml").read_text()
+    short = text.replace("line_to = [240.55344124764082, 13.51058791404498]",
+                         "line_to = [194.19424851930145, 32.24091758484058]")  # 20 mm of it
+    assert short != text
+    m = linkwork.load_text(short)
+    phi = np.radians(np.arange(0.0, 360.0, 5.0) + 0.3)
+    sol = linkwork.solve(m, phi)
+    bad = sol.status == Status.UNREACHABLE
+    assert bad.any() and not bad.all()
+    assert np.isnan(sol.point("P67").position[bad]).all()
+    ref = linkwork.solve(mech("proell-schwabe-valve-gear"), phi[~bad])
+    np.testing.assert_allclose(sol.point("P67").position[~bad], ref.point("P67").position, atol=1e-9)
+
+
+# ---------------------------------------------------------------------------- real profiles
+HIGHER = ["radial-roller-cam", "offset-roller-cam", "flat-faced-cam", "oscillating-roller-cam",
+          "poeschl-arc-cam", "elliptical-gears", "rolling-lever-valve-gear", "sulzer-valve-gear",
+          "proell-schwabe-valve-gear"]
+
+
+def test_higher_pair_mechanisms_are_in_the_library():
+    from linkwork.io.files import library_names
+
+    assert set(HIGHER) <= set(library_names())
+
+
+def _oscillating_on(profile_toml: str, C: np.ndarray):
+    """The library's oscillating roller lever, its disc replaced by `profile_toml` and the
+    roller's centre drawn at C."""
+    from importlib.resources import files
+
+    text = (files("linkwork") / "library" / "oscillating-roller-cam.toml").read_text()
+    old = 'type = "circle"\ncenter = [10, 0]\nradius = 30\n'
+    old_c = "C  = [10.806418259638395, 37.99144232048215]"
+    assert old in text and old_c in text
+    return linkwork.load_text(text.replace(old, profile_toml).replace(
+        old_c, f"C  = [{float(C[0])!r}, {float(C[1])!r}]"))
+
+
+def test_oscillating_roller_on_a_spline_cam_by_finite_differences():
+    """A real profile: a closed quintic spline through 36 points of a wobbly disc, the roller
+    drawn touching it near the eccentric's contact. The rocker's angular velocity is the central
+    difference of its angles, its acceleration that of its velocities."""
+    from linkwork.geometry.profiles import SplineProfile
+
+    t = np.linspace(0.0, 2 * np.pi, 36, endpoint=False)
+    rng = np.random.default_rng(7)
+    r = 30.0 + 1.5 * np.sin(3 * t) + rng.uniform(-0.1, 0.1, t.size)
+    pts = np.c_[10.0 + r * np.cos(t), r * np.sin(t)]
+    spline = SplineProfile(pts, closed=True)
+    C0 = np.array([10.806418259638395, 37.99144232048215])
+    d = spline.derivatives(np.array(spline.nearest(C0)), 1)
+    n = np.array([d[1][1], -d[1][0]]) / np.hypot(*d[1])  # right of a ccw curve: outwards
+    rows = ", ".join(f"[{float(x)!r}, {float(y)!r}]" for x, y in pts)
+    m = _oscillating_on(f'type = "spline"\nclosed = true\npoints = [{rows}]\n', d[0] + 8.0 * n)
+    phi = np.radians(np.arange(0.0, 360.0, 7.0) + 0.9)
+    sol = linkwork.solve(m, phi)
+    assert (sol.status == Status.OK).all()
+    h = 1e-5
+    w = m.drivers[0].law.speed
+    up, dn = linkwork.solve(m, phi + h), linkwork.solve(m, phi - h)
+    ang = lambda s: s.pose_derivatives("rocker")[0, :, 2]  # noqa: E731
+    np.testing.assert_allclose(sol.link("rocker").omega, w * (ang(up) - ang(dn)) / (2 * h), atol=1e-6 * w)
+    np.testing.assert_allclose(sol.link("rocker").alpha,
+                               w * (up.link("rocker").omega - dn.link("rocker").omega) / (2 * h),
+                               atol=1e-5 * w * w)
+    assert np.ptp(ang(sol)) > np.radians(5.0)  # the rocker does swing
+
+
+def test_poeschl_cam_with_an_oscillating_lever_follows_the_four_bars():
+    """Pöschl §49 (Abb. 59): the arc cam under a roller lever (Schwinghebel) pivoted at B0; for
+    each arc the equivalent mechanism is the four-bar O–K–M–B0 through the arc's centre K (coupler
+    R + ρ, M the roller centre)."""
+    from linkwork.model import CamContact, Mechanism, Revolute
+
+    cam = mech("poeschl-arc-cam")
+    B0, C0 = np.array([-70.0, 50.0]), np.array([0.0, R0 + RHO_P])
+    m = Mechanism.build(
+        name="arc cam, oscillating roller lever", points={"O": [0, 0], "Q": [40, 0], "B0": B0, "C": C0},
+        links={"frame": ["O", "B0"], "cam": ["O", "Q"], "lever": ["B0", "C"]},
+        joints=[Revolute("O", "O", ("frame", "cam")), Revolute("B0", "B0", ("frame", "lever")),
+                CamContact("K", ("cam", "lever"), "cam", "roller", point="C", radius=RHO_P)],
+        drivers=[{"joint": "O"}], profiles={"cam": cam.profiles["cam"]})
+    phi = np.radians(np.arange(0.0, 360.0, 1.0) + 0.37)
+    sol = linkwork.solve(m, phi)
+    assert (sol.status == Status.OK).all()
+
+    def lever_angle(phi):
+        n = len(phi)
+        out, which = np.full(n, np.nan), np.full(n, -1)
+        for i, (c, r, a0, sweep) in enumerate(poeschl_arcs()):
+            K = _rot(phi, np.broadcast_to(c, (n, 2)))
+            M = _circles_upper(np.broadcast_to(B0, (n, 2)), 70.0, K, r + RHO_P)
+            contact = _rot(-phi, M - K)
+            inside = np.mod(np.arctan2(contact[:, 1], contact[:, 0]) - a0, 2 * np.pi) <= sweep
+            sel = inside & (which < 0)
+            out[sel] = np.arctan2(M[sel, 1] - B0[1], M[sel, 0] - B0[0])
+            which[sel] = i
+        return out, which
+
+    psi, which = lever_angle(phi)
+    assert set(which) == set(range(6))
+    np.testing.assert_allclose(sol.pose_derivatives("lever")[0, :, 2], psi - np.arctan2(*(C0 - B0)[::-1]),
+                               atol=1e-11)
+    h = 1e-6
+    np.testing.assert_allclose(sol.link("lever").omega,
+                               (lever_angle(phi + h)[0] - lever_angle(phi - h)[0]) / (2 * h), atol=1e-7)
+    # the lever rests in both dwells
+    np.testing.assert_allclose(sol.link("lever").omega[(which == 2) | (which == 5)], 0.0, atol=1e-12)

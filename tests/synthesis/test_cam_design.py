@@ -196,3 +196,21 @@ def test_bad_designs_are_named(kw, message):
 def test_flat_face_has_no_pressure_angle_to_limit():
     with pytest.raises(CamDesignError, match="limit the radius of curvature"):
         smallest_base_radius(DiscCam(program(), "flat", 40.0), max_pressure_angle=np.radians(30))
+
+
+def test_smallest_base_radius_roller_without_undercut():
+    """The smallest base circle whose profile keeps a radius of curvature of 2 on its convex
+    parts: there the osculating circles through sampled profile points come down to 2, and on a
+    base circle 1 % smaller below it."""
+    segs = [("rise", 60.0, 25.0, "cycloidal"), ("dwell", 30.0, 0.0, None), ("return", 70.0, 25.0, "3-4-5"),
+            ("dwell", 200.0, 0.0, None)]
+    cam = DiscCam(program(segs), "roller", 40.0, roller_radius=10.0)
+    rb = smallest_base_radius(cam, min_radius_of_curvature=2.0)
+    phi = np.radians(np.arange(0.0, 360.0, 0.01))
+
+    def smallest_convex(c):
+        r = osculating_radius(sample_three(c.profile, phi, 1e-4))
+        return r[(r > 0) & (r < 1e3)].min()
+
+    assert smallest_convex(with_base_radius(cam, rb)) == pytest.approx(2.0, rel=1e-3)
+    assert smallest_convex(with_base_radius(cam, 0.99 * rb)) < 2.0 - 1e-3

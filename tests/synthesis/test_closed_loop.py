@@ -107,3 +107,21 @@ def test_uniform_law_with_a_knife_reports_its_corners():
     cam, _ = design("uniform", "translating knife")
     angles = sorted(round(np.degrees(j.angle), 9) for j in corners(cam))
     assert angles == [0.0, 140.0, 180.0, 300.0]
+
+
+@pytest.mark.parametrize("follower", ["roller", "knife", "flat"])
+def test_turned_line_of_motion_and_shifted_centre(follower):
+    """The follower's line turned to 30°, the cam's centre away from the origin, the turn
+    starting in a dwell: the lift along the line is the program's, and nothing moves across it."""
+    segs = [("dwell", 30.0, 0.0, None), ("rise", 100.0, 12.0, "modified-sine"), ("dwell", 50.0, 0.0, None),
+            ("return", 150.0, 12.0, "4-5-6-7"), ("dwell", 30.0, 0.0, None)]
+    prog = MotionProgram([Segment(k, np.radians(e), lift, lw) for k, e, lift, lw in segs])
+    kw = {"roller": dict(roller_radius=6.0, offset=-4.0), "knife": dict(offset=3.0), "flat": {}}[follower]
+    cam = DiscCam(prog, follower, 30.0, direction=np.radians(30.0), center=(5.0, -3.0), **kw)
+    sol = linkwork.solve(linkwork.load_text(mechanism_text(cam)), PHI, order=2)
+    P = sol.pose_derivatives("follower")
+    e = np.array([np.cos(np.radians(30.0)), np.sin(np.radians(30.0))])
+    want = program_by_hand(segs, PHI)
+    for k in range(3):
+        np.testing.assert_allclose(P[k, :, :2] @ e, want[k], rtol=0, atol=1e-9 * 12.0 / np.radians(100.0) ** k)
+    np.testing.assert_allclose(P[0, :, :2] @ np.array([-e[1], e[0]]), 0.0, atol=1e-12)

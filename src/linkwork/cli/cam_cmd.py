@@ -23,6 +23,7 @@ from rich.table import Table
 from typer.core import TyperCommand
 
 from ..errors import InputError, LinkworkWarning
+from ..outputs import write_output_file
 from ..units import parse_quantity
 from .common import err_console, user_errors
 
@@ -52,6 +53,11 @@ class Follower(str, Enum):
 class Motion(str, Enum):
     translating = "translating"
     oscillating = "oscillating"
+
+
+class Side(str, Enum):
+    left = "left"
+    right = "right"
 
 
 def _number(text: str, what: str) -> float:
@@ -117,8 +123,7 @@ def _summary(report, cam, unit: str, check: float | None) -> Table:
         k = j.first_jump
         if k is not None and k <= 3:
             jump = conv(j.jumps[k - 1])
-            t.add_row(f"join at {np.degrees(j.angle):.3f}°", f"{names[k]} jumps by {jump:.6g} {lu}/rad{'²³'[k - 2] if k > 1 else ''} "
-                      "of cam angle")
+            t.add_row(f"join at {np.degrees(j.angle):.3f}°", f"{names[k]} jumps by {jump:.6g} {lu}/rad{'²³'[k - 2] if k > 1 else ''}")
     if check is not None:
         t.add_row("engine vs law (whole turn)", f"{check:.2e} of the lift")
     return t
@@ -144,7 +149,7 @@ def register(app: typer.Typer) -> None:
         pivot: Optional[str] = typer.Option(None, "--pivot", help="oscillating: the lever's pivot X,Y (cam centre at 0,0)"),
         arm: Optional[float] = typer.Option(None, "--arm", help="oscillating roller or knife: pivot to roller centre or knife tip"),
         face_offset: float = typer.Option(0.0, "--face-offset", help="oscillating flat face: its distance from the pivot"),
-        side: str = typer.Option("left", "--side", help="oscillating: the follower's side (left or right) of the line from the cam centre to the pivot"),
+        side: Side = typer.Option(Side.left, "--side", help="oscillating: the follower's side (left or right) of the line from the cam centre to the pivot"),
         speed: str = typer.Option("1 rad/s", "--speed", help="cam speed written to the file and used for the diagrams, e.g. '300 rpm'"),
         unit: str = typer.Option("mm", "--unit", help="length unit of the file"),
         name: str = typer.Option("Designed disc cam", "--name", help="the mechanism's name"),
@@ -179,7 +184,7 @@ def register(app: typer.Typer) -> None:
                 raise InputError("an oscillating roller or knife needs --arm")
             pv = _pair(pivot, "--pivot") if pivot else None
             kw = dict(roller_radius=radius or 0.0, motion=motion.value, offset=offset, pivot=pv, arm=arm,
-                      face_offset=face_offset, side=side)
+                      face_offset=face_offset, side=side.value)
             searching = max_pressure_angle is not None or min_curvature_radius is not None
             cam = _searchable(program, follower.value, base_radius, kw) if searching else \
                 DiscCam(program, follower.value, base_radius, **kw)
@@ -192,7 +197,7 @@ def register(app: typer.Typer) -> None:
                     rb = base_radius
                 cam = with_base_radius(cam, rb)
             text = mechanism_text(cam, name=name, speed=speed, length_unit=unit)
-            out.write_text(text, encoding="utf-8")
+            write_output_file(out, text)  # all or nothing, OSError as one line
             rep = analyse(cam, speed=w)
             if rep.cusps.size:
                 warnings.warn(LinkworkWarning(

@@ -3,10 +3,11 @@ turning user mistakes into one clear message with a non-zero exit status."""
 
 from __future__ import annotations
 
+import os
 import sys
 import warnings
 from contextlib import contextmanager
-from typing import Iterator
+from typing import Iterable, Iterator
 
 import numpy as np
 import typer
@@ -16,6 +17,7 @@ from rich.text import Text
 from ..errors import InputError, LinkworkError, LinkworkWarning
 from ..io import load
 from ..model import ConstantSpeed, Driver, Mechanism
+from ..outputs import write_output_file
 from ..units import parse_quantity, unit_dimension
 
 err_console = Console(stderr=True)
@@ -304,9 +306,15 @@ def input_speeds(mech: Mechanism, speed: str | list[str] | None) -> np.ndarray |
     return w
 
 
-def write_output(text: str, output: str | None) -> None:
+def write_output(text: str | Iterable[str], output: str | None) -> None:
+    """Text, whole or as chunks (streamed), to the file `output` (all or nothing: see
+    `linkwork.outputs`) or to stdout."""
     if output:
-        with open(output, "w", encoding="utf-8") as fh:
-            fh.write(text)
-    else:
-        sys.stdout.write(text)
+        write_output_file(output, text)
+        return
+    try:
+        for chunk in ((text,) if isinstance(text, str) else text):
+            sys.stdout.write(chunk)
+        sys.stdout.flush()
+    except BrokenPipeError:  # `linkwork analyze … | head`: the reader has what it wanted
+        sys.stdout = open(os.devnull, "w")

@@ -13,13 +13,13 @@ from typing import Optional
 import numpy as np
 import typer
 from rich.console import Console
-from rich.progress import Progress
 from rich.table import Table
 
 from ..io.files import library_names, resolve
 from ..io.schema import MechanismFile
 from ..kinematics import Solution, Status, solve, whole_motion
 from ..errors import InputError
+from . import streams
 from .common import input_speeds, input_values, load_mechanism, show_input, user_errors, write_output
 
 app = typer.Typer(add_completion=False, no_args_is_help=True, pretty_exceptions_enable=False,
@@ -27,34 +27,12 @@ app = typer.Typer(add_completion=False, no_args_is_help=True, pretty_exceptions_
                        "structure, and the classical constructions.")
 console = Console()
 
-CHUNK = 50_000  # samples per solve call when a progress bar is shown
-
 
 class Format(str, Enum):
     table = "table"
     json = "json"
+    jsonl = "jsonl"
     csv = "csv"
-
-
-def _solve_with_progress(mech, kind: str, values: np.ndarray, speeds: np.ndarray | None) -> Solution:
-    """Solve in chunks under a Rich progress bar when there are many samples. `values` are
-    times (N,) or inputs (N, drivers); `speeds` the input speed of each driver (None: the file's)."""
-    def one(v):
-        if kind == "time":
-            return solve(mech, times=v)
-        vel = None if speeds is None else np.broadcast_to(speeds, v.shape).copy()
-        return solve(mech, v, velocities=vel)
-
-    n = len(values)
-    if n <= CHUNK:
-        return one(values)
-    parts = []
-    with Progress(console=Console(stderr=True), transient=True) as bar:
-        task = bar.add_task("solving", total=n)
-        for i in range(0, n, CHUNK):
-            parts.append(one(values[i:i + CHUNK]))
-            bar.advance(task, min(CHUNK, n - i))
-    return Solution.concatenate(parts)
 
 
 def _table(sol: Solution) -> str:
@@ -103,7 +81,28 @@ def _table(sol: Solution) -> str:
                 row += [f"{m.omega[n]:.5g}", f"{m.alpha[n]:.5g}"]
             t.add_row(*row)
         out.print(t)
+    _engagement_tables(out, sol)
     return out.export_text()
+
+
+def _engagement_tables(out: Console, sol: Solution) -> None:
+    """Per Geneva or star-wheel pair: the phase boundaries the motion passes, with the wheel's
+    one-sided velocities and accelerations (at the driver's constant speed)."""
+    from ..kinematics.intermittent import engagement
+    from ..model import is_intermittent
+
+    for j in sol.mechanism.joints:
+        if not is_intermittent(j):
+            continue
+        e = engagement(sol, j.name)
+        t = Table(title=f"{j.kind} pair {j.name}: the wheel advances {np.degrees(e.advance):.4g}° "
+                        f"per driver turn and rests {100 * e.dwell_fraction:.4g}% of it")
+        for c in ("boundary", "input [°]", "phases", "slot", "ω left", "ω right", "α left", "α right"):
+            t.add_column(c, justify="right")
+        for ev in e.events:
+            t.add_row(ev.kind, f"{np.degrees(ev.input):.4f}", f"{ev.before} → {ev.after}",
+                      str(ev.slot), *(f"{v + 0.0:.6g}" for v in (*ev.omega, *ev.alpha)))
+        out.print(t)
 
 
 @app.command()
@@ -112,8 +111,9 @@ def analyze(
     at: Optional[list[str]] = typer.Option(None, "--at", help="input values V[,V…]: degrees (revolute) or the file's length unit (prismatic) unless a unit is written, e.g. 1.2rad, or times (0.5s). Several drivers: NAME=V[,V…] for each driver (repeat --at or separate by commas), e.g. --at O2=30,60 --at O5=10,20; the drivers move in lock-step, a driver with one value is held at it"),
     sweep: Optional[list[str]] = typer.Option(None, "--sweep", help="START:STOP:STEP in the same units. Several drivers: NAME=START:STOP:STEP per driver (repeat --sweep; may be combined with --at NAME=V to hold a driver), lock-step: equal numbers of samples"),
     speed: Optional[list[str]] = typer.Option(None, "--speed", help="driver speed, e.g. '120 rpm' (overrides the file). Several drivers: NAME=Q per driver; the others keep the file's"),
-    fmt: Format = typer.Option(Format.table, "--format", help="table, json or csv"),
-    output: Optional[str] = typer.Option(None, "-o", "--output", help="write to this file instead of stdout"),
+    fmt: Format = typer.Option(Format.table, "--format", help="table, json, jsonl (JSON Lines: one sample per line) or csv"),
+    output: Optional[str] = typer.Option(None, "-o", "--output", help="write to this file instead of stdout (all or nothing: the file appears when complete)"),
+    force: bool = typer.Option(False, "--force", help="write outputs above the size limit (1 GB, or a table of 10 000 rows)"),
 ) -> None:
     """Positions, velocities and accelerations of every point, link and pair.
 
@@ -132,15 +132,18 @@ def analyze(
                 raise InputError("--speed with several drivers needs --at or --sweep: the whole "
                                  "motion follows the drivers' time laws")
             sol = whole_motion(mech, speed=None if w is None else float(w[0]))
-        else:
-            sol = _solve_with_progress(mech, *asked, w)
-        if fmt is Format.json:
-            text = json.dumps(sol.to_document(), indent=1) + "\n"
-        elif fmt is Format.csv:
-            text = sol.to_pandas().to_csv(index=False)
-        else:
-            text = _table(sol)
-        write_output(text, output)
+            streams.check_size(mech, fmt.value, len(sol), output, force)
+            write_output(_table(sol) if fmt is Format.table else streams.whole(sol, fmt.value), output)
+            return
+        kind, values = asked
+        streams.check_size(mech, fmt.value, len(values), output, force)
+        if fmt is Format.table:
+            sol = solve(mech, times=values) if kind == "time" else solve(
+                mech, values, velocities=None if w is None else np.broadcast_to(w, values.shape).copy())
+            write_output(_table(sol), output)
+            return
+        with streams.progress(len(values)) as bar:
+            write_output(streams.stream(mech, kind, values, w, fmt.value, bar), output)
 
 
 @app.command()

@@ -12,6 +12,9 @@ adds its primitives to a :class:`~.svg.Figure`:
   instantaneous geometry of :mod:`linkwork.instant` (poles and Aronhold–Kennedy lines, fixed and
   moving centrodes, inflection circle *Wendekreis*, return circle *Rückkehrkreis*, Bresse circle,
   acceleration centre Γ);
+* ``contact``, ``equivalent`` — the contact point and common normal of higher pairs, and their
+  equivalent linkage (dashed), from :mod:`.higher_layers` (which also draws the profiles of
+  higher pairs in the ``mechanism`` layer);
 * ``construction`` — the elements of a :class:`~.construction.Construction`, step by step.
 
 :func:`scene_figure` assembles a figure from a list of layer names.
@@ -28,14 +31,16 @@ import numpy as np
 from ..errors import InputError, LinkworkError
 from ..geometry import Circle, Line, Point
 from ..kinematics import Solution, solve, whole_motion
-from ..model import CircularSlot, Gear, Mechanism, Prismatic, Revolute, Slot
+from ..model import (CircularSlot, Gear, Mechanism, Prismatic, Revolute, Slot, indexing_schedule,
+                     is_intermittent)
 from ..constructions.construction import Arrow, Construction, Element, Polygon, Segment
 from ..constructions.scales import SHEET_MM, Scale, Scales, nice_ceil
 from .svg import COLOURS, Figure, Style, plain, style_for
 
 MECHANISM_LAYERS = ("mechanism", "paths", "velocities", "accelerations")
 INSTANT_LAYERS = ("poles", "pole-lines", "centrodes", "inflection", "return", "bresse", "gamma")
-LAYERS = MECHANISM_LAYERS + INSTANT_LAYERS + ("construction",)
+HIGHER_LAYERS = ("contact", "equivalent")  # drawing.higher_layers
+LAYERS = MECHANISM_LAYERS + INSTANT_LAYERS + HIGHER_LAYERS + ("construction",)
 
 
 def _rot(theta: float, v: np.ndarray) -> np.ndarray:
@@ -79,8 +84,9 @@ class Scene:
         return [p for p in mech.points if mech.point_owner[p] != mech.frame]
 
     def box(self, grow: float = 0.6) -> tuple[np.ndarray, np.ndarray]:
-        """World box around the mechanism and its paths, grown by ``grow`` times its size."""
-        pts = [self.pos(p) for p in self.mech.points]
+        """World box around the mechanism, its paths and its higher pairs' profiles, grown by
+        ``grow`` times its size."""
+        pts = [self.pos(p) for p in self.mech.points] + self.profile_points()
         if self.motion is not None:
             for p in self.moving_points:
                 pts += list(self.motion.point(p).position[::5])
@@ -89,9 +95,16 @@ class Scene:
         g = grow * max(float(np.max(hi - lo)), self.mech.length_scale * 0.2)
         return lo - g, hi + g
 
+    def profile_points(self) -> list[np.ndarray]:
+        """Points of the higher pairs' profiles at the drawn position (every tenth)."""
+        if not any(j.kind in ("cam", "rolling") for j in self.mech.joints):
+            return []
+        from .higher_layers import outlines
+        return [p for _, xy, _ in outlines(self) for p in xy[::10]]
+
     def extent(self) -> float:
-        """Size of the drawing (mechanism and paths) in mechanism units."""
-        pts = [self.pos(p) for p in self.mech.points]
+        """Size of the drawing (mechanism, paths, profiles) in mechanism units."""
+        pts = [self.pos(p) for p in self.mech.points] + self.profile_points()
         if self.motion is not None:
             for p in self.moving_points:
                 pts += list(self.motion.point(p).position[::10])
@@ -171,6 +184,11 @@ def draw_mechanism(fig: Figure, sc: Scene, *, layer: str = "mechanism", labels: 
             if j.gear_kind != "rack":
                 c2 = P[mech.wheel_centre(j, j.links[1])]
                 fig.symbol("pitch-circle", at=c2, radius_world=j.radii[1], layer=layer)
+        elif is_intermittent(j):
+            _draw_indexing(fig, sc, j, layer)
+    if any(j.kind in ("cam", "rolling") for j in mech.joints):
+        from .higher_layers import draw_elements
+        draw_elements(fig, sc, layer)
     # tracer points and labels
     for p, xy in P.items():
         if p not in joint_points:
@@ -181,6 +199,23 @@ def draw_mechanism(fig: Figure, sc: Scene, *, layer: str = "mechanism", labels: 
                 prefer = np.array([1.0, 0.6])
             fig.label(xy, _point_label(p), prefer=prefer, ident=f"point-{p}",
                       clear=1.1 if p in joint_points else 0.3)
+
+
+def _draw_indexing(fig: Figure, sc: Scene, j, layer: str) -> None:
+    """A Geneva or star wheel, simply: its radial slots (from the foot to where the pin meets
+    them) turned with the wheel, its rim through the slots' mouths, and the pins."""
+    sch = indexing_schedule(sc.mech, j)
+    wheel = j.links[1]
+    C = sc.sol.point_on(j.carrier, sch.C).position[sc.index]
+    th = sc.theta(wheel)
+    lines = sch.slot_lines()
+    for k, (a, inner, outer) in enumerate(lines):
+        e = np.array([np.cos(a + th), np.sin(a + th)])
+        fig.symbol("slot", start=C + inner * e, end=C + outer * e, layer=layer,
+                   ident=f"joint-{j.name}" if k == 0 else None)
+    fig.circle(C, max(o for _, _, o in lines), style=Style(width=0.3), layer=layer)
+    for p in sch.pins:
+        fig.symbol("revolute", at=sc.pos(p), layer=layer)
 
 
 def _point_label(name: str) -> str:
@@ -475,6 +510,9 @@ def scene_figure(sc: Scene, show: Iterable[str] = ("mechanism",), *,
         elif layer in INSTANT_LAYERS:
             from .instant_layers import draw_instant
             draw_instant(fig, sc, layer)
+        elif layer in HIGHER_LAYERS:
+            from .higher_layers import draw_higher
+            draw_higher(fig, sc, layer)
     if construction is not None:
         con = construction.sample(sc.index) if construction.sampled is None else construction
         draw_construction(fig, con, upto=step, highlight=step)

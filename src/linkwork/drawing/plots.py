@@ -17,6 +17,7 @@ from typing import Sequence
 import numpy as np
 
 from ..errors import InputError
+from ..outputs import output_path
 from ..kinematics import Solution, whole_motion
 from ..model import Mechanism
 
@@ -164,6 +165,9 @@ def save(fig, path: str | Path, dpi: float = 150.0) -> Path:
     path = Path(path)
     if path.suffix.lower() not in (".png", ".pdf", ".svg"):
         raise InputError(f"cannot write '{path}': plots are written as .png, .pdf or .svg")
-    fig.savefig(path, dpi=dpi)
-    _plt().close(fig)
+    try:
+        with output_path(path) as tmp:  # all or nothing
+            fig.savefig(tmp, dpi=dpi, format=path.suffix.lower()[1:])
+    finally:
+        _plt().close(fig)
     return path

@@ -23,6 +23,7 @@ from typing import Any, Iterable
 import numpy as np
 
 from ..errors import InputError
+from ..outputs import output_path, write_output_file
 from . import symbols as sym
 from ..constructions.scales import Scale, Scales
 
@@ -563,12 +564,12 @@ class Figure:
         path = Path(path)
         svg = self.to_svg(animate=animate)
         suffix = path.suffix.lower()
-        if suffix == ".svg":
-            path.write_text(svg, encoding="utf-8")
-        elif suffix in (".png", ".pdf"):
-            convert(svg, path, dpi=dpi)
-        else:
+        if suffix not in (".svg", ".png", ".pdf"):
             raise InputError(f"cannot write '{path}': the drawing formats are .svg, .png and .pdf")
+        if suffix == ".svg":
+            write_output_file(path, svg)
+        else:
+            convert(svg, path, dpi=dpi)
         return path
 
 
@@ -580,10 +581,11 @@ def convert(svg: str, path: Path, dpi: float = 200.0) -> None:
         raise InputError(f"writing {path.suffix} needs cairosvg and the cairo library "
                          f"(e.g. apt-get install libcairo2); write .svg instead ({exc})") from None
     data = svg.encode("utf-8")
-    if path.suffix.lower() == ".png":
-        cairosvg.svg2png(bytestring=data, write_to=str(path), dpi=dpi)
-    else:
-        cairosvg.svg2pdf(bytestring=data, write_to=str(path))
+    with output_path(path) as tmp:  # all or nothing: the previous file stays until this one is whole
+        if path.suffix.lower() == ".png":
+            cairosvg.svg2png(bytestring=data, write_to=str(tmp), dpi=dpi)
+        else:
+            cairosvg.svg2pdf(bytestring=data, write_to=str(tmp))
 
 
 def _symbol(name: str, a: dict) -> tuple[str, list]:

@@ -11,15 +11,20 @@ sample or the whole motion. The moving link comes first, `relative_to` defaults 
 Modules: `motion` (relative motion of two links, exact derivatives), `poles` (all poles from
 velocities and by the Aronhold–Kennedy theorem, pole lines), `centrodes` (Rastpolbahn and
 Gangpolbahn with their curvature), `curvature` (second-order curvature theory: inflection,
-return and Bresse circles, Γ, Euler–Savary, envelopes, Bobillier), `third_order` (cubic of
-stationary curvature, Ball and Burmester points).
+return and Bresse circles, Γ, Euler–Savary, envelopes, Bobillier; across a higher pair the
+profiles' curvature centres as conjugate points), `equivalent` (the equivalent linkage of a
+higher pair, Ersatzgetriebe), `third_order` (cubic of stationary curvature, Ball and Burmester
+points).
 """
 
 from .centrodes import Centrodes, centrode_profiles, centrodes
-from .curvature import (Collineation, Envelope, Instant, PathCurvature, acceleration_pole,
-                        bobillier_pole_tangent, bresse_circle, collineation_axis, conjugate,
-                        curvature_centre, envelope, euler_savary, inflection_circle, instant,
-                        line_envelope, path, pole_velocity, return_circle)
+from .curvature import (Collineation, ContactCurvature, Envelope, Instant, PathCurvature,
+                        acceleration_pole, bobillier_pole_tangent, bresse_circle, collineation_axis,
+                        conjugate, contact_curvature, curvature_centre, element_centres, envelope,
+                        euler_savary, inflection_circle, instant, line_envelope, path,
+                        pole_velocity, return_circle)
+from .equivalent import (EquivalentLinkage, equivalent_linkage, equivalent_mechanism,
+                         solve_equivalent)
 from .motion import RelativeMotion, relative_motion
 from .poles import (PoleLine, Poles, PoleSchedule, PoleStep, agreement, kennedy_poles,
                     pole_count, pole_discrepancy, pole_line_count, pole_lines, pole_schedule,
@@ -29,12 +34,14 @@ from .third_order import (BurmesterPoints, StationaryCurvature, ball_point, burm
 
 __all__ = [
     "centrode_profiles",
-    "BurmesterPoints", "Centrodes", "Collineation", "Envelope", "Instant", "PathCurvature",
+    "BurmesterPoints", "Centrodes", "Collineation", "ContactCurvature", "Envelope",
+    "EquivalentLinkage", "Instant", "PathCurvature",
     "PoleLine", "PoleSchedule", "PoleStep", "Poles", "RelativeMotion", "StationaryCurvature",
     "acceleration_pole", "agreement", "ball_point", "bobillier_pole_tangent", "bresse_circle",
-    "burmester_points", "centrodes", "collineation_axis", "conjugate", "curvature_centre",
-    "envelope", "euler_savary", "fourth_order", "inflection_circle", "instant",
+    "burmester_points", "centrodes", "collineation_axis", "conjugate", "contact_curvature",
+    "curvature_centre", "element_centres", "envelope", "equivalent_linkage",
+    "equivalent_mechanism", "euler_savary", "fourth_order", "inflection_circle", "instant",
     "kennedy_poles", "line_envelope", "path", "pole_count", "pole_discrepancy",
     "pole_line_count", "pole_lines", "pole_schedule", "pole_velocity", "poles",
-    "relative_motion", "return_circle", "stationary_curvature",
+    "relative_motion", "return_circle", "solve_equivalent", "stationary_curvature",
 ]

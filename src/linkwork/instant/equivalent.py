@@ -182,7 +182,8 @@ def equivalent_mechanism(solution: Solution, index: int = 0, pairs=None, *,
     equivalent linkages at sample `index`, drawn in that position (its design drawing is the
     solution's drawing at that sample; the drivers and their joints are kept, so its design
     input is the sample's input). New points, links and pairs are named after the pair:
-    'NAME.C1', 'NAME.C2' (the centres), 'NAME.coupler' (the coupler, block or carrier),
+    'NAME.C1', 'NAME.C2' (the centres, unless the link has a point there already: a roller's
+    centre, a knife's tip), 'NAME.coupler' (the coupler, block or carrier),
     'NAME.R1', 'NAME.R2' (hinges), 'NAME.P' (slider), 'NAME.G' (gears)."""
     mech = solution.mechanism
     n = _sample(solution, index)
@@ -205,7 +206,7 @@ def equivalent_mechanism(solution: Solution, index: int = 0, pairs=None, *,
     for j in mech.joints:
         if j.name in chosen:
             eq = equivalent_linkage(solution, j.name, tol=tol)
-            joints += _substitute(eq, n, points, links, taken)
+            joints += _substitute(eq, n, points, links, taken, mech.length_scale)
         elif isinstance(j, (Prismatic, Slot)):
             joints.append(replace(j, axis=rotate(np.array(theta[j.links[0]]), np.asarray(j.axis, float))))
         elif isinstance(j, CamContact):
@@ -227,7 +228,8 @@ def equivalent_mechanism(solution: Solution, index: int = 0, pairs=None, *,
                            profiles=profiles)
 
 
-def _substitute(eq: EquivalentLinkage, n: int, points: dict, links: dict, taken: set) -> list:
+def _substitute(eq: EquivalentLinkage, n: int, points: dict, links: dict, taken: set,
+                scale: float) -> list:
     """The lower pairs (and the new link and points) replacing one higher pair at sample n."""
     a, b = eq.links
     kind = str(eq.kind[n])
@@ -242,22 +244,27 @@ def _substitute(eq: EquivalentLinkage, n: int, points: dict, links: dict, taken:
     cpl = names["coupler"]
     links[cpl] = []
     out: list = []
+    hinge_points: list[str] = []
     t = eq.tangent[n]
     for i, (link, C) in enumerate(((a, eq.centres[0]), (b, eq.centres[1]))):
         if not C.is_finite[n]:
             continue
-        c = names[f"C{i + 1}"]
-        points[c] = C.xy[n]
-        links[link].append(c)
+        # a point the link has there already (a roller's centre, a knife's tip, a wheel's hub)
+        # is the hinge: two names at one place would be a link of zero length
+        at = [p for p in links[link] if np.hypot(*(points[p] - C.xy[n])) <= 1e-9 * scale]
+        c = at[0] if at else names[f"C{i + 1}"]
+        if not at:
+            points[c] = C.xy[n]
+            links[link].append(c)
         links[cpl].append(c)
-        hinge = Revolute(names[f"R{i + 1}"], c, (link, cpl) if i == 0 else (cpl, link))
-        out.append(hinge)
+        out.append(Revolute(names[f"R{i + 1}"], c, (link, cpl) if i == 0 else (cpl, link)))
+        hinge_points.append(c)
     r1, r2 = eq.radii[n]
     if not eq.rolling:
         if kind == "RP":  # the block at C₁ slides along the follower's face, fixed in links[1]
-            out.append(Prismatic(names["P"], names["C1"], (b, cpl), t))
+            out.append(Prismatic(names["P"], hinge_points[0], (b, cpl), t))
         elif kind == "PR":  # the block at C₂ slides along the profile's straight piece
-            out.append(Prismatic(names["P"], names["C2"], (a, cpl), t))
+            out.append(Prismatic(names["P"], hinge_points[0], (a, cpl), t))
         return out
     if kind == "RR":  # the osculating circles roll on each other as pitch circles
         sense = "external" if r1 * r2 < 0 else "internal"

@@ -128,17 +128,23 @@ _TAGS = {"revolute", "prismatic", "slot", "circular-slot", "gear", "cam", "rolli
          "star-wheel", "polynomial",
          "table", "float", "int", "str", "circle", "ellipse", "path", "spline", "points", "line",
          "involute", "archimedean-spiral", "logarithmic-spiral", "cam-design"}
+_SEGMENT_TAGS = {"line", "arc", "rise", "dwell", "return"}
 
 
 def _clean(loc: tuple) -> tuple:
     """A pydantic error location without the union/discriminator tags it inserts."""
     loc = tuple(k for k in loc if not str(k).startswith(("function-", "union[", "list[")))
     # a discriminated union inserts its tag right after the entry's name (joints.K.cam.radius);
-    # strip that one only: a top-level section or a field may share a tag's name ("points")
+    # strip that one only: a top-level section or a field may share a tag's name ("points"),
+    # and so may the name a user gives a joint or a profile (profiles.cam)
+    first = 2 if loc and loc[0] in ("joints", "profiles") else 1
     for i, k in enumerate(loc):
-        if i >= 1 and k in _TAGS:
-            return loc[:i] + loc[i + 1:]
-    return loc
+        if i >= first and k in _TAGS:
+            loc = loc[:i] + loc[i + 1:]
+            break
+    # a profile segment's kind follows its index (profiles.P.segments.0.rise.law)
+    return tuple(k for i, k in enumerate(loc)
+                 if not (i >= 2 and loc[i - 2] == "segments" and isinstance(loc[i - 1], int) and k in _SEGMENT_TAGS))
 
 
 def _file_error(exc: ValidationError, text: str, source: str) -> MechanismFileError:

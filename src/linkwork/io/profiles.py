@@ -85,7 +85,7 @@ dwell and return over cam angles that fill one turn, each `law` one of uniform, 
 cycloidal, 3-4-5, 4-5-6-7, modified-trapezoid, modified-sine, parabolic
 (`linkwork.model.motion_programs`). The cam turns counter-clockwise about `center` (default
 [0, 0]). `motion = "translating"` (default): the follower moves along the direction `direction`
-(an angle, default 90, straight up) on a line `offset` to the right of the cam centre, and the
+(an angle, default 90° straight up) on a line `offset` to the right of the cam centre, and the
 lifts are lengths. `motion = "oscillating"`: a lever pivoted at `pivot` carries the roller or
 knife at `arm` from it, or a flat face at `face_offset` from it; `side` ("left", default, or
 "right") puts the follower on that side of the line from the cam centre to the pivot, and the
@@ -288,7 +288,7 @@ class CamDesignSpec(_Table):
     motion: Literal["translating", "oscillating"] = "translating"
     center: Point = Field([0.0, 0.0], description="the cam's centre of rotation")
     offset: Finite = Field(0.0, description="translating: the line of motion's distance to the right of the cam centre")
-    direction: Finite = Field(90.0, description="translating: the angle of the line of motion")
+    direction: Finite | None = Field(None, description="translating: the angle of the line of motion (default: 90°, straight up)")
     pivot: Point | None = Field(None, description="oscillating: the lever's fixed pivot")
     arm: Positive | None = Field(None, description="oscillating: pivot to roller centre or knife tip")
     face_offset: Finite = Field(0.0, description="oscillating flat face: its distance from the pivot")
@@ -425,7 +425,7 @@ def cam_from_spec(m: CamDesignSpec, rad: float) -> DiscCam:
             raise CamDesignError(need, key=key)
     return DiscCam(MotionProgram(segments), m.follower, m.base_radius,
                    roller_radius=m.roller_radius or 0.0, motion=m.motion, offset=m.offset,
-                   direction=m.direction * rad, pivot=None if m.pivot is None else tuple(m.pivot),
+                   direction=np.pi / 2 if m.direction is None else m.direction * rad, pivot=None if m.pivot is None else tuple(m.pivot),
                    arm=m.arm, face_offset=m.face_offset, side=m.side, center=tuple(m.center))
 
 

@@ -1,7 +1,8 @@
 """Kinematics: solving a `Mechanism` into a `Solution` (positions, velocities, accelerations)."""
 
+from .intermittent import engagement
 from .motion import whole_motion
 from .solution import LinkMotion, PointMotion, Solution, Status
 from .solver import solve
 
-__all__ = ["LinkMotion", "PointMotion", "Solution", "Status", "solve", "whole_motion"]
+__all__ = ["LinkMotion", "PointMotion", "Solution", "Status", "engagement", "solve", "whole_motion"]

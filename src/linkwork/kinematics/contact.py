@@ -172,8 +172,8 @@ def _concavities(mech: Mechanism, j, u: np.ndarray, v: np.ndarray) -> tuple[np.n
     return k1, -float(np.sign(mate_left @ d.normal)) * np.asarray(_curvature(mate, v))
 
 
-def _curvature(profile, u: np.ndarray) -> np.ndarray:
-    D = profile.derivatives(u, 2)
+def _curvature(profile, u: np.ndarray, side: int = 1) -> np.ndarray:
+    D = profile.derivatives(u, 2, side=side)
     t = D[1]
     return (t[..., 0] * D[2][..., 1] - t[..., 1] * D[2][..., 0]) / np.hypot(t[..., 0], t[..., 1]) ** 3
 
@@ -226,6 +226,33 @@ def _roller_cuts_elsewhere(mech: Mechanism, j, poses: np.ndarray) -> np.ndarray:
     return out
 
 
+@lru_cache(maxsize=256)
+def _convex_outside(mech: Mechanism, name: str) -> bool:
+    """A roller or flat face outside a convex closed profile (the common disc cam) can touch it
+    nowhere but at the contact: the common tangent separates them. Convex: the curvature,
+    on both sides of every join, bends away from the follower all round, and the tangent turns
+    once."""
+    j = mech.joint(name)
+    if not (isinstance(j, CamContact) and j.follower in ("roller", "flat")):
+        return False
+    prof = mech.profiles[j.profile]
+    if not prof.closed or not np.isfinite(prof.domain).all():
+        return False
+    d = _design(mech, name)
+    D1 = prof.derivatives(np.array(d.u0), 1)
+    towards = float(np.sign(np.array([-D1[1][1], D1[1][0]]) @ d.normal))
+    u = np.linspace(prof.domain[0], prof.domain[1], 4096, endpoint=False)
+    breaks = np.asarray(prof.breaks, dtype=float)
+    k = np.concatenate([_curvature(prof, u), _curvature(prof, breaks, side=-1),
+                        _curvature(prof, breaks, side=1)])
+    if not (np.all(np.isfinite(k)) and np.all(towards * k <= 0.0)):
+        return False
+    t = prof.derivatives(u, 1)[1]
+    heading = np.unwrap(np.arctan2(t[:, 1], t[:, 0]))
+    last = np.angle(np.exp(1j * (heading[0] - heading[-1])))  # from the last sample round to the first
+    return abs(abs(heading[-1] - heading[0] + last) - 2 * np.pi) < 1e-6
+
+
 def interference(mech: Mechanism, poses: np.ndarray) -> np.ndarray:
     """Samples (N,) at which some higher pair's elements would cut into each other: next to the
     contact (a roller larger than the hollow of the profile it sits in — the undercut cam —, a
@@ -239,6 +266,8 @@ def interference(mech: Mechanism, poses: np.ndarray) -> np.ndarray:
     index = row_index(mech)
     for j in mech.joints:
         if not is_higher(j) or (isinstance(j, CamContact) and j.follower == "knife"):
+            continue
+        if _convex_outside(mech, j.name):
             continue
         d = _design(mech, j.name)
         r = index[row_name(j)]
@@ -289,7 +318,9 @@ def report(sol, name: str) -> dict[str, np.ndarray]:
     along the common tangent (zero for rolling); `roller_spin` (rollers): the angular velocity
     relative to the follower with which a roller turning freely rolls without slip;
     `pressure_angle`: between the common normal (the line of action of the contact force) and
-    the velocity of the follower's point (a roller's centre, else the contact point), in [0, π/2].
+    the direction in which the follower's point (a roller's centre or knife tip, else the
+    contact point) moves, in [0, π/2]: for a follower held by one hinge or guide the direction
+    its pair allows (defined in dwells too), otherwise its velocity's.
     """
     mech = sol.mechanism
     j = mech.joint(name)
@@ -342,6 +373,13 @@ def report(sol, name: str) -> dict[str, np.ndarray]:
         out["v"] = v
         out["follower_speed"] = np.hypot(*mate.derivatives(v, 1)[1].T) * C[1, :, row, 1]
         v_f = vb_point
+    # the direction the follower's point moves in: from the follower's own hinge or guide where
+    # it has only that (so also in a dwell, where its velocity is zero), else its velocity
+    from .cam_group import motion_direction, of_pair
+    cf = of_pair(mech, j) if isinstance(j, CamContact) else None
+    if cf is not None:
+        v_f = motion_direction(cf, sol, sol.point(j.point).position if follower in ("roller", "knife")
+                               else point)
     with np.errstate(invalid="ignore", divide="ignore"):
         cos_a = np.abs(np.einsum("ij,ij->i", normal, v_f)) / np.hypot(v_f[:, 0], v_f[:, 1])
     out["pressure_angle"] = np.arccos(np.clip(cos_a, 0.0, 1.0))

@@ -24,11 +24,22 @@ def _joint_fields(sol: Solution) -> dict[str, dict[str, np.ndarray]]:
 
 def to_document(sol: Solution) -> dict:
     mech = sol.mechanism
+    return {
+        "mechanism": mech.name,
+        "units": {"length": mech.length_unit, "angle": "rad", "time": "s"},
+        "drivers": [d.joint for d in mech.drivers],
+        "samples": list(iter_samples(sol)),
+    }
+
+
+def iter_samples(sol: Solution):
+    """The samples of `to_document`, one dict at a time (so that a long solution can be written
+    as it is read: JSON Lines, a streamed JSON document)."""
+    mech = sol.mechanism
     points = {p: sol.point(p) for p in mech.points}
     links = {ln: sol.link(ln) for ln in mech.link_names}
     joints = _joint_fields(sol)
     single = sol.inputs.shape[1] == 1
-    samples = []
     for n in range(len(sol)):
         s = {
             "input": _num(sol.inputs[n, 0]) if single else _vec(sol.inputs[n]),
@@ -46,13 +57,7 @@ def to_document(sol: Solution) -> dict:
                       for ln, m in links.items() if ln != mech.frame}
         s["joints"] = {jn: {k: (_vec(v[n]) if v.ndim == 2 else _num(v[n])) for k, v in f.items()}
                        for jn, f in joints.items()}
-        samples.append(s)
-    return {
-        "mechanism": mech.name,
-        "units": {"length": mech.length_unit, "angle": "rad", "time": "s"},
-        "drivers": [d.joint for d in mech.drivers],
-        "samples": samples,
-    }
+        yield s
 
 
 def to_dataframe(sol: Solution):

@@ -24,7 +24,7 @@ import numpy as np
 
 from ..model import ConstantSpeed, Driver, Mechanism, Prismatic, Revolute, Slot
 from ..topology import Group
-from . import contact, intermittent
+from . import cam_group, contact, intermittent
 from .constraints import driver_residual, joint_residuals
 from .jet import Jet
 
@@ -231,20 +231,29 @@ def least_squares(J: np.ndarray, b: np.ndarray) -> np.ndarray:
     """x with J·x = b, per sample: by LU when every J is square and regular, else in the least
     squares sense (a singular sample in the batch, or more constraint rows than unknowns where
     sliding pairs repeat a rotation row)."""
+    out = np.full(b.shape[:-1] + J.shape[-1:], np.nan, dtype=np.result_type(J, b))
     if J.shape[-1] == J.shape[-2]:
         try:
             return np.linalg.solve(J, b[..., None])[..., 0]
         except np.linalg.LinAlgError:
-            # only the singular samples by the pseudo-inverse: the others' answers do not
-            # depend on what else is in the batch
-            sv = np.linalg.svd(J, compute_uv=False)
-            regular = sv[..., -1] > 1e-15 * sv[..., 0]
-            out = np.empty(b.shape, dtype=np.result_type(J, b))
-            if regular.any():
-                out[regular] = np.linalg.solve(J[regular], b[regular][..., None])[..., 0]
-            out[~regular] = (np.linalg.pinv(J[~regular]) @ b[~regular][..., None])[..., 0]
-            return out
-    return (np.linalg.pinv(J) @ b[..., None])[..., 0]
+            pass
+    # samples with NaN in them (a contact run off the end of its profile) stay NaN: the SVD of
+    # pinv would not converge on them; of the others only the singular ones by the
+    # pseudo-inverse, so that the others' answers do not depend on what else is in the batch
+    good = np.isfinite(J).all(axis=(-2, -1)) & np.isfinite(b).all(axis=-1)
+    Jg, bg = J[good], b[good]
+    if J.shape[-1] != J.shape[-2]:
+        out[good] = (np.linalg.pinv(Jg) @ bg[..., None])[..., 0]
+        return out
+    sv = np.linalg.svd(Jg, compute_uv=False)
+    regular = sv[..., -1] > 1e-15 * sv[..., 0]
+    res = np.empty(bg.shape, dtype=out.dtype)
+    if regular.any():
+        res[regular] = np.linalg.solve(Jg[regular], bg[regular][..., None])[..., 0]
+    if (~regular).any():
+        res[~regular] = (np.linalg.pinv(Jg[~regular]) @ bg[~regular][..., None])[..., 0]
+    out[good] = res
+    return out
 
 
 def _scaled(J: np.ndarray, scale: float, links: tuple[str, ...] = ()) -> np.ndarray:
@@ -370,6 +379,9 @@ class GroupSolver:
                       if contact.is_higher(mech.joint(j)))
         self.mech, self.group = mech, replace(group, links=group.links + extra) if extra else group
         self.kind, self.parts = _classify(mech, group)
+        # a cam follower is solved in its own two unknowns (`cam_group`); the continuation still
+        # treats it as generic (its rows are the generic rows)
+        self.cam = cam_group.recognise(mech, group) if self.kind == "generic" else None
         self.fast  # noqa: B018  (computed once here; `plan` keeps the solver per mechanism)
 
     @property
@@ -587,6 +599,10 @@ class GroupSolver:
 
     def _pos_generic(self, state: State, guess: np.ndarray | None) -> np.ndarray:
         """Newton's method on the group alone, from `guess` (N, k, 3) poses."""
+        if self.cam is not None:
+            ok, err = cam_group.positions(self.cam, state, guess, NEWTON_TOL * self.mech.length_scale)
+            state.residuals[self.group] = err / self.mech.length_scale
+            return ok
         idx = [state.li(ln) for ln in self.group.links]
         N = state.Q.shape[1]
         q = np.zeros((N, self.group.size, 3)) if guess is None else guess.copy()
@@ -639,10 +655,47 @@ class GroupSolver:
             if self.kind == "RRR":
                 return self._der_RRR(state, ok, budget)
             return self._der_driver(state, ok, budget)
-        cond = derivatives_generic(state, self.group, ok)
+        if self.cam is not None:
+            cond = cam_group.derivatives(self.cam, state, ok, UNRELIABLE_CONDITION)
+        elif self.kind == "intermittent":
+            cond = self._der_intermittent(state)
+        else:
+            cond = derivatives_generic(state, self.group, ok)
         if budget is not None:
             budget.add(state, self, cond)
         return cond
+
+    def _der_intermittent(self, state: State) -> np.ndarray:
+        """Rates of a wheel indexed by an intermittent pair, in closed form: its angle relative
+        to the carrier is T(δ) of the driver's relative angle δ, so its jet is T composed with
+        δ's jet (the transmission's derivatives, `intermittent.transmission`); its origin follows
+        from its pivot C on the carrier. The same rates as the phase equations' linear solve
+        (`derivatives_generic`, the independent check in the tests), without it. The condition
+        number is the one of that solve's scaled Jacobian, in closed form: the pivot's rows
+        [I | v] and the pair's row (0, 0, g), g = 1 locked, (D − r)/L in the pin gear, |CB|/L on
+        a slot, whose singular values are 1 and those of [[1, |v|], [0, g]]."""
+        p = self.parts
+        j, wheel, mech = p["pair"], p["wheel"], self.mech
+        K = state.order
+        ic, iw = state.li(j.carrier), state.li(wheel)
+        Qc = state.Q[: K + 1, :, ic]
+        th_c = Jet(Qc[..., 2])
+        delta = Jet(state.Q[: K + 1, :, state.li(j.links[0]), 2]) - th_c
+        th = th_c + delta.compose(intermittent.transmission(mech, j, delta.c[0], order=K))
+        C = mech.points[p["pivot"].point]
+        cc, sc = th_c.cos_sin()
+        cw, sw = th.cos_sin()
+        state.Q[1: K + 1, :, iw, 0] = (Jet(Qc[..., 0]) + (cc - cw) * C[0] - (sc - sw) * C[1]).c[1:]
+        state.Q[1: K + 1, :, iw, 1] = (Jet(Qc[..., 1]) + (sc - sw) * C[0] + (cc - cw) * C[1]).c[1:]
+        state.Q[1: K + 1, :, iw, 2] = th.c[1:]
+        L = mech.length_scale
+        g = intermittent.row_slope(mech, j, state.Q[0, :, state.li(j.links[0]), 2] - Qc[0, :, 2]) / L
+        v2 = (C[0] ** 2 + C[1] ** 2) / L**2
+        t = 1.0 + v2 + g * g
+        root = np.sqrt(np.maximum(t * t - 4 * g * g, 0.0))
+        s_hi, s_lo = np.sqrt(0.5 * (t + root)), np.abs(g) / np.sqrt(0.5 * (t + root))
+        with np.errstate(divide="ignore", invalid="ignore"):
+            return np.maximum(s_hi, 1.0) / np.minimum(s_lo, 1.0)
 
     def _der_driver(self, state: State, ok: np.ndarray, b) -> np.ndarray:
         """Revolute driver (`kernels.driver_rates`); its condition number is the design one."""

@@ -22,17 +22,16 @@ smoothed value.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from math import factorial
 
 import numpy as np
 
 from ..model import ConstantSpeed, Mechanism, Revolute
-from ..model.intermittent import (DWELL, ENGAGED, ENTRY, EXIT, GEAR, PHASES, SLOT_PHASES, TWO_PI,
-                                  IndexingSchedule, indexing_schedule, is_intermittent)
+from ..model.intermittent import (DWELL, GEAR, PHASES, SLOT_PHASES, TWO_PI, IndexingSchedule,
+                                  indexing_schedule, is_intermittent)
 from .jet import Jet
 
-__all__ = ["Engagement", "Event", "contact_normal", "engagement", "is_intermittent", "report", "residuals",
-           "transmission", "wheel_angle"]
+__all__ = ["Engagement", "Event", "contact_normal", "engagement", "is_intermittent", "report",
+           "residuals", "row_slope", "transmission", "wheel_angle"]
 
 
 def schedule(mech: Mechanism, name: str) -> IndexingSchedule:
@@ -56,7 +55,7 @@ def _phase_data(sch: IndexingSchedule, delta: np.ndarray) -> dict[str, np.ndarra
     pins = list(sch.pins)
     pin = np.array([pins.index(p.pin) if p.pin else -1 for p in ph])[idx]
     return dict(kind=kind, radius=radius, theta0=-tau0, delta0=start, sx=np.cos(ang),
-                sy=np.sin(ang), pin=pin, m=m, idx=idx)
+                sy=np.sin(ang), pin=pin, m=m, idx=idx, x=x)
 
 
 def _select(masks_and_jets: list[tuple[np.ndarray, Jet]], default: Jet) -> Jet:
@@ -92,6 +91,19 @@ def residuals(mech: Mechanism, j, pose, point, rotate) -> list[Jet]:
     return [_select([(f["kind"] == GEAR, gear), (on_slot, slot)], locked)]
 
 
+def row_slope(mech: Mechanism, j, delta: np.ndarray) -> np.ndarray:
+    """|∂(the pair's equation)/∂θ_wheel| at driver rotations δ: the length scale while locked,
+    D − r in the pin gear, the pin's distance |CB| from the wheel's centre on a slot."""
+    sch = schedule(mech, j.name)
+    f = _phase_data(sch, delta)
+    v = np.array([p.v0 - p.start for p in sch.phases])[f["idx"]] + f["x"]  # the pin's angle
+    r = f["radius"]
+    on_slot = np.sqrt(sch.D**2 + r * r - 2 * sch.D * r * np.cos(v))
+    out = np.where(f["kind"] == GEAR, sch.D - r, np.where(np.isin(f["kind"], SLOT_PHASES), on_slot,
+                                                          mech.length_scale))
+    return np.where(np.isfinite(delta), out, np.nan)
+
+
 def pivots(mech: Mechanism, j) -> tuple[str, str]:
     """The points of the driver's and the wheel's revolutes on the carrier."""
     out = []
@@ -125,35 +137,17 @@ def transmission(mech: Mechanism, j, delta, order: int = 3, *, phase: np.ndarray
     one each δ falls in (for one-sided limits at a boundary)."""
     sch = schedule(mech, j.name)
     delta = np.atleast_1d(np.asarray(delta, dtype=float))
-    m, x, idx = sch.locate(delta)
-    if phase is not None:
-        # the turn in which the given phase holds nearest to δ (δ lies in it or on its ends)
-        idx = np.broadcast_to(phase, delta.shape)
-        mid = np.array([0.5 * (p.start + p.end) for p in sch.phases])[idx]
-        m = np.round((delta - sch.origin - mid) / TWO_PI)
-        x = delta - sch.origin - m * TWO_PI
+    m, x, idx = sch.locate(delta, phase)
     out = np.zeros((order + 1,) + delta.shape)
-    design_tau = sch.advance_at(np.zeros(1))[0]
+    out[0] = -(sch.advance_at(delta, phase) - sch.advance_at(np.zeros(1))[0])
     for k, ph in enumerate(sch.phases):
         on = idx == k
-        if not on.any():
+        if order == 0 or not on.any() or ph.kind == DWELL:
             continue
-        s = x[on] - ph.start
-        if ph.kind == DWELL:
-            tau = np.full(s.shape, ph.tau0)
-        elif ph.kind == GEAR:
-            kappa = ph.radius / (sch.D - ph.radius)
-            tau = ph.tau0 + kappa * s
-            if order >= 1:
-                out[1, on] = -kappa
-        else:
-            lam = ph.radius / sch.D
-            v = ph.v0 + s
-            tau = ph.tau0 + (np.arctan2(lam * np.sin(v), 1 - lam * np.cos(v))
-                             - np.arctan2(lam * np.sin(ph.v0), 1 - lam * np.cos(ph.v0)))
-            if order >= 1:
-                out[1:, on] = -_psi_rates(v, lam, order)
-        out[0, on] = -(tau + m[on] * sch.advance - design_tau)
+        if ph.kind == GEAR:
+            out[1, on] = -ph.radius / (sch.D - ph.radius)
+        else:  # the pin on a slot: tan ψ = λ sin v/(1 − λ cos v)
+            out[1:, on] = -_psi_rates(ph.v0 + x[on] - ph.start, ph.radius / sch.D, order)
     return out
 
 

@@ -4,9 +4,11 @@ Nothing here computes motion; `linkwork.kinematics` solves a `Mechanism` into a 
 """
 
 from .higher_pairs import CamContact, DesignContact, HigherPair, RollingContact, design_contact
+from .disc_cams import DiscCam
 from .intermittent import (GenevaPair, IndexingSchedule, IntermittentPair, StarWheelPair,
                            indexing_schedule, is_intermittent)
 from .laws import ConstantSpeed, MotionLaw, PolynomialLaw, TabulatedLaw
+from .motion_programs import CamDesignError, MotionProgram, Segment
 from .mechanism import (
     CircularSlot,
     Driver,
@@ -20,7 +22,8 @@ from .mechanism import (
 )
 
 __all__ = [
-    "CamContact", "CircularSlot", "ConstantSpeed", "DesignContact", "HigherPair", "RollingContact",
+    "CamContact", "CamDesignError", "CircularSlot", "ConstantSpeed", "DesignContact", "DiscCam",
+    "HigherPair", "MotionProgram", "RollingContact", "Segment",
     "design_contact", "Driver", "Gear", "Joint", "Link", "Mechanism", "MotionLaw",
     "PolynomialLaw", "Prismatic", "Revolute", "Slot", "TabulatedLaw",
     "GenevaPair", "IndexingSchedule", "IntermittentPair", "StarWheelPair", "indexing_schedule",

@@ -160,6 +160,28 @@ class DiscCam:
         """σ: ψ = ψ₀ + σ·s."""
         return self._geometry["sigma"]
 
+    @property
+    def pivot_vector(self) -> complex:
+        """The oscillating lever's pivot seen from the cam centre (complex)."""
+        return self._geometry["A"]
+
+    @property
+    def line_vector(self) -> complex:
+        """The translating follower's direction of lift e (complex, unit)."""
+        return self._geometry["e"]
+
+    def element_point(self, phi: np.ndarray, order: int = 1, side: int = 1) -> np.ndarray:
+        """(order + 1, *phi.shape) complex: the roller centre or knife tip C(φ) in the frame,
+        about the cam centre, and its derivatives with respect to the cam angle."""
+        return taylor.to_derivatives(self._frame_point_series(self._lift_series(np.asarray(phi, dtype=float), order, side)))
+
+    def face_line(self, phi: np.ndarray, order: int = 1, side: int = 1) -> tuple[np.ndarray, np.ndarray]:
+        """(θ, p), each (order + 1, *phi.shape), with derivatives: a flat face's line X·e^{iθ} = p
+        in the cam's coordinates (about the cam centre) at cam angle φ."""
+        phi = np.asarray(phi, dtype=float)
+        theta, p = self._face_series(phi, self._lift_series(phi, order, side))
+        return taylor.to_derivatives(theta), taylor.to_derivatives(p)
+
     def follower_motion(self, phi: np.ndarray, order: int, side: int = 1) -> np.ndarray:
         """(order + 1, *phi.shape): the follower's displacement along its line of motion from
         its lowest position (translating) or its lever angle ψ (oscillating) and their

@@ -152,10 +152,18 @@ class IndexingSchedule:
     def starts(self) -> np.ndarray:
         return np.array([p.start for p in self.phases])
 
-    def locate(self, delta: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    def locate(self, delta: np.ndarray, phase: np.ndarray | None = None
+               ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """(turn m, x, phase index) for driver rotations δ: δ = origin + 2πm + x, 0 ≤ x < 2π.
-        A δ on a phase boundary belongs to the phase that begins there."""
+        A δ on a phase boundary belongs to the phase that begins there. With `phase` (phase
+        indices), that phase in the turn where it holds nearest to δ (for one-sided limits at
+        its ends)."""
         delta = np.asarray(delta, dtype=float)
+        if phase is not None:
+            idx = np.broadcast_to(phase, delta.shape)
+            mid = np.array([0.5 * (p.start + p.end) for p in self.phases])[idx]
+            m = np.round((delta - self.origin - mid) / TWO_PI)
+            return m, delta - self.origin - m * TWO_PI, idx
         finite = np.isfinite(delta)
         d = np.where(finite, delta - self.origin, 0.0)
         m = np.floor(d / TWO_PI)
@@ -165,9 +173,10 @@ class IndexingSchedule:
         idx = np.searchsorted(self.starts, x, side="right") - 1
         return m, np.where(finite, x, np.nan), np.clip(idx, 0, len(self.phases) - 1)
 
-    def advance_at(self, delta: np.ndarray) -> np.ndarray:
-        """The wheel's advance τ(δ) (radians, in its forward sense) since the origin."""
-        m, x, idx = self.locate(delta)
+    def advance_at(self, delta: np.ndarray, phase: np.ndarray | None = None) -> np.ndarray:
+        """The wheel's advance τ(δ) (radians, in its forward sense) since the origin (`phase`:
+        by the law of the given phases, see `locate`)."""
+        m, x, idx = self.locate(delta, phase)
         tau = np.full(np.shape(x), np.nan)
         for k, ph in enumerate(self.phases):
             on = idx == k
@@ -187,6 +196,23 @@ class IndexingSchedule:
     def wheel_angle(self, delta: np.ndarray) -> np.ndarray:
         """The wheel's angle relative to the carrier, from the drawing, at driver rotations δ."""
         return -(self.advance_at(delta) - self.advance_at(np.zeros(1))[0])
+
+    def slot_lines(self) -> tuple[tuple[float, float, float], ...]:
+        """Every radial slot of the wheel (entry and exit slots of a star wheel) as (direction
+        angle in the wheel's drawing coordinates, radius of its foot, radius where the pin
+        meets it): the slot points from C to M when its pin stands on the line of centres."""
+        design_tau = float(self.advance_at(np.zeros(1))[0])
+        out = []
+        for m in range(self.slots // self.groups):
+            for p in self.phases:
+                if p.kind not in SLOT_PHASES:
+                    continue
+                r, D = p.radius, self.D
+                v = p.v0 if p.kind != EXIT else p.end - p.start  # where the pin is at the rim
+                rim = float(np.sqrt(D * D + r * r - 2 * D * r * np.cos(v)))
+                out.append((self.gamma + np.pi + p.centre_tau + m * self.advance - design_tau,
+                            D - r, rim))
+        return tuple(out)
 
     def slot(self, m: np.ndarray, idx: np.ndarray) -> np.ndarray:
         """Which slot (entry) of the wheel a sample's phase uses: 0 … slots − 1, −1 locked. The
@@ -264,7 +290,7 @@ def _build(mech: "Mechanism", pair: IntermittentPair) -> IndexingSchedule:
     if len(entries) != len(pair.groups):
         raise ModelError(f"{what}: give one entry angle per pin group ({len(pair.groups)}), got "
                          f"{len(entries)}")
-    spans = []  # per group: (start δ, length, phases relative to the start)
+    spans = []  # per group: (its entry's δ, its length, its phases from there, step, names)
     for g, (group, psi_e) in enumerate(zip(pair.groups, entries)):
         names = ", ".join(group)
         radii = np.array([pins[p][0] for p in group])
@@ -371,4 +397,4 @@ def validate_intermittent(mech: "Mechanism", pair: IntermittentPair) -> None:
     elif not pair.groups or any(not g for g in pair.groups):
         raise ModelError(f"{what}: give the pins of each indexing group (groups = [[\"P1\", "
                          "\"P2\"], …])")
-    _build(mech, pair)
+    indexing_schedule(mech, pair)  # builds (and keeps) the phases, refusing what cannot run

@@ -32,7 +32,7 @@ import numpy as np
 from scipy.optimize import brentq, minimize_scalar
 
 from ..errors import InputError
-from ..geometry.profiles import curvature, offset_cusps, taylor
+from ..geometry.profiles import curvature, offset_cusps, sign_changes
 from ..model.disc_cams import DiscCam
 from ..model.motion_programs import TWO_PI, CamDesignError, Join
 
@@ -51,19 +51,12 @@ def follower_diagrams(cam: DiscCam, phi: np.ndarray, speed: float = 1.0, side: i
 
 
 # ---------------------------------------------------------------------------- pressure angle
-def _frame_point(cam: DiscCam, phi: np.ndarray, side: int) -> tuple[np.ndarray, np.ndarray]:
-    """C and dC/dφ (complex, about the cam centre) of the roller centre or knife tip."""
-    s = cam._lift_series(phi, 1, side)
-    C = cam._frame_point_series(s)
-    return C[0], C[1]
-
-
 def _flat_contact(cam: DiscCam, phi: np.ndarray, side: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Contact point X in the frame (complex, about the cam centre), the face normal ν and the
-    profile's signed radius of curvature p + d²p/dθ² of a flat face."""
-    s = cam._lift_series(phi, 3, side)
-    theta, p = cam._face_series(phi, s)
-    x = cam._flat(phi, 1, side)
+    profile's signed radius of curvature p + d²p/dθ² of a flat face: with x′ = θ′·i e^{iθ}·(p +
+    d²p/dθ²) along the face, the radius is x′·(i e^{iθ})/θ′."""
+    theta, _ = cam.face_line(phi, 1, side)
+    x = cam.profile.derivatives(phi, 1, side=side)
     x0 = (x[0, ..., 0] - cam.center[0]) + 1j * (x[0, ..., 1] - cam.center[1])
     x1 = x[1, ..., 0] + 1j * x[1, ..., 1]
     m = np.exp(1j * theta[0])
@@ -81,11 +74,11 @@ def pressure_angle(cam: DiscCam, phi: np.ndarray, side: int = 1) -> np.ndarray:
         if cam.motion == "translating":
             return np.zeros_like(phi)
         X, nu, _ = _flat_contact(cam, phi, side)
-        D = 1j * (X - cam._geometry["A"])
+        D = 1j * (X - cam.pivot_vector)
         return np.arctan((D * np.conj(1j * nu)).real / (D * np.conj(nu)).real)
-    C, dC = _frame_point(cam, phi, side)
+    C, dC = cam.element_point(phi, 1, side)
     T = dC - 1j * C
-    D = cam._geometry["e"] if cam.motion == "translating" else 1j * (C - cam._geometry["A"])
+    D = cam.line_vector if cam.motion == "translating" else 1j * (C - cam.pivot_vector)
     D = np.broadcast_to(D, T.shape)
     dot = (T * np.conj(D)).real
     cross = (np.conj(T) * D).imag
@@ -108,26 +101,6 @@ def radius_of_curvature(cam: DiscCam, phi: np.ndarray, side: int = 1, *, of: str
     return r_pitch - cam.roller_radius
 
 
-def _sign_changes(f, a: float, b: float, breaks: np.ndarray, samples: int = 4096) -> np.ndarray:
-    """Where f (called with (φ, side)) changes sign on [a, b): between samples (bisection to
-    full precision) or across a join."""
-    grid = np.union1d(np.linspace(a, b, samples + 1), breaks)
-    lo, hi = grid[:-1], grid[1:]
-    f_lo, f_hi = f(lo, 1), f(hi, -1)
-    roots = [breaks[np.sign(f(breaks, -1)) * np.sign(f(breaks, 1)) < 0]]
-    change = np.sign(f_lo) * np.sign(f_hi) < 0
-    lo, hi, g_lo = lo[change], hi[change], f_lo[change]
-    for _ in range(200):
-        if not lo.size or np.all(hi - lo <= 4 * np.spacing(np.maximum(np.abs(lo), np.abs(hi)))):
-            break
-        mid = (lo + hi) / 2
-        gm = f(mid, 1)
-        left = np.sign(gm) == np.sign(g_lo)
-        lo, g_lo, hi = np.where(left, mid, lo), np.where(left, gm, g_lo), np.where(left, hi, mid)
-    roots.append((lo + hi) / 2)
-    return np.unique(np.mod(np.concatenate(roots), TWO_PI))
-
-
 def cusps(cam: DiscCam) -> np.ndarray:
     """Cam angles where the profile has a cusp (its radius of curvature passes through zero):
     the roller's or face's envelope turns back there, so the profile between two cusps is cut
@@ -136,8 +109,8 @@ def cusps(cam: DiscCam) -> np.ndarray:
         return offset_cusps(cam.pitch_curve, cam.roller_radius)
     if cam.follower == "knife":
         return np.empty(0)
-    return _sign_changes(lambda u, side: radius_of_curvature(cam, u, side), 0.0, TWO_PI,
-                         cam.program.breaks)
+    return sign_changes(lambda u, side=1: radius_of_curvature(cam, u, side), (0.0, TWO_PI),
+                        cam.program.breaks, closed=True, samples=4096)
 
 
 def corners(cam: DiscCam) -> list[Join]:
@@ -226,12 +199,11 @@ def _refined_max(f, grid: np.ndarray) -> float:
 
 def _feasible_range(cam: DiscCam) -> tuple[float, float]:
     """Open interval of base radii for which the follower can be drawn at all."""
-    g = cam._geometry
     rho = cam.roller_radius if cam.follower == "roller" else 0.0
     if cam.motion == "translating":
         lo = abs(cam.offset) - rho if cam.follower != "flat" else 0.0
         return max(lo, 0.0), np.inf
-    d = abs(g["A"])
+    d = abs(cam.pivot_vector)
     if cam.follower == "flat":
         f = cam.face_offset
         return max(-d - f, 0.0), d - f
@@ -239,30 +211,31 @@ def _feasible_range(cam: DiscCam) -> tuple[float, float]:
 
 
 def _scan(cam: DiscCam, criterion, lo: float, hi: float, what: str) -> float:
-    """The smallest base radius in (lo, hi) where criterion(cam) ≤ 0 from there up to the next
-    sign change: a scan of 160 radii (geometric steps past a finite `hi`), then Brent's method
-    on the first bracket."""
+    """The smallest base radius in (lo, hi) from which on criterion(cam) ≤ 0: a scan of 160
+    radii (up to 64 times the given one past an unbounded `hi`), then Brent's method on the
+    first bracket (bisection where the radius below cannot be drawn at all)."""
     if not np.isfinite(hi):
         hi = max(lo, cam.base_radius) * 64 + 1.0
-    radii = np.linspace(lo, hi, 162)[1:-1]
-    vals = []
-    for rb in radii:
+
+    def g(rb):
         try:
-            vals.append(criterion(with_base_radius(cam, rb)))
+            return float(criterion(with_base_radius(cam, rb)))
         except CamDesignError:
-            vals.append(np.nan)
-    vals = np.array(vals)
+            return np.nan
+
+    radii = np.linspace(lo, hi, 162)[1:-1]
+    vals = np.array([g(rb) for rb in radii])
     ok = np.flatnonzero(vals <= 0)
     if not ok.size:
         raise CamDesignError(f"no base radius up to {hi:.6g} meets {what}")
     k = int(ok[0])
-    if k == 0 or not np.isfinite(vals[k - 1]):
-        return float(radii[k]) if k == 0 else float(radii[k])
-
-    def g(rb):
-        return criterion(with_base_radius(cam, rb))
-
-    return float(brentq(g, radii[k - 1], radii[k], xtol=1e-12 * radii[k], rtol=1e-14))
+    a, b = (radii[k - 1], radii[k]) if k else (lo, radii[0])
+    if np.isfinite(g(a)):
+        return float(brentq(g, a, b, xtol=1e-12 * b, rtol=1e-14))
+    for _ in range(60):  # below a lies no drawable cam: bisect on "drawable and within the limit"
+        mid = (a + b) / 2
+        a, b = (a, mid) if g(mid) <= 0 else (mid, b)
+    return float(b)
 
 
 def smallest_base_radius(cam: DiscCam, max_pressure_angle: float | None = None,
@@ -336,7 +309,11 @@ def _n(x: float) -> str:
 
 
 def _pt(p) -> str:
-    return f"[{_n(p[0])}, {_n(p[1])}]"
+    """[x, y], a coordinate below 1e-12 of the other written as 0 (rounding of cos 90°)."""
+    x, y = (float(v) for v in p)
+    scale = max(abs(x), abs(y))
+    x, y = (0.0 if abs(v) <= 1e-12 * scale else v for v in (x, y))
+    return f"[{_n(x)}, {_n(y)}]"
 
 
 def mechanism_text(cam: DiscCam, *, name: str = "Designed disc cam", speed: str = "1 rad/s",

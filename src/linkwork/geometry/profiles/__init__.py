@@ -27,7 +27,7 @@ from .curves import (
     ParametricProfile,
     PolarProfile,
 )
-from .offset import OffsetProfile, offset_cusps
+from .offset import OffsetProfile, offset_cusps, sign_changes
 from .path import ArcTo, Joins, LineTo, PathProfile
 from .spline import SplineProfile
 
@@ -35,5 +35,5 @@ __all__ = [
     "ArcTo", "ArchimedeanSpiral", "BaseProfile", "CircleProfile", "EllipseProfile", "InvoluteProfile",
     "Joins", "LineProfile", "LineTo", "LogarithmicSpiral", "OffsetProfile", "ParametricProfile",
     "PathProfile", "PolarProfile", "Profile", "ProfileError", "SplineProfile", "curvature",
-    "curvature_jumps", "derivatives_at", "offset_cusps",
+    "curvature_jumps", "derivatives_at", "offset_cusps", "sign_changes",
 ]

@@ -35,10 +35,12 @@ def _interval(value, what: str) -> tuple[float, float]:
     return lo, hi
 
 
-def _quarter_turns(theta: np.ndarray, k: int) -> np.ndarray:
-    """(cos, sin) of θ + kπ/2, the k-th derivative of the unit vector e^{iθ} with respect to θ."""
-    ang = theta + k * np.pi / 2
-    return np.stack([np.cos(ang), np.sin(ang)], -1)
+def _quarter_turns(theta: np.ndarray, order: int) -> list[tuple[np.ndarray, np.ndarray]]:
+    """(cos, sin) of θ + kπ/2 for k = 0 … order: the k-th derivatives of the unit vector e^{iθ}
+    with respect to θ (one cos and one sin, then quarter turns by swapping and signs)."""
+    c, s = np.cos(theta), np.sin(theta)
+    turns = ((c, s), (-s, c), (-c, -s), (s, -c))
+    return [turns[k % 4] for k in range(order + 1)]
 
 
 class EllipseProfile(BaseProfile):
@@ -59,9 +61,8 @@ class EllipseProfile(BaseProfile):
         a, b = self.semi_axes
         ca, sa = np.cos(self.angle), np.sin(self.angle)
         out = np.empty((order + 1,) + u.shape + (2,))
-        for k in range(order + 1):
-            e = _quarter_turns(u, k)
-            x, y = a * e[..., 0], b * e[..., 1]
+        for k, (ex, ey) in enumerate(_quarter_turns(u, order)):
+            x, y = a * ex, b * ey
             out[k, ..., 0] = ca * x - sa * y
             out[k, ..., 1] = sa * x + ca * y
         out[0] += self.center
@@ -134,9 +135,12 @@ class PolarProfile(BaseProfile):
         if r.shape != (order + 1,) + u.shape:
             raise ProfileError(f"radius(phi, {order}) must return shape {(order + 1,) + u.shape}, got {r.shape}")
         out = np.zeros((order + 1,) + u.shape + (2,))
+        turns = _quarter_turns(u, order)
         for n in range(order + 1):
             for j in range(n + 1):
-                out[n] += comb(n, j) * r[j][..., None] * _quarter_turns(u, n - j)
+                w = comb(n, j) * r[j]
+                out[n, ..., 0] += w * turns[n - j][0]
+                out[n, ..., 1] += w * turns[n - j][1]
         out[0] += self.center
         return out
 

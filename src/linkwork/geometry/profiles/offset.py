@@ -66,17 +66,27 @@ def offset_cusps(profile: Profile, distance: float, samples: int = 2048) -> np.n
     if not (np.isfinite(a) and np.isfinite(b)):
         # only the straight line has an infinite domain here, and it has no curvature
         return np.empty(0)
-    brk = np.asarray(profile.breaks, dtype=float)
-    grid = np.union1d(np.linspace(a, b, samples + 1), brk[(brk >= a) & (brk <= b)])
 
     def g(u, side=1):
         return 1.0 + distance * curvature(profile, u, side)
 
+    return sign_changes(g, (a, b), profile.breaks, closed=profile.closed, samples=samples)
+
+
+def sign_changes(g, domain: tuple[float, float], breaks=(), *, closed: bool = False,
+                 samples: int = 2048) -> np.ndarray:
+    """Where the function g(u, side) of a profile's parameter changes sign on `domain`: between
+    samples (refined by bisection to full precision, all intervals at once), at a break (g on
+    the piece ending there, side=−1, and on the piece starting there, side=+1, of opposite
+    signs) or exactly at a sample. Sorted; a closed profile's end is its start."""
+    a, b = domain
+    brk = np.asarray(breaks, dtype=float)
+    brk = brk[(brk >= a) & (brk <= b)]
+    grid = np.union1d(np.linspace(a, b, samples + 1), brk)
     after, before = g(grid[:-1]), g(grid[1:], -1)  # each interval from its start to its end
     roots = []
-    at_break = brk[(brk >= a) & (brk <= b)]
-    if at_break.size:
-        roots.append(at_break[np.sign(g(at_break, -1)) * np.sign(g(at_break)) < 0])
+    if brk.size:
+        roots.append(brk[np.sign(g(brk, -1)) * np.sign(g(brk)) < 0])
     lo, hi = grid[:-1], grid[1:]
     change = np.sign(after) * np.sign(before) < 0
     lo, hi, g_lo = lo[change], hi[change], after[change]
@@ -91,6 +101,6 @@ def offset_cusps(profile: Profile, distance: float, samples: int = 2048) -> np.n
     roots.append((lo + hi) / 2)
     zero = grid[g(grid) == 0.0]
     out = np.unique(np.concatenate(roots + [zero]))
-    if profile.closed:
+    if closed:
         out = np.unique(np.where(out >= b, a, out))
     return out

@@ -1,0 +1,339 @@
+"""The cam follower group, solved in its own two unknowns.
+
+The commonest group with a higher pair is a follower on one lower pair — a hinge (oscillating
+follower, *Schwinghebel*) or a guide (translating follower, *Stößel*) on a link already placed —
+touching the profile of another placed link with a roller, a knife edge or a flat face. The
+generic path solves it in the six coordinates of its rows (the follower's pose, the contact
+row) with the Jacobian from jets in six directions. Here the group is written in what is really
+unknown: the follower's angle or slide q and the contact parameter u, two equations
+
+- roller (radius ρ) or knife edge (ρ = 0) at C: (C − c)·t = 0 and t × (C − c) = ±ρ|t|;
+- flat face through P along e: e × (c − P) = 0 and t × e = 0;
+
+(c the profile point, t = c′(u) turned with the cam), solved by Newton's method with their
+partial derivatives written out (2×2, Cramer's rule, every sample at once), and the rates by
+2×2 solves of the same equations evaluated on jets. The same geometry as `contact.residuals`,
+so the generic path remains its independent check in the tests.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..model import CamContact, Mechanism, Prismatic, Revolute
+from ..topology import Group
+from . import contact
+from .jet import Jet
+
+MAX_ITERATIONS = 50
+
+
+@dataclass(frozen=True)
+class CamFollower:
+    """follower: the group's link; base: the placed link carrying its hinge or guide; cam: the
+    placed link carrying the profile. `hinge` is the follower's pivot (design coordinates) or
+    None for a guide, whose direction `axis` (design, unit) the slide q runs along with sign
+    `sense`."""
+
+    follower: str
+    base: str
+    cam: str
+    pair: CamContact
+    hinge: np.ndarray | None
+    axis: np.ndarray | None
+    sense: float
+
+
+def recognise(mech: Mechanism, group: Group) -> CamFollower | None:
+    """The group as a cam follower, or None (the generic path then solves it)."""
+    if group.size != 1 or group.drivers or group.wedge_pairs or len(group.joints) != 2:
+        return None
+    return _follower(mech, group.links[0], [mech.joint(j) for j in group.joints])
+
+
+def of_pair(mech: Mechanism, pair: CamContact) -> CamFollower | None:
+    """The follower of cam pair `pair` if it is held by nothing but one hinge or guide."""
+    f = pair.links[1]
+    joints = [j for j in mech.joints if f in getattr(j, "links", ())]
+    if any(d.driven == f for d in mech.drivers):
+        return None
+    return _follower(mech, f, joints)
+
+
+def _follower(mech: Mechanism, f: str, joints: list) -> CamFollower | None:
+    cams = [j for j in joints if isinstance(j, CamContact)]
+    lower = [j for j in joints if isinstance(j, (Revolute, Prismatic))]
+    if len(cams) != 1 or len(lower) != 1 or len(joints) != 2:
+        return None
+    k, low = cams[0], lower[0]
+    if k.follower not in ("roller", "knife", "flat") or k.links[1] != f or k.links[0] == f:
+        return None
+    base = low.links[0] if low.links[1] == f else low.links[1]
+    if isinstance(low, Revolute):
+        return CamFollower(f, base, k.links[0], k, np.asarray(mech.points[low.point], float), None, 1.0)
+    return CamFollower(f, base, k.links[0], k, None, np.asarray(low.axis, float),
+                       1.0 if low.links[1] == f else -1.0)
+
+
+def motion_direction(cf: CamFollower, sol, point: np.ndarray) -> np.ndarray:
+    """(N, 2) unit direction in which the follower's point at `point` (frame coordinates, per
+    sample) moves when the follower moves forwards (its angle or slide growing): defined in a
+    dwell too, where the point's velocity is zero and gives no direction."""
+    pose = sol.pose_derivatives(cf.base)[0]
+    c, s = np.cos(pose[:, 2]), np.sin(pose[:, 2])
+    if cf.hinge is None:
+        a = cf.axis * cf.sense
+        d = np.stack([c * a[0] - s * a[1], s * a[0] + c * a[1]], axis=1)
+    else:
+        h = cf.hinge
+        r = point - (pose[:, :2] + np.stack([c * h[0] - s * h[1], s * h[0] + c * h[1]], axis=1))
+        d = np.stack([-r[:, 1], r[:, 0]], axis=1)
+    return d / np.hypot(d[:, 0], d[:, 1])[:, None]
+
+
+# ---------------------------------------------------------------------------- plain arrays
+def _rot(c, s, v):
+    return c * v[..., 0] - s * v[..., 1], s * v[..., 0] + c * v[..., 1]
+
+
+def _cross(ax, ay, bx, by):
+    return ax * by - ay * bx
+
+
+def _pose(state, link: str):
+    q = state.Q[0, :, state.li(link)]
+    c, s = state.cs(state.li(link))
+    return q[:, 0], q[:, 1], c, s
+
+
+def _follower_point(cf: CamFollower, state, q, p: np.ndarray):
+    """World position of design point p of the follower and its derivative by q."""
+    bx, by, bc, bs = _pose(state, cf.base)
+    if cf.hinge is not None:
+        hx, hy = _rot(bc, bs, cf.hinge)
+        c, s = np.cos(q), np.sin(q)
+        rx, ry = _rot(c, s, p - cf.hinge)
+        return bx + hx + rx, by + hy + ry, -ry, rx
+    ax, ay = _rot(bc, bs, cf.axis * cf.sense)
+    px, py = _rot(bc, bs, p)
+    return bx + px + q * ax, by + py + q * ay, ax, ay
+
+
+def _equations(cf: CamFollower, mech: Mechanism, state, q, u, d):
+    """The two equations and their partial derivatives by q and u (each (N,))."""
+    j = cf.pair
+    prof = mech.profiles[j.profile]
+    D = prof.derivatives(u, 2)
+    ax_, ay_, ac, as_ = _pose(state, cf.cam)
+    cx, cy = _rot(ac, as_, D[0])
+    cx, cy = cx + ax_, cy + ay_
+    tx, ty = _rot(ac, as_, D[1])
+    kx, ky = _rot(ac, as_, D[2])
+    if j.follower in ("roller", "knife"):
+        Cx, Cy, dCx, dCy = _follower_point(cf, state, q, mech.points[j.point])
+        dx, dy = Cx - cx, Cy - cy
+        nt = np.hypot(tx, ty)
+        g1 = dx * tx + dy * ty
+        g1u = -(tx * tx + ty * ty) + dx * kx + dy * ky
+        g1q = dCx * tx + dCy * ty
+        sr = d.sign * j.radius
+        g2 = _cross(tx, ty, dx, dy) - sr * nt
+        g2u = _cross(kx, ky, dx, dy) - sr * (tx * kx + ty * ky) / nt
+        g2q = _cross(tx, ty, dCx, dCy)
+        return g1, g2, g1q, g1u, g2q, g2u, nt
+    Px, Py, dPx, dPy = _follower_point(cf, state, q, mech.points[j.point])
+    if cf.hinge is not None:
+        c, s = np.cos(q), np.sin(q)
+        ex, ey = _rot(c, s, j.axis)
+        dex, dey = -ey, ex
+    else:
+        bc, bs = state.cs(state.li(cf.base))
+        ex, ey = _rot(bc, bs, j.axis)
+        dex = dey = np.zeros_like(ex)
+    g1 = _cross(ex, ey, cx - Px, cy - Py)
+    g1u = _cross(ex, ey, tx, ty)
+    g1q = _cross(dex, dey, cx - Px, cy - Py) - _cross(ex, ey, dPx, dPy)
+    g2 = _cross(tx, ty, ex, ey)
+    g2u = _cross(kx, ky, ex, ey)
+    g2q = _cross(tx, ty, dex, dey)
+    return g1, g2, g1q, g1u, g2q, g2u, np.hypot(tx, ty)
+
+
+def _start(cf: CamFollower, state, guess: np.ndarray, u0: float):
+    """q and u from a Newton starting guess of the generic rows (follower pose, contact row)."""
+    u = guess[:, 1, 0] + u0
+    if cf.hinge is not None:
+        return guess[:, 0, 2].copy(), u
+    bx, by, bc, bs = _pose(state, cf.base)
+    # the follower's origin is the base's, shifted along the guide by q
+    ax, ay = _rot(bc, bs, cf.axis * cf.sense)
+    return (guess[:, 0, 0] - bx) * ax + (guess[:, 0, 1] - by) * ay, u
+
+
+def positions(cf: CamFollower, state, guess: np.ndarray | None, tol: float
+              ) -> tuple[np.ndarray, np.ndarray]:
+    """Place the follower and the contact row in Q[0] (Newton from `guess`, the generic
+    rows' starting poses); return the samples that converged and the residual (a length) of
+    the equations at the poses placed (the backward error of the estimate in `precision`)."""
+    mech = state.mech
+    d = contact._design(mech, cf.pair.name)
+    N = state.Q.shape[1]
+    fi, ri = state.li(cf.follower), state.li(contact.row_name(cf.pair))
+    if guess is None:
+        guess = np.zeros((N, 2, 3))
+    q, u = _start(cf, state, guess, d.u0)
+    active = np.isfinite(q) & np.isfinite(u)
+    q, u = np.where(active, q, 0.0), np.where(active, u, d.u0)
+    converged = np.zeros(N, dtype=bool)
+    polished = np.zeros(N, dtype=bool)
+    span = 1.0 if cf.hinge is not None else mech.length_scale  # the largest step of q
+    prof = mech.profiles[cf.pair.profile]
+    u_span = (prof.domain[1] - prof.domain[0]) / 8 if np.isfinite(prof.domain).all() else np.inf
+    for it in range(MAX_ITERATIONS):
+        g1, g2, g1q, g1u, g2q, g2u, nt = _equations(cf, mech, state, q, u, d)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            err = np.maximum(np.abs(g1), np.abs(g2)) / nt
+        if it == 0:
+            active &= np.isfinite(err)
+        converged = active & (err <= tol)
+        todo = active & ~(converged & polished)
+        if not todo.any():
+            break  # err is the residual at the final q, u
+        polished |= converged  # one more step after convergence leaves only rounding
+        with np.errstate(invalid="ignore", divide="ignore"):
+            det = g1q * g2u - g1u * g2q
+            dq = (g1u * g2 - g2u * g1) / det
+            du = (g2q * g1 - g1q * g2) / det
+        # damped as the generic path: at most a radian (a length) of q, an eighth of the profile
+        damp = np.minimum(1.0, np.minimum(span / np.maximum(np.abs(dq), 1e-300),
+                                          u_span / np.maximum(np.abs(du), 1e-300)))
+        ok_step = todo & np.isfinite(dq) & np.isfinite(du)
+        active &= ~(todo & ~ok_step)
+        q = np.where(ok_step, q + damp * dq, q)
+        u = np.where(ok_step, u + damp * du, u)
+    else:
+        g1, g2, *_, nt = _equations(cf, mech, state, q, u, d)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            err = np.maximum(np.abs(g1), np.abs(g2)) / nt
+    q = np.where(converged, q, np.nan)
+    u = np.where(converged, u, np.nan)
+    _write_pose(cf, state, Jet(q[None]), fi)
+    state.Q[0, :, ri, 0] = u - d.u0
+    state.Q[0, :, ri, 1:] = np.where(converged, 0.0, np.nan)[:, None]
+    return converged, np.where(converged, err, np.nan)
+
+
+def _write_pose(cf: CamFollower, state, q: Jet, fi: int) -> None:
+    """The follower's pose coefficients (orders 0 … q.order) from the jet of q."""
+    K = q.order
+    b = state.Q[: K + 1, :, state.li(cf.base)]
+    bx, by, bth = Jet(b[..., 0]), Jet(b[..., 1]), Jet(b[..., 2])
+    bc, bs = bth.cos_sin()
+    if cf.hinge is not None:
+        hx, hy = bc * cf.hinge[0] - bs * cf.hinge[1], bs * cf.hinge[0] + bc * cf.hinge[1]
+        c, s = q.cos_sin()
+        x = bx + hx - (c * cf.hinge[0] - s * cf.hinge[1])
+        y = by + hy - (s * cf.hinge[0] + c * cf.hinge[1])
+        th = q
+    else:
+        a = cf.axis * cf.sense
+        x = bx + q * (bc * a[0] - bs * a[1])
+        y = by + q * (bs * a[0] + bc * a[1])
+        th = bth
+    state.Q[: K + 1, :, fi, 0] = x.c
+    state.Q[: K + 1, :, fi, 1] = y.c
+    state.Q[: K + 1, :, fi, 2] = th.c
+    state.forget_trig([fi])
+
+
+def _equations_on_jets(cf: CamFollower, state, q: Jet, u: Jet) -> tuple[Jet, Jet]:
+    """The two equations on jets (the cam's and base's poses from Q, q and u given)."""
+    mech = state.mech
+    j = cf.pair
+    d = contact._design(mech, j.name)
+    K = q.order
+
+    def pose(link):
+        p = state.Q[: K + 1, :, state.li(link)]
+        th = Jet(p[..., 2])
+        c, s = th.cos_sin()
+        return Jet(p[..., 0]), Jet(p[..., 1]), c, s
+
+    def rot(c, s, vx, vy):
+        return c * vx - s * vy, s * vx + c * vy
+
+    ax_, ay_, ac, as_ = pose(cf.cam)
+    px, py, tx0, ty0 = contact._curve(mech.profiles[j.profile], u, K)
+    cx, cy = rot(ac, as_, px, py)
+    cx, cy = cx + ax_, cy + ay_
+    tx, ty = rot(ac, as_, tx0, ty0)
+    bx, by, bc, bs = pose(cf.base)
+
+    def follower_point(p):
+        if cf.hinge is not None:
+            hx, hy = rot(bc, bs, cf.hinge[0], cf.hinge[1])
+            c, s = q.cos_sin()
+            rx, ry = rot(c, s, p[0] - cf.hinge[0], p[1] - cf.hinge[1])
+            return bx + hx + rx, by + hy + ry
+        a = cf.axis * cf.sense
+        px_, py_ = rot(bc, bs, p[0], p[1])
+        ax, ay = rot(bc, bs, a[0], a[1])
+        return bx + px_ + q * ax, by + py_ + q * ay
+
+    if j.follower in ("roller", "knife"):
+        Cx, Cy = follower_point(mech.points[j.point])
+        dx, dy = Cx - cx, Cy - cy
+        g1 = dx * tx + dy * ty
+        g2 = tx * dy - ty * dx
+        if j.radius:
+            g2 = g2 - (tx * tx + ty * ty).sqrt() * (d.sign * j.radius)
+        return g1, g2
+    Px, Py = follower_point(mech.points[j.point])
+    if cf.hinge is not None:
+        c, s = q.cos_sin()
+        ex, ey = rot(c, s, j.axis[0], j.axis[1])
+    else:
+        ex, ey = rot(bc, bs, j.axis[0], j.axis[1])
+    return ex * (cy - Py) - ey * (cx - Px), tx * ey - ty * ex
+
+
+def derivatives(cf: CamFollower, state, ok: np.ndarray, unreliable: float) -> np.ndarray:
+    """Rates of q and u order by order from J·(q_k, u_k) = −r_k (the equations on jets with
+    the k-th coefficients zero); the follower's pose and the contact row's coefficients from
+    them. Returns the condition number of the scaled 2×2 Jacobian (rows in lengths, columns
+    per unit length of q and of the profile)."""
+    mech = state.mech
+    d = contact._design(mech, cf.pair.name)
+    fi, ri = state.li(cf.follower), state.li(contact.row_name(cf.pair))
+    K, N = state.order, state.Q.shape[1]
+    q0 = state.Q[0, :, fi, 2] if cf.hinge is not None else _start(
+        cf, state, state.Q[0][:, [fi, ri]], d.u0)[0]
+    u0 = state.Q[0, :, ri, 0] + d.u0
+    g1, g2, g1q, g1u, g2q, g2u, nt = _equations(cf, mech, state, q0, u0, d)
+    det = g1q * g2u - g1u * g2q
+    # scaled Jacobian: rows divided by |t| (lengths), u column per length of profile, a hinge's
+    # q column per radian times the mechanism's size (as the generic path scales angles)
+    L = mech.length_scale if cf.hinge is not None else 1.0
+    m = np.stack([g1q / nt / L, g1u / nt / nt, g2q / nt / L, g2u / nt / nt], axis=-1)
+    fro2 = np.einsum("ij,ij->i", m, m)
+    dets = np.abs(m[:, 0] * m[:, 3] - m[:, 1] * m[:, 2])
+    with np.errstate(invalid="ignore", divide="ignore"):
+        cond = (fro2 + np.sqrt(np.maximum(fro2 * fro2 - 4 * dets * dets, 0.0))) / (2 * dets)
+    good = ok & np.isfinite(cond) & (cond < unreliable)
+    cond = np.where(ok & np.isfinite(cond), cond, np.inf)
+    qc = np.zeros((K + 1, N))
+    uc = np.zeros((K + 1, N))
+    qc[0], uc[0] = q0, u0
+    for k in range(1, K + 1):
+        r1, r2 = _equations_on_jets(cf, state, Jet(qc[: k + 1]), Jet(uc[: k + 1]))
+        r1, r2 = r1.c[k], r2.c[k]
+        with np.errstate(invalid="ignore", divide="ignore"):
+            qc[k] = np.where(good, -(g2u * r1 - g1u * r2) / det, np.nan)
+            uc[k] = np.where(good, -(g1q * r2 - g2q * r1) / det, np.nan)
+    _write_pose(cf, state, Jet(qc), fi)
+    state.Q[1:, :, ri, 0] = uc[1:]
+    state.Q[1:, :, ri, 1:] = np.where(good, 0.0, np.nan)[None, :, None]
+    return cond
+
