@@ -147,10 +147,10 @@ def _solve(text, u, *, generic_positions=False, generic_derivatives=False, monke
             # compared at 1e-9
             mp.setattr(groups, "NEWTON_TOL", NEWTON_TOL)
         if generic_derivatives:
-            def generic(self, state, ok, budget=None):
+            def generic(self, state, ok):
                 cond = derivatives_generic(state, self.group, ok)
-                if budget is not None:
-                    budget.add(state, self, cond)
+                if state.budget is not None:
+                    state.budget.add(state, self, cond)
                 return cond
 
             mp.setattr(GroupSolver, "derivatives", generic)

@@ -67,6 +67,7 @@ class State:
     rots: dict = field(default_factory=dict)
     branches: dict = field(default_factory=dict)  # group -> (N,) assembly signs (`branches`)
     residuals: dict = field(default_factory=dict)  # group -> (N,) Newton's final residual / L
+    budget: object = None  # `precision.ErrorBudget` the derivatives carry on, if any
 
     def __post_init__(self) -> None:
         if self.T is None:
@@ -644,10 +645,11 @@ class GroupSolver:
         return converged
 
     # ------------------------------------------------------------------ derivatives
-    def derivatives(self, state: State, ok: np.ndarray, budget=None) -> np.ndarray:
+    def derivatives(self, state: State, ok: np.ndarray) -> np.ndarray:
         """Fill velocity and acceleration (and jerk) coefficients; return condition numbers.
-        `budget` (`precision.ErrorBudget`): the forward error bounds, carried on for this
-        group (by the compiled kernels in the same pass)."""
+        The forward error bounds of `state.budget` (`precision.ErrorBudget`), if any, are
+        carried on for this group (by the compiled kernels in the same pass)."""
+        budget = state.budget
         if state.order == 2 and self.fast is not None:
             if budget is None:  # (the continuation's tangents: no bound wanted)
                 from .precision import ErrorBudget

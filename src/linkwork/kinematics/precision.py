@@ -29,7 +29,6 @@ from functools import lru_cache
 import numpy as np
 
 from ..model import Mechanism
-from . import contact
 from .groups import (UNRELIABLE_CONDITION, GroupSolver, State, _scaled, least_squares,
                      rate_residuals, residual_and_jacobian)
 
@@ -102,10 +101,14 @@ class ErrorBudget:
         return out
 
 
+#: pairs whose equations run on long-double jets throughout (the contact equations of higher
+#: pairs evaluate their profiles in double; intermittent pairs switch phases)
+POLISHABLE_PAIRS = frozenset({"revolute", "prismatic", "slot", "circular-slot", "gear"})
+
+
 def polishable(mech: Mechanism) -> bool:
-    """Groups whose equations run on long-double jets throughout (the contact equations of
-    higher pairs evaluate their profiles in double)."""
-    return not any(contact.is_higher(j) for j in mech.joints)
+    """Every group can be polished in long double (`POLISHABLE_PAIRS` only)."""
+    return all(j.kind in POLISHABLE_PAIRS for j in mech.joints)
 
 
 def polish(mech: Mechanism, solvers, Q: np.ndarray, T: np.ndarray, inputs: dict,
