@@ -147,8 +147,13 @@ def _solve(text, u, *, generic_positions=False, generic_derivatives=False, monke
             # compared at 1e-9
             mp.setattr(groups, "NEWTON_TOL", NEWTON_TOL)
         if generic_derivatives:
-            mp.setattr(GroupSolver, "derivatives",
-                       lambda self, state, ok: derivatives_generic(state, self.group, ok))
+            def generic(self, state, ok):
+                cond = derivatives_generic(state, self.group, ok)
+                if state.budget is not None:
+                    state.budget.add(state, self, cond)
+                return cond
+
+            mp.setattr(GroupSolver, "derivatives", generic)
         mech = linkwork.load_text(text)
         kinds = [s.kind for s in solver.plan(mech)]
         sol = linkwork.solve(mech, u)

@@ -158,3 +158,25 @@ def test_the_bound_is_in_every_output():
     df = sol.to_pandas()
     np.testing.assert_array_equal(df["error"].to_numpy(), sol.errors)
     assert list(df["status"]) == ["ok", "singular"]
+
+
+def test_the_compiled_bound_is_the_general_recurrence_unrolled():
+    """`kernels._group_error_2` (the dyad and driver kernels' pass, order 2) against the
+    general recurrence of `propagate_errors` on the same random sizes and bounds."""
+    from linkwork.kinematics import kernels
+
+    rng = np.random.default_rng(7)
+    N = 50
+    kappa = 10.0 ** rng.uniform(0, 8, N)
+    m = 10.0 ** rng.uniform(-1, 3, (3, N))
+    m[0] = np.maximum(m[0], 1.0)
+    E = 10.0 ** rng.uniform(-16, -8, (3, N))
+    Q = np.zeros((3, 1, 3, N))  # no link: the sizes stay those given
+    m1, E1 = m.copy(), E.copy()
+    kernels.propagate_errors(Q, np.zeros(0, dtype=np.int64), 1.0, np.ones(N), kappa, np.zeros(0),
+                             m1, E1, 1e-16)
+    m2, E2 = m.copy(), E.copy()
+    for n in range(N):
+        kernels._group_error_2(kappa[n], m2, E2, n, 1e-16, 0.0, 0.0, 0.0)
+    np.testing.assert_allclose(E2, E1, rtol=1e-14)
+    np.testing.assert_array_equal(m2, m1)

@@ -10,10 +10,13 @@ flips. Keeping the design's sign would silently turn a parallelogram into an ant
 after the change point. The circle–line groups (RRP, rod in slot) choose the same way between
 the two points where the rod's circle cuts the guided point's track; their change points are
 where the circle touches the track without leaving it, as in the slider-crank whose rod is as
-long as its crank.
+long as its crank. A dyad whose outer hinges A and C meet (the Galloway kite, Rosenauer §100:
+crank as long as the frame, coupler as long as the rocker) flips too: the line AC turns over
+there, and B keeps its place only on the other side of it.
 
 For a mechanism with one driver, `branch_schedule` finds the change points of every such group
-along the input once per mechanism: a scan of the input over its period (one turn, or two when
+along the input once per mechanism, also below Newton-solved groups (whose poses along the scan
+come from the continuation of the groups above, `continuation`): a scan of the input over its period (one turn, or two when
 an upstream group flips an odd number of times per turn, so that the chain repeats only after
 two), each touching minimum of h² refined by Brent's method and accepted when h vanishes there.
 `Schedule.signs` then gives the sign at any input value: the design's sign times −1 for every
@@ -66,16 +69,21 @@ class Schedule:
 def _positions(mech: Mechanism, solvers: tuple[GroupSolver, ...], upto: GroupSolver,
                u: np.ndarray, branches: dict) -> State:
     """Positions of every group before and including `upto` at inputs u (one driver); NaN
-    where a group cannot assemble (the closed forms leave finite values there)."""
+    where a group cannot assemble (the closed forms leave finite values there). Newton groups
+    upstream start from the continuation of these groups alone, with the change points found
+    so far (all of them upstream of `upto`)."""
+    from .continuation import continuation_guesses
+
     N = u.shape[0]
     Q = np.zeros((1, N, len(rows(mech)), 3))
     state = State(mech, Q, input_coefficients(mech, u[:, None], None, None, None, 0),
                   branches={g: s.signs(u) for g, s in branches.items()})
+    upstream = solvers[:solvers.index(upto) + 1]
+    guesses = (continuation_guesses(mech, upstream, u[:, None], schedule=branches)
+               if any(s.kind == "generic" for s in upstream) else {})
     ok = np.ones(N, dtype=bool)
-    for s in solvers:
-        ok &= s.positions(state)
-        if s is upto:
-            break
+    for s in upstream:
+        ok &= s.positions(state, guesses.get(s.group)) if s.kind == "generic" else s.positions(state)
     if not ok.all():
         state.Q[:, ~ok] = np.nan
         state.forget_trig()
@@ -97,8 +105,6 @@ def branch_schedule(mech: Mechanism) -> dict:
     found: dict = {}
     period = 2 * np.pi if revolute else None
     for k, s in enumerate(solvers):
-        if s.kind == "generic" and any(t.kind in BRANCHING for t in solvers[k + 1:]):
-            break  # Newton groups upstream need continuation: keep the design signs below
         if s.kind not in BRANCHING:
             continue
         span = period if revolute else 8 * mech.length_scale
@@ -114,19 +120,24 @@ def branch_schedule(mech: Mechanism) -> dict:
                 "at a change or dead position (its pivots in line), so it does not define the "
                 "assembly branch there; linkwork takes one side and follows it continuously",
                 LinkworkWarning, stacklevel=2)
-        g = h2(grid)
-        inner = np.arange(1, n)
-        touch = inner[(g[inner] <= g[inner - 1]) & (g[inner] <= g[inner + 1]) & (g[inner] < TOUCH)
-                      & (g[inner - 1] > 0) & (g[inner + 1] > 0)]
-        points = []
-        if len(touch):
-            from scipy.optimize import minimize_scalar  # rarely needed; slow to import
-        for i in touch:
-            r = minimize_scalar(lambda x: float(h2(np.array([x]))[0]), method="bounded",
-                                bounds=(grid[i - 1], grid[i + 1]),
-                                options=dict(xatol=1e-13 * max(1.0, abs(grid[i]))))
-            if r.fun < CHANGE and not any(abs(r.x - p) < span / n for p in points):
-                points.append(float(r.x))
+        def gap(u: np.ndarray) -> np.ndarray:
+            return s.pivot_gap(_positions(mech, solvers, s, u, found))
+
+        points: list[float] = []
+        # where h² touches zero (a change point), and for a dyad where its outer hinges meet
+        for fn in (h2, gap) if s.kind == "RRR" else (h2,):
+            g = fn(grid)
+            inner = np.arange(1, n)
+            touch = inner[(g[inner] <= g[inner - 1]) & (g[inner] <= g[inner + 1])
+                          & (g[inner] < TOUCH) & (g[inner - 1] > 0) & (g[inner + 1] > 0)]
+            if len(touch):
+                from scipy.optimize import minimize_scalar  # rarely needed; slow to import
+            for i in touch:
+                r = minimize_scalar(lambda x: float(fn(np.array([x]))[0]), method="bounded",
+                                    bounds=(grid[i - 1], grid[i + 1]),
+                                    options=dict(xatol=1e-13 * max(1.0, abs(grid[i]))))
+                if r.fun < CHANGE and not any(abs(r.x - p) < span / n for p in points):
+                    points.append(float(r.x))
         if points:
             found[s.group] = Schedule(s.design_sign, tuple(sorted(points)), period, u0)
             if revolute and len(points) % 2 == 1:

@@ -59,11 +59,13 @@ PERIOD_TURNS = 4                     # turns of a revolute input searched for th
 _marches: OrderedDict = OrderedDict()
 
 
-def continuation_guesses(mech: Mechanism, solvers, values: np.ndarray) -> dict:
+def continuation_guesses(mech: Mechanism, solvers, values: np.ndarray,
+                         schedule: dict | None = None) -> dict:
     """Newton starting poses (N, k, 3) of every generic group at the samples `values`
     (N, drivers), by continuation from the design position; NaN where the march does not reach
-    (the branch of the design cannot be assembled there)."""
-    gen = _Generic(mech, solvers)
+    (the branch of the design cannot be assembled there). `schedule`: the closed-form groups'
+    change points (`branches.branch_schedule`, found from these solvers when not given)."""
+    gen = _Generic(mech, solvers, schedule)
     design = np.array([mech.driver_input_at_design(d) for d in mech.drivers])
     if values.shape[1] == 1:
         lanes = _one_driver_lanes(mech, solvers, gen, design)
@@ -150,7 +152,8 @@ class _Generic:
     """What a march carries: the links of the generic groups, stacked as the rows of (G, 3)
     pose arrays, and the input metric."""
 
-    def __init__(self, mech: Mechanism, solvers) -> None:
+    def __init__(self, mech: Mechanism, solvers, schedule: dict | None = None) -> None:
+        self.schedule = schedule
         self.solvers = [s for s in solvers if s.kind == "generic"]
         self.last = max((i for i, s in enumerate(solvers) if s.kind == "generic"), default=-1)
         self.slices, start = {}, 0
@@ -304,6 +307,9 @@ class _Lane:
         if not self.P or lam.size == 0:
             return out
         K, P, T = self.arrays()
+        # a limit position at the march's end, computed back from λ: up to rounding beyond it
+        end = K[-1] * (1 + 1e-12) + 1e-15
+        lam = np.where((lam > K[-1]) & (lam <= end), K[-1], lam)
         inside = lam <= K[-1]
         if K.size == 1:
             out[inside] = P[0]
@@ -345,7 +351,9 @@ def _march(mech: Mechanism, solvers: tuple, gen: _Generic, lanes: list[_Lane], r
     budget = {id(ln): MAX_ATTEMPTS for ln in lanes}
     # closed-form groups take the assembly the real motion takes across change points, as in
     # `solve` (a parallelogram under an over-closing crank stays a parallelogram)
-    schedule = branch_schedule(mech) if len(mech.drivers) == 1 else {}
+    schedule = gen.schedule
+    if schedule is None:
+        schedule = branch_schedule(mech) if len(mech.drivers) == 1 else {}
     while True:
         todo = [ln for ln in lanes if not ln.reached(reach[ln.sense])]
         if not todo:

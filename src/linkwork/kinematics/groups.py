@@ -29,6 +29,7 @@ from .constraints import driver_residual, joint_residuals
 from .jet import Jet
 
 NEWTON_TOL = 1e-12  # relative to the mechanism's length scale
+LIMIT_RESIDUAL = 1e-8  # … a pose closed this well at a limit position is returned (singular)
 # above this the linear solve for the rates loses every digit (condition × ε ~ 1): the rates of
 # such samples are NaN, not invented (the sample is singular either way)
 UNRELIABLE_CONDITION = 1e14
@@ -66,6 +67,7 @@ class State:
     rots: dict = field(default_factory=dict)
     branches: dict = field(default_factory=dict)  # group -> (N,) assembly signs (`branches`)
     residuals: dict = field(default_factory=dict)  # group -> (N,) Newton's final residual / L
+    budget: object = None  # `precision.ErrorBudget` the derivatives carry on, if any
 
     def __post_init__(self) -> None:
         if self.T is None:
@@ -497,6 +499,16 @@ class GroupSolver:
             a = (f["diff"] + D2) / (2 * np.sqrt(D2))
         return 1.0 - a * a / f["L1sq"]
 
+    def pivot_gap(self, state: State) -> np.ndarray:
+        """Of an RRR dyad whose neighbours are placed: |AC|²/|AB|², the squared distance of its
+        two outer hinges. Zero: they coincide (the Galloway kite's fold, Rosenauer §100), the
+        line AC turns over, and with it the side of AC its hinge B keeps."""
+        f = self.fast
+        Q0 = state.Q[0]
+        (ax, ay), (cx, cy) = ((Q0[:, i, 0] + state.rot(i, s)[0], Q0[:, i, 1] + state.rot(i, s)[1])
+                              for i, s in ((f["iA"], f["A"]), (f["iC"], f["C"])))
+        return ((cx - ax) ** 2 + (cy - ay) ** 2) / f["L1sq"]
+
     def _track(self, state: State) -> tuple:
         """A circle–line group (RRP, rod in slot): the rod's pivot A and its guided point P
         (design), A in the world, P's track (a point q on it and its unit direction e), |AP|."""
@@ -621,6 +633,10 @@ class GroupSolver:
         else:
             state.Q[0][:, idx, :] = q
             err = np.abs(residual_and_jacobian(state, self.group)[0]).max(axis=1, initial=0.0)
+        # a limit position (a fold of the group): Newton's method slows down to a crawl there,
+        # but the poses are closed to within LIMIT_RESIDUAL; they are returned, the residual in
+        # the error bound marking the sample singular (`precision`), not invented as unreachable
+        converged |= active & (err <= LIMIT_RESIDUAL * scale)
         q[~converged] = np.nan
         state.Q[0][:, idx, :] = q
         state.forget_trig(idx)
@@ -630,16 +646,26 @@ class GroupSolver:
 
     # ------------------------------------------------------------------ derivatives
     def derivatives(self, state: State, ok: np.ndarray) -> np.ndarray:
-        """Fill velocity and acceleration (and jerk) coefficients; return condition numbers."""
+        """Fill velocity and acceleration (and jerk) coefficients; return condition numbers.
+        The forward error bounds of `state.budget` (`precision.ErrorBudget`), if any, are
+        carried on for this group (by the compiled kernels in the same pass)."""
+        budget = state.budget
         if state.order == 2 and self.fast is not None:
+            if budget is None:  # (the continuation's tangents: no bound wanted)
+                from .precision import ErrorBudget
+                budget = ErrorBudget(self.mech, state)
             if self.kind == "RRR":
-                return self._der_RRR(state, ok)
-            return self._der_driver(state, ok)
+                return self._der_RRR(state, ok, budget)
+            return self._der_driver(state, ok, budget)
         if self.cam is not None:
-            return cam_group.derivatives(self.cam, state, ok, UNRELIABLE_CONDITION)
-        if self.kind == "intermittent":
-            return self._der_intermittent(state)
-        return derivatives_generic(state, self.group, ok)
+            cond = cam_group.derivatives(self.cam, state, ok, UNRELIABLE_CONDITION)
+        elif self.kind == "intermittent":
+            cond = self._der_intermittent(state)
+        else:
+            cond = derivatives_generic(state, self.group, ok)
+        if budget is not None:
+            budget.add(state, self, cond)
+        return cond
 
     def _der_intermittent(self, state: State) -> np.ndarray:
         """Rates of a wheel indexed by an intermittent pair, in closed form: its angle relative
@@ -673,19 +699,21 @@ class GroupSolver:
         with np.errstate(divide="ignore", invalid="ignore"):
             return np.maximum(s_hi, 1.0) / np.minimum(s_lo, 1.0)
 
-    def _der_driver(self, state: State, ok: np.ndarray) -> np.ndarray:
+    def _der_driver(self, state: State, ok: np.ndarray, b) -> np.ndarray:
         """Revolute driver (`kernels.driver_rates`); its condition number is the design one."""
         f = self.fast
         u = state.inputs[f["joint"]]
         from . import kernels
-        kernels.driver_rates(state.Qm, state.T, f["b"], f["i"], f["H"], u[1], u[2])
+        kernels.driver_rates(state.Qm, state.T, f["b"], f["i"], f["H"], u[1], u[2], f["cond"],
+                             self.mech.length_scale, b.omega, b.m, b.E, b.eps)
         return np.full(state.Q.shape[1], f["cond"])
 
-    def _der_RRR(self, state: State, ok: np.ndarray) -> np.ndarray:
+    def _der_RRR(self, state: State, ok: np.ndarray, b) -> np.ndarray:
         """Velocities and accelerations of an RRR dyad (`kernels.rrr_rates`)."""
         f = self.fast
         cond = np.ones(state.Q.shape[1])
         from . import kernels
         kernels.rrr_rates(state.Qm, state.T, f["iA"], f["A"], f["iC"], f["C"], f["i1"], f["i2"],
-                          f["BA"], f["BC"], f["mid"], f["hd2"], UNRELIABLE_CONDITION, cond)
+                          f["BA"], f["BC"], f["mid"], f["hd2"], UNRELIABLE_CONDITION, cond,
+                          self.mech.length_scale, b.omega, b.m, b.E, b.eps)
         return cond

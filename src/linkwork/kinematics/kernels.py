@@ -93,13 +93,15 @@ def _set_rates(Q, T, i, s0, s1, n, vx, vy, ax, ay, om, al):
 
 
 @_jit
-def rrr_rates(Q, T, iA, A, iC, C, i1, i2, BA, BC, mid, hd2, unreliable, cond):
+def rrr_rates(Q, T, iA, A, iC, C, i1, i2, BA, BC, mid, hd2, unreliable, cond, L, omega, m, E,
+              eps):
     """Velocities and accelerations of the RRR dyad by Cramer's rule on the hinge closure
     ω1 ⊥r1 − ω2 ⊥r2 = vC − vA (r1 = B − A, r2 = B − C) and its derivative. The condition
     number of the 2×2 system raises cond[n] where larger: its columns have lengths L1, L2,
     so σ² = mid ± √(hd2 + (r1·r2)²) with mid = (L1² + L2²)/2, hd2 = ((L1² − L2²)/2)², and
     σ_max/σ_min = σ_max²/|det| (σ_max σ_min = |det|), free of cancellation near singularity.
-    Where it reaches `unreliable` the rates are NaN: no digit of them would be right."""
+    Where it reaches `unreliable` the rates are NaN: no digit of them would be right. The
+    error bounds E and sizes m (`propagate_errors`) are carried on here, in the same pass."""
     for n in range(Q.shape[3]):
         vAx, vAy, aAx, aAy = _point_rates(Q, T, iA, A[0], A[1], n)
         vCx, vCy, aCx, aCy = _point_rates(Q, T, iC, C[0], C[1], n)
@@ -125,6 +127,10 @@ def rrr_rates(Q, T, iA, A, iC, C, i1, i2, BA, BC, mid, hd2, unreliable, cond):
             om1 = om2 = al1 = al2 = math.nan
         _set_rates(Q, T, i1, A[0], A[1], n, vAx, vAy, aAx, aAy, om1, al1)
         _set_rates(Q, T, i2, C[0], C[1], n, vCx, vCy, aCx, aCy, om2, al2)
+        inv = 1.0 / omega[n]
+        a0, a1, a2 = _sizes_2(Q, i1, n, L, inv)
+        b0, b1, b2 = _sizes_2(Q, i2, n, L, inv)
+        _group_error_2(k, m, E, n, eps, max(a0, b0), max(a1, b1), max(a2, b2))
 
 
 @_jit
@@ -144,14 +150,18 @@ def driver_positions(Q0, T, b, i, H, u, u0):
 
 
 @_jit
-def driver_rates(Q, T, b, i, H, u1, u2):
+def driver_rates(Q, T, b, i, H, u1, u2, kappa, L, omega, m, E, eps):
     """Revolute driver: ω = ω_b + u̇, α = α_b + ü (u1 = u̇, u2 = ü/2 as Taylor coefficients);
-    the driven link turns about the hinge H, whose motion is that of H on the base."""
+    the driven link turns about the hinge H, whose motion is that of H on the base. Its
+    condition number is kappa at every sample; the error bounds are carried on as in
+    `rrr_rates`."""
     for n in range(Q.shape[3]):
         vx, vy, ax, ay = _point_rates(Q, T, b, H[0], H[1], n)
         om = Q[1, b, 2, n] + u1[n]
         al = 2.0 * (Q[2, b, 2, n] + u2[n])
         _set_rates(Q, T, i, H[0], H[1], n, vx, vy, ax, ay, om, al)
+        a0, a1, a2 = _sizes_2(Q, i, n, L, 1.0 / omega[n])
+        _group_error_2(kappa, m, E, n, eps, a0, a1, a2)
 
 
 @_jit
@@ -194,41 +204,104 @@ def propagate_errors(Q, links, L, omega, kappa, rho, m, E, eps):
     terms are products of lower coefficients (the jets' Cauchy products: errors e_j times sizes
     m[k − j]), plus δJ·x_k (e_0·m[k]) and its own rounding."""
     K = E.shape[0] - 1
-    e = np.empty(K + 1)
-    for n in range(E.shape[1]):
-        for i in links:  # an angle of many turns rounds to ε times its size
+    N = E.shape[1]
+    # the sizes, one stream at a time (a pass per link, coordinate and order keeps the memory
+    # access sequential)
+    for i in links:  # an angle of many turns rounds to ε times its size
+        for n in range(N):
             a = abs(Q[0, i, 2, n]) * (1.0 / math.pi)
             if a > m[0, n]:
                 m[0, n] = a
-        w = omega[n]
-        scale = 1.0
-        for k in range(1, K + 1):
-            scale *= w
-            top = m[k, n]
-            for i in links:
-                v = max(max(abs(Q[k, i, 0, n]), abs(Q[k, i, 1, n])) / L, abs(Q[k, i, 2, n]))
-                v /= scale
+    for k in range(1, K + 1):
+        for i in links:
+            for n in range(N):
+                inv = 1.0 / omega[n]
+                scale = inv
+                for _ in range(k - 1):
+                    scale *= inv
+                v = _size(Q, k, i, n, L) * scale
+                if v > m[k, n]:
+                    m[k, n] = v
+    e = np.empty(K + 1)
+    for n in range(N):
+        _group_error(kappa[n], rho[n] if rho.size else 0.0, m, E, n, eps, e)
+
+
+@_jit
+def _size(Q, k, i, n, L):
+    """Size of link i's k-th pose coefficient at sample n: lengths over L, angles as they are."""
+    return max(max(abs(Q[k, i, 0, n]), abs(Q[k, i, 1, n])) / L, abs(Q[k, i, 2, n]))
+
+
+@_jit
+def _group_error_2(k_, m, E, n, eps, m0, m1, m2):
+    """`_group_error` unrolled for order 2 with a closed form (no residual), the sizes m0, m1,
+    m2 at hand: the compiled kernels' pass (scalars in registers, no work array)."""
+    if m0 < m[0, n]:
+        m0 = m[0, n]
+    if m1 < m[1, n]:
+        m1 = m[1, n]
+    if m2 < m[2, n]:
+        m2 = m[2, n]
+    m[0, n], m[1, n], m[2, n] = m0, m1, m2
+    E0, E1, E2 = E[0, n], E[1, n], E[2, n]
+    if not k_ < math.inf:
+        E[0, n] = E[1, n] = E[2, n] = math.inf
+        return
+    e0 = k_ * (eps * m0 + E0)
+    e1 = k_ * (E1 + e0 * m1 + max(e0, E0) * m1 + eps * 2.0 * m0 * m1)
+    e2 = k_ * (E2 + e0 * m2 + max(e0, E0) * m2 + max(e1, E1) * m1
+               + eps * (2.0 * m0 * m2 + m1 * m1))
+    E[0, n], E[1, n], E[2, n] = max(E0, e0), max(E1, e1), max(E2, e2)
+
+
+@_jit
+def _sizes_2(Q, i, n, L, inv):
+    """(angle over π, first, second coefficient sizes in units of Ω, Ω²) of link i."""
+    return (abs(Q[0, i, 2, n]) * (1.0 / math.pi), _size(Q, 1, i, n, L) * inv,
+            _size(Q, 2, i, n, L) * inv * inv)
+
+
+@_jit
+def _group_error(k_, r, m, E, n, eps, e):
+    """The recurrence of `propagate_errors` at sample n (κ = k_, residual r; e: work array)."""
+    K = E.shape[0] - 1
+    if not k_ < math.inf:
+        for k in range(K + 1):
+            E[k, n] = math.inf
+        return
+    e[0] = k_ * (r + eps * m[0, n] + E[0, n])
+    for k in range(1, K + 1):
+        s = E[k, n] + e[0] * m[k, n]
+        rounding = 0.0
+        for j in range(k):
+            s += max(e[j], E[j, n]) * m[k - j, n]
+        for j in range(k + 1):
+            rounding += m[j, n] * m[k - j, n]
+        e[k] = k_ * (s + eps * rounding)
+    for k in range(K + 1):
+        if e[k] > E[k, n]:
+            E[k, n] = e[k]
+
+
+@_jit
+def rate_scales(C, per, out):
+    """Ω per sample: the largest |c_k/per|^(1/k) over the drivers' Taylor coefficients
+    C[driver, k, n] (k ≥ 1; per: 1, or L for a slide); 1 where every rate is zero."""
+    for n in range(C.shape[2]):
+        top = 0.0
+        for d in range(C.shape[0]):
+            for k in range(1, C.shape[1]):
+                v = abs(C[d, k, n]) / per[d]
+                if k == 2:
+                    v = math.sqrt(v)
+                elif k == 4:
+                    v = math.sqrt(math.sqrt(v))
+                elif k > 1:
+                    v = v ** (1.0 / k)
                 if v > top:
                     top = v
-            m[k, n] = top
-        k_ = kappa[n]
-        if not k_ < math.inf:
-            for k in range(K + 1):
-                E[k, n] = math.inf
-            continue
-        r = rho[n] if rho.size else 0.0
-        e[0] = k_ * (r + eps * m[0, n] + E[0, n])
-        for k in range(1, K + 1):
-            s = E[k, n] + e[0] * m[k, n]
-            rounding = 0.0
-            for j in range(k):
-                s += max(e[j], E[j, n]) * m[k - j, n]
-            for j in range(k + 1):
-                rounding += m[j, n] * m[k - j, n]
-            e[k] = k_ * (s + eps * rounding)
-        for k in range(K + 1):
-            if e[k] > E[k, n]:
-                E[k, n] = e[k]
+        out[n] = top if top > 0.0 else 1.0
 
 
 @_jit

@@ -29,7 +29,6 @@ from functools import lru_cache
 import numpy as np
 
 from ..model import Mechanism
-from . import contact
 from .groups import (UNRELIABLE_CONDITION, GroupSolver, State, _scaled, least_squares,
                      rate_residuals, residual_and_jacobian)
 
@@ -56,16 +55,14 @@ def coordinate_size(mech: Mechanism) -> float:
 def rate_scale(mech: Mechanism, inputs: dict) -> np.ndarray:
     """Ω per sample: the inputs' rate (rad/s; a slide's in L/s), the k-th Taylor coefficients
     counted as Ω^k; 1 where the inputs stand still (every rate is zero then)."""
-    omega = None
-    for d in mech.drivers:
-        c = inputs[d.joint]
-        per = mech.length_scale if mech.joint(d.joint).kind == "prismatic" else 1.0
-        for k in range(1, c.shape[0]):
-            w = (np.abs(c[k]) / per) ** (1.0 / k)
-            omega = w if omega is None else np.maximum(omega, w)
-    if omega is None:
-        return np.ones(next(iter(inputs.values())).shape[1] if inputs else 0)
-    return np.where(omega > 0, omega, 1.0)
+    from . import kernels
+
+    C = np.stack([np.asarray(inputs[d.joint], dtype=np.float64) for d in mech.drivers])
+    per = np.array([mech.length_scale if mech.joint(d.joint).kind == "prismatic" else 1.0
+                    for d in mech.drivers])
+    out = np.empty(C.shape[2])
+    kernels.rate_scales(C, per, out)
+    return out
 
 
 class ErrorBudget:
@@ -76,8 +73,8 @@ class ErrorBudget:
         self.mech, self.eps = mech, eps
         self.E = np.zeros((K + 1, N))
         self.m = np.zeros((K + 1, N))
-        self.m[0] = coordinate_size(mech)
-        self.omega = np.ascontiguousarray(rate_scale(mech, state.inputs), dtype=np.float64)
+        self.m[0] = coordinate_size(mech)  # the sizes start at the drawing's coordinates
+        self.omega = rate_scale(mech, state.inputs)
 
     def add(self, state: State, solver: GroupSolver, kappa: np.ndarray) -> None:
         """Account for one group just solved (poses and rates in state.Q) with condition
@@ -104,10 +101,14 @@ class ErrorBudget:
         return out
 
 
+#: pairs whose equations run on long-double jets throughout (the contact equations of higher
+#: pairs evaluate their profiles in double; intermittent pairs switch phases)
+POLISHABLE_PAIRS = frozenset({"revolute", "prismatic", "slot", "circular-slot", "gear"})
+
+
 def polishable(mech: Mechanism) -> bool:
-    """Groups whose equations run on long-double jets throughout (the contact equations of
-    higher pairs evaluate their profiles in double)."""
-    return not any(contact.is_higher(j) for j in mech.joints)
+    """Every group can be polished in long double (`POLISHABLE_PAIRS` only)."""
+    return all(j.kind in POLISHABLE_PAIRS for j in mech.joints)
 
 
 def polish(mech: Mechanism, solvers, Q: np.ndarray, T: np.ndarray, inputs: dict,

@@ -144,11 +144,9 @@ def solve(mech: Mechanism, inputs=None, *, times=None, velocities=None, accelera
             state.T[:, :, ~ok] = np.nan
             state.rots.clear()
         cond = condition[sl]
-        budget = ErrorBudget(mech, state)
+        budget = state.budget = ErrorBudget(mech, state)
         for s in solvers:
-            kappa = s.derivatives(state, ok)
-            np.maximum(cond, kappa, out=cond)
-            budget.add(state, s, kappa)
+            np.maximum(cond, s.derivatives(state, ok), out=cond)
         if not ok.all():
             state.Q[1:, ~ok] = np.nan
         _finish_block(state)
