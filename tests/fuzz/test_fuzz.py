@@ -47,10 +47,9 @@ def test_every_library_file_as_shipped_passes_the_checks(name):
     assert out.kind == "result", (out.cause, out.detail)
 
 
-@pytest.mark.xfail(reason="found by tools/fuzz.py (seed 5, case 405): a rocker of 1e-6 mm in a "
-                          "50 mm drawing is reported ok with its pair B open by 7.6 mm; the honest "
-                          "statuses of issue 10 (kinematics) are to mark it", strict=False)
 def test_tiny_rocker_is_not_ok_with_an_open_pair():
+    """Found by tools/fuzz.py (seed 5, case 405): a rocker of 1e-6 mm in a 50 mm drawing was
+    reported ok with its pair B open by 7.6 mm, until the honest statuses of issue 10."""
     import numpy as np
 
     import linkwork
