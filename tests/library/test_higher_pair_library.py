@@ -744,3 +744,20 @@ def test_poeschl_cam_with_an_oscillating_lever_follows_the_four_bars():
                                (lever_angle(phi + h)[0] - lever_angle(phi - h)[0]) / (2 * h), atol=1e-7)
     # the lever rests in both dwells
     np.testing.assert_allclose(sol.link("lever").omega[(which == 2) | (which == 5)], 0.0, atol=1e-12)
+
+
+def test_elliptical_gears_on_two_frame_pivots_are_refused_with_a_message():
+    """Both wheels hinged to the frame and rolling (h = 2) count one constraint too many; until
+    a rolling pair on two pivots counts as a gear does (h = 1), the drawing is refused with a
+    message, not a traceback (it once crashed in the over-closed chains' check)."""
+    from linkwork.errors import LinkworkError
+    from linkwork.io.files import resolve
+    text = resolve("library:elliptical-gears")[1]
+    text = (text.replace('frame  = ["O1", "X"]', 'frame  = ["O1", "O2"]')
+                .replace('axle   = ["X", "O2"]\n', '')
+                .replace('X    = { type = "revolute", links = ["frame", "axle"] }\n', '')
+                .replace('links = ["axle", "wheel2"]', 'links = ["frame", "wheel2"]')
+                .replace('X  = [100, -60]\n', ''))
+    assert '"axle"' not in text
+    with pytest.raises(LinkworkError, match="over-constrained"):
+        linkwork.solve(linkwork.load_text(text), np.radians([0.0, 30.0]))

@@ -208,8 +208,10 @@ def residual_and_jacobian(state: State, group: Group) -> tuple[np.ndarray, np.nd
     still = State(state.mech, np.stack([state.Q[0], np.zeros_like(state.Q[0])]),
                   {j: np.stack([v[0], np.zeros_like(v[0])]) for j, v in state.inputs.items()})
     res = _residuals(still, group, U, 1)
-    return (np.stack([x.c[0][:, 0] for x in res], axis=1),
-            np.stack([x.c[1] for x in res], axis=1))
+    # a row that none of the group's unknowns enter (a pair between links solved before, in a
+    # group set aside as redundant) has no direction axis of its own: broadcast it
+    return (np.stack([np.broadcast_to(x.c[0], (N, m))[:, 0] for x in res], axis=1),
+            np.stack([np.broadcast_to(x.c[1], (N, m)) for x in res], axis=1))
 
 
 def group_jacobian(state: State, group: Group) -> np.ndarray:
