@@ -340,7 +340,7 @@ def _build(spec: schema.MechanismFile, text: str, source: str, base_dir: Path | 
             joints.append(CamContact(name, links, j.profile, j.follower, point=at,
                                      radius=float(j.radius or 0.0), axis=axis, mate=j.mate))
         elif isinstance(j, schema.RollingSpec):
-            joints.append(RollingContact(name, links, tuple(j.profiles)))
+            joints.append(RollingContact(name, links, tuple(j.profiles), j.carrier))
         elif isinstance(j, schema.GearSpec):
             radii = tuple(float(r) for r in j.radii)
             if j.kind != "rack" and len(radii) != 2:

@@ -83,6 +83,8 @@ class RollingSpec(_Strict):
     links: Annotated[list[str], Field(min_length=2, max_length=2)]
     profiles: Annotated[list[str], Field(min_length=2, max_length=2)] = Field(
         description="the profile of each link; they touch in the drawing and roll without slip")
+    carrier: str | None = Field(None, description="the link carrying both wheels' axles "
+                                "(non-circular gears; found when both links are hinged to one link)")
 
 
 class GenevaSpec(_Strict):

@@ -90,7 +90,8 @@ def _curve(profile, u: Jet, order: int) -> tuple[Jet, Jet, Jet, Jet]:
 
 def _arc_length(profile, u: Jet, order: int) -> Jet:
     """Jet of the arc length s(u): s(u₀) from the profile, its u-derivatives from |c′(u)|."""
-    D = profile.derivatives(_once(u.c[0]), order)  # c, c′, …, c⁽ᵒʳᵈᵉʳ⁾
+    # c, c′, …, c⁽ᵒʳᵈᵉʳ⁾ (at least c′: an order-0 jet, positions only, still has a value)
+    D = profile.derivatives(_once(u.c[0]), max(order, 1))[: order + 1 if order else 2]
     # |c′(u₀ + δ)| as a series in δ, then s⁽ᵐ⁺¹⁾(u₀) = m!·(its m-th coefficient)
     tx = Jet.from_derivatives(D[1:, ..., 0])
     ty = Jet.from_derivatives(D[1:, ..., 1])

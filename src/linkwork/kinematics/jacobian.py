@@ -79,6 +79,8 @@ def numerical_rank(m: np.ndarray, tol: float = RANK_TOL, *, reference: np.ndarra
 
 
 def equation_names(j: Joint) -> tuple[str, ...]:
+    if j.kind == "rolling" and getattr(j, "carrier", None):
+        return ("rolling",)  # on two pivots, as a gear pair: the pivots keep the wheels touching
     return EQUATIONS[j.kind]
 
 
@@ -122,17 +124,39 @@ def _eliminate_contacts(mech: Mechanism, names: tuple[str, ...], J: np.ndarray, 
     """The Jacobian on the link poses alone: each higher pair's rows reduced to the
     combinations in which its contact coordinates do not appear."""
     out, at, c = [], 0, 0
-    for jn, n in zip(names, _row_counts(mech, names)):
+    counts = _row_counts(mech, names)
+    starts = dict(zip(names, np.cumsum([0] + counts[:-1])))
+    for jn, n in zip(names, counts):
         block = J[at:at + n]
-        if contact.is_higher(mech.joint(jn)):
+        j = mech.joint(jn)
+        if contact.is_higher(j):
             Jc = block[:, 3 * (k + c):3 * (k + c) + 3]
             U = np.linalg.svd(Jc)[0]
             block = U[:, 3:].T @ block
             c += 1
+            if getattr(j, "carrier", None):
+                block = _rolling_on_pivots(mech, j, names, starts, J, block, k)
         out.append(block[:, :3 * k])
         at += n
     out.append(J[at:, :3 * k])  # the drivers
     return np.vstack(out)
+
+
+def _rolling_on_pivots(mech: Mechanism, j, names, starts, J: np.ndarray, block: np.ndarray,
+                       k: int) -> np.ndarray:
+    """Of a rolling pair's two equations on the link poses, the one its wheels' pivots on the
+    carrier do not already hold (they keep the wheels touching): the combination farthest from
+    the pivot rows' span (the rolling), as a gear pair has one."""
+    pivots = [jn for jn in names if mech.joint(jn).kind == "revolute"
+              and set(mech.joint(jn).links) in ({j.carrier, j.links[0]}, {j.carrier, j.links[1]})]
+    R = block[:, :3 * k]
+    if pivots:
+        P = np.vstack([J[starts[p]:starts[p] + 2, :3 * k] for p in pivots])
+        basis = np.linalg.svd(P, full_matrices=False)[2]
+        basis = basis[np.linalg.svd(P, compute_uv=False) > 1e-12 * max(1.0, np.abs(P).max())]
+        R = R - (R @ basis.T) @ basis
+    w = np.linalg.svd(R)[0][:, 0]
+    return w[None] @ block
 
 
 def _close_contacts(mech: Mechanism, state: State) -> None:

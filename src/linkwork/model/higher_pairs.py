@@ -18,7 +18,7 @@ follow from the drawing, as the assembly branch of a dyad does.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -56,12 +56,24 @@ class CamContact:
 @dataclass(frozen=True)
 class RollingContact:
     """Profiles `profiles[0]` of `links[0]` and `profiles[1]` of `links[1]` touch and roll on
-    each other without slip (equal arc lengths pass the contact on both)."""
+    each other without slip (equal arc lengths pass the contact on both).
+
+    `carrier`: the link on which both are hinged, as non-circular gears on their axles
+    (*unrunde Räder*). Their pivots then keep the wheels touching, so, like a gear pair, the
+    pair removes one freedom (the rolling), not two; its touching equations stay (they fix the
+    contact's place) and repeat the pivots' consistently. `Mechanism.build` finds the carrier
+    when both links are hinged to one link."""
 
     name: str
     links: tuple[str, str]
     profiles: tuple[str, str]
+    carrier: str | None = None
     kind = "rolling"
+
+    @property
+    def constraints(self) -> int:
+        """Freedoms the pair removes: 1 on two pivots of one carrier, else 2 (self-closed)."""
+        return 1 if self.carrier else 2
 
 
 HigherPair = CamContact | RollingContact
@@ -228,9 +240,30 @@ def validate_higher_pair(mech: "Mechanism", pair: HigherPair) -> None:
             raise ModelError(f"{what}: a roller needs a positive radius, got {pair.radius}")
         if pair.follower == "flat" and pair.axis is None:
             raise ModelError(f"{what}: a flat face needs `axis`, its direction")
+    if isinstance(pair, RollingContact) and pair.carrier is not None:
+        if pair.carrier not in mech.link_names or pair.carrier in pair.links:
+            raise ModelError(f"{what}: carrier '{pair.carrier}' must be a third link, on which "
+                             "both wheels are hinged")
+        if with_pivot_carrier(replace(pair, carrier=None), mech.joints).carrier != pair.carrier:
+            raise ModelError(f"{what}: links '{pair.links[0]}' and '{pair.links[1]}' are not both "
+                             f"hinged to the carrier '{pair.carrier}'")
     for name in names:
         if name not in mech.profiles:
             known = ", ".join(sorted(mech.profiles)) or "none"
             raise ModelError(f"{what}: there is no profile '{name}' in [profiles] (defined: "
                              f"{known})")
     design_contact(mech, pair)
+
+
+def with_pivot_carrier(pair: RollingContact, joints) -> RollingContact:
+    """`pair` with its carrier set when both its links are hinged to one third link."""
+    if pair.carrier is not None:
+        return pair
+    hinged: dict[str, set[str]] = {}
+    for j in joints:
+        if getattr(j, "kind", None) == "revolute":
+            a, b = j.links
+            hinged.setdefault(a, set()).add(b)
+            hinged.setdefault(b, set()).add(a)
+    common = hinged.get(pair.links[0], set()) & hinged.get(pair.links[1], set())
+    return replace(pair, carrier=sorted(common)[0]) if len(common) == 1 else pair

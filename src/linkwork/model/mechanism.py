@@ -25,7 +25,7 @@ import numpy as np
 
 from ..errors import ModelError
 from ..geometry.profiles import Profile
-from .higher_pairs import CamContact, RollingContact, validate_higher_pair
+from .higher_pairs import CamContact, RollingContact, validate_higher_pair, with_pivot_carrier
 from .intermittent import GenevaPair, StarWheelPair, validate_intermittent
 from .laws import ConstantSpeed, MotionLaw, PolynomialLaw, TabulatedLaw
 
@@ -160,6 +160,9 @@ class Mechanism:
                                  f"{np.asarray(points[k]).tolist()}")
         link_objs = tuple(Link(n, tuple(p)) for n, p in links.items())
         joint_objs = tuple(joints)
+        # non-circular gears on two axles of one link: the rolling pair's carrier (h = 1)
+        joint_objs = tuple(with_pivot_carrier(j, joint_objs) if isinstance(j, RollingContact) else j
+                           for j in joint_objs)
         mech_drivers = tuple(d if isinstance(d, Driver) else _make_driver(d, joint_objs, frame, link_objs)
                              for d in drivers)
         mech = cls(name=name, length_unit=length_unit, points=MappingProxyType(pts),

@@ -223,8 +223,10 @@ def counts(mech: Mechanism) -> PairCounts:
     top = max(hinges) if hinges else 1
     ht = tuple(hinges.get(k, 0) for k in range(1, top + 1))
     s = sum(1 for j in mech.joints if j.kind == "prismatic") + len(folded)
-    h_n = sum(1 for j in mech.joints if j.kind in ("gear", "cam", "geneva", "star-wheel"))
-    h_p = sum(1 for j in mech.joints if j.kind == "rolling")
+    # a rolling pair on two pivots of one carrier (non-circular gears) counts as a gear pair does
+    on_pivots = sum(1 for j in mech.joints if j.kind == "rolling" and j.carrier)
+    h_n = sum(1 for j in mech.joints if j.kind in ("gear", "cam", "geneva", "star-wheel")) + on_pivots
+    h_p = sum(1 for j in mech.joints if j.kind == "rolling") - on_pivots
     return PairCounts(n=len(mech.links) + len(folded), hinges=ht, s=s, h_n=h_n, h_p=h_p,
                       gamma=slider_groups(mech))
 

@@ -66,8 +66,13 @@ class Group:
         return len(self.links)
 
 
+def pair_constraints(j: Joint) -> int:
+    """Freedoms pair `j` removes (a rolling pair on two pivots of one carrier: 1, as a gear)."""
+    return getattr(j, "constraints", None) or PAIR_CONSTRAINTS[j.kind]
+
+
 def _involved(j: Joint) -> tuple[str, ...]:
-    return tuple(j.links) + ((j.carrier,) if isinstance(j, Gear) or is_intermittent(j) else ())
+    return tuple(j.links) + ((j.carrier,) if getattr(j, "carrier", None) else ())
 
 
 def constraint_count(joints: list[Joint], driver_joints: set[str],
@@ -75,7 +80,7 @@ def constraint_count(joints: list[Joint], driver_joints: set[str],
     """Freedoms the pairs remove, drivers included: 2 per lower pair, 1 per point contact or gear,
     1 per driver. A pair in `wedge_pairs` counts 1, because its rotation condition repeats the
     others of its closed slider group."""
-    return sum(PAIR_CONSTRAINTS[j.kind] + (j.name in driver_joints) - (j.name in wedge_pairs)
+    return sum(pair_constraints(j) + (j.name in driver_joints) - (j.name in wedge_pairs)
                for j in joints)
 
 
