@@ -151,7 +151,8 @@ def test_generic_newton_group_matches_closed_form_dyad(monkeypatch):
     fast = linkwork.solve(mech, phi)
     monkeypatch.setattr(groups.GroupSolver, "__init__", lambda self, m, g: (
         setattr(self, "mech", m), setattr(self, "group", g),
-        setattr(self, "kind", "driver" if g.drivers else "generic"), setattr(self, "parts", {}))[-1])
+        setattr(self, "kind", "driver" if g.drivers else "generic"), setattr(self, "parts", {}),
+        setattr(self, "cam", None))[-1])
     solver.plan.cache_clear()
     try:
         slow = linkwork.solve(mech, phi)

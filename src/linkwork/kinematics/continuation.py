@@ -38,7 +38,7 @@ import numpy as np
 from ..errors import SolveError
 from ..model import Mechanism
 from . import groups
-from .contact import row_index
+from .contact import PREFIX, row_index
 from .groups import State, input_coefficients
 
 CONTINUATION_STEP = np.radians(2.0)  # largest step of a revolute input (prismatic: 1 % of L)
@@ -86,8 +86,10 @@ def continuation_guesses(mech: Mechanism, solvers, values: np.ndarray,
         up, down = finite & (lam >= 0), finite & (lam < 0)
         g[up] = lanes[+1].interpolate(lam[up])
         g[down] = lanes[-1].interpolate(-lam[down])
-        if turns is not None:  # the links' angles as turned through the periods left out
-            g[..., 2] += turns[:, None] * advance
+        if turns is not None:  # the links' angles as turned through the periods left out (a
+            # contact parameter stays within its lap: the profile repeats, and a parameter of
+            # 1e8 would leave no digits for Newton's method)
+            g[..., 2] += turns[:, None] * advance[:, 2]
         return gen.split(g)
     # several drivers: march through the samples in their order
     lane = _Lane(gen, np.vstack([design[None], values]) * gen.weights)
@@ -125,11 +127,28 @@ def _period(mech: Mechanism, solvers, gen: "_Generic", lanes: dict) -> tuple | N
                 return None
             ends.append(lane.interpolate(np.array([half]))[0])
         d = ends[0] - ends[1]
-        advance = 2 * np.pi * np.round(d[:, 2] / (2 * np.pi))
-        d[:, 2] = (d[:, 2] - advance) * gen.L
+        lap = np.where(gen.laps > 0, gen.laps, 1.0)
+        advance = np.where(gen.laps > 0, lap * np.round(d / lap), 0.0)
+        d = d - advance
+        d[:, 2] *= gen.L
         if np.abs(d).max(initial=0.0) <= 1e-6 * gen.L:
             return 2 * half, advance
     return None
+
+
+def _laps(mech: Mechanism, row: str) -> tuple[float, float, float]:
+    """(x, y, θ) of a link: a turn in θ; (u, v, ·) of a higher pair's contact row: the period of
+    each closed profile it runs on (0: not periodic)."""
+    if not row.startswith(PREFIX):
+        return (0.0, 0.0, 2 * np.pi)
+    j = mech.joint(row[len(PREFIX):])
+    names = ((j.profile, j.mate) if j.kind == "cam" else tuple(j.profiles))
+
+    def lap(name):
+        p = mech.profiles.get(name) if name else None
+        return float(p.domain[1] - p.domain[0]) if p is not None and p.closed else 0.0
+
+    return (lap(names[0]), lap(names[1]) if len(names) > 1 else 0.0, 0.0)
 
 
 def _one_driver_lanes(mech: Mechanism, solvers, gen: "_Generic", design: np.ndarray) -> dict:
@@ -163,6 +182,10 @@ class _Generic:
         self.size = start
         self.links = [row_index(mech)[ln] for s in self.solvers for ln in s.group.links]
         self.L = mech.length_scale
+        # what each coordinate may gain over a period of the motion and still be the same pose:
+        # a turn of an angle, a lap of a closed profile for a contact parameter
+        self.laps = np.array([_laps(mech, ln) for s in self.solvers for ln in s.group.links]
+                             ).reshape(-1, 3)
         # λ, the distance marched in input space, counts a slide of 1 % of L like a turn of
         # CONTINUATION_STEP, so that one largest step serves revolute and prismatic inputs
         # (and mixtures of them, with several drivers)

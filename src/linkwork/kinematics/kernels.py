@@ -305,15 +305,15 @@ def rate_scales(C, per, out):
 
 
 @_jit
-def relative_errors(E, m, eps, out):
+def relative_errors(E, m, eps, weights, out):
     """out[n]: the largest E[k, n] (k ≤ out's orders: positions, velocities, accelerations)
-    over the larger of 1 and m[k, n], plus eps (the rounding of the stored answer); inf where
-    NaN."""
+    over the larger of 1 and m[k, n], times weights[k], plus eps (the rounding of the stored
+    answer); inf where NaN."""
     K = min(E.shape[0], 3)
     for n in range(E.shape[1]):
         top = 0.0
         for k in range(K):  # positions against the scale L; rates against their size too
-            v = E[k, n] / max(m[k, n], 1.0) if k else E[0, n]
+            v = (E[k, n] / max(m[k, n], 1.0) if k else E[0, n]) * weights[k]
             if not v <= top:  # NaN too
                 top = v if v == v else math.inf
         out[n] = top + eps

@@ -33,8 +33,16 @@ from .groups import (UNRELIABLE_CONDITION, GroupSolver, State, _scaled, least_sq
                      rate_residuals, residual_and_jacobian)
 
 #: the largest forward error (relative to the natural scale, or to the answer where that is
-#: larger) of an `ok` sample
+#: larger) of an `ok` sample's positions and velocities
 TOLERANCE = 1e-9
+#: ... and of its accelerations. The bound grows like κ³ε for them (κ²ε for velocities): held to
+#: 1e-9 it called samples of ordinary mechanisms (κ ≈ 150) singular whose accelerations are
+#: right to 1e-13; at 1e-7 a sample is `ok` up to κ ≈ 700 and its accelerations carry 7 digits
+ACCELERATION_TOLERANCE = 1e-7
+#: per order (positions, velocities, accelerations): the weight that turns its bound into the
+#: positions' tolerance, so that one comparison with TOLERANCE decides the status
+_STATUS_WEIGHTS = np.array([1.0, 1.0, TOLERANCE / ACCELERATION_TOLERANCE])
+_PLAIN = np.ones(3)
 #: above this condition number Newton's method in long double is not tried: from the double
 #: answer, off by κ·ε, it converges only while κ²·ε is well below 1
 POLISH_LIMIT = 1e7
@@ -91,13 +99,15 @@ class ErrorBudget:
                                  np.ascontiguousarray(kappa, dtype=np.float64), rho, self.m,
                                  self.E, self.eps)
 
-    def relative(self, out: np.ndarray | None = None) -> np.ndarray:
+    def relative(self, out: np.ndarray | None = None, *, for_status: bool = False) -> np.ndarray:
         """The bound per sample: each order's error over the larger of its natural scale and the
-        answer's size, the largest of them; the storing in double adds ε."""
+        answer's size, the largest of them; the storing in double adds ε. `for_status`: the
+        accelerations' bound scaled by TOLERANCE/ACCELERATION_TOLERANCE (compare with
+        TOLERANCE)."""
         from . import kernels
 
         out = np.empty(self.E.shape[1]) if out is None else out
-        kernels.relative_errors(self.E, self.m, EPS, out)
+        kernels.relative_errors(self.E, self.m, EPS, _STATUS_WEIGHTS if for_status else _PLAIN, out)
         return out
 
 
@@ -112,12 +122,13 @@ def polishable(mech: Mechanism) -> bool:
 
 
 def polish(mech: Mechanism, solvers, Q: np.ndarray, T: np.ndarray, inputs: dict,
-           sel: np.ndarray, bound: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+           sel: np.ndarray, bound: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Solve the samples `sel` (indices into the block) again in long double, starting from
     their double answers in Q, whose positions are off by at most `bound` (in L, from the double
     solve's `ErrorBudget`); write the results (rounded to double) into Q and T. Returns the new
-    error bounds and condition numbers of those samples (inf where Newton's method does not
-    settle next to the double answer, which then stays).
+    error bounds (plain and for the status, `ErrorBudget.relative`) and condition numbers of
+    those samples (inf where Newton's method does not settle next to the double answer, which
+    then stays).
 
     The bound is `ErrorBudget`'s with the long double's ε: safe, though at a change point it
     can be a thousand times the actual error. (Comparing with the same Newton solve in double,
@@ -125,14 +136,14 @@ def polish(mech: Mechanism, solvers, Q: np.ndarray, T: np.ndarray, inputs: dict,
     solve's rounding can be as small as the long double's, and the comparison then says
     nothing.)"""
     Ql, cond, good, budget = _newton(mech, solvers, Q[:, sel], inputs, sel, bound, np.longdouble)
-    err = budget.relative()
-    err[~good] = np.inf
+    err, status_err = budget.relative(), budget.relative(for_status=True)
+    err[~good] = status_err[~good] = np.inf
     keep = sel[good]
     Q[:, keep] = Ql[:, good].astype(float)
     th = Ql[0][good][..., 2]  # (n, rows)
     T[:, 0, keep] = np.cos(th).astype(float).T
     T[:, 1, keep] = np.sin(th).astype(float).T
-    return err, cond
+    return err, status_err, cond
 
 
 def _newton(mech: Mechanism, solvers, Qd: np.ndarray, inputs: dict, sel: np.ndarray,

@@ -24,7 +24,7 @@ _FACTORIALS = np.array([factorial(k) for k in range(8)], dtype=float)
 
 
 class Status(enum.IntEnum):
-    OK = 0  # the forward error bound (`Solution.errors`) is within `precision.TOLERANCE`
+    OK = 0  # forward error bound within `precision.TOLERANCE` (accelerations: `ACCELERATION_TOLERANCE`)
     SINGULAR = 1  # near a dead centre / change point: the bound is larger (the pose is given)
     UNREACHABLE = 2  # the chain cannot be assembled at this input
 

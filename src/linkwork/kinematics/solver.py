@@ -120,6 +120,7 @@ def solve(mech: Mechanism, inputs=None, *, times=None, velocities=None, accelera
     assembled = np.ones(N, dtype=bool)
     condition = np.ones(N)
     errors = np.zeros(N)
+    status_errors = np.zeros(N)  # the same, accelerations weighted to their own tolerance
     T = np.empty((n_rows, 2, N))  # cos θ, sin θ of every link, rows contiguous
     T[frame, 0], T[frame, 1] = 1.0, 0.0
     # Closed-form groups in NumPy work sample by sample, so the samples are solved in blocks
@@ -151,20 +152,21 @@ def solve(mech: Mechanism, inputs=None, *, times=None, velocities=None, accelera
             state.Q[1:, ~ok] = np.nan
         _finish_block(state)
         err = budget.relative(errors[sl])
+        serr = budget.relative(status_errors[sl], for_status=True)
         # samples near a singular position: once more in extended precision
-        sel = np.flatnonzero(ok & (err > TOLERANCE) & (cond < POLISH_LIMIT)) if can_polish \
+        sel = np.flatnonzero(ok & (serr > TOLERANCE) & (cond < POLISH_LIMIT)) if can_polish \
             else np.zeros(0, dtype=int)
         if sel.size:
-            e, c = polish(mech, solvers, state.Q, state.T, state.inputs, sel, budget.E[0, sel])
+            e, se, c = polish(mech, solvers, state.Q, state.T, state.inputs, sel, budget.E[0, sel])
             done = np.isfinite(e)  # else the double answer stays, with its bound
-            err[sel[done]], cond[sel[done]] = e[done], c[done]
+            err[sel[done]], serr[sel[done]], cond[sel[done]] = e[done], se[done], c[done]
     if n_rows > len(mech.link_names):  # higher pairs: a contact cut into is no contact
         cut = interference(mech, Q[0])
         if cut.any():
             Q[:, cut] = np.nan
             T[:, :, cut] = np.nan
             assembled &= ~cut
-    status = np.where(assembled, np.where(errors > TOLERANCE, Status.SINGULAR, Status.OK),
+    status = np.where(assembled, np.where(status_errors > TOLERANCE, Status.SINGULAR, Status.OK),
                       Status.UNREACHABLE).astype(np.int8)
     condition = np.where(assembled, condition, np.nan)
     errors = np.where(assembled, errors, np.nan)
