@@ -251,8 +251,9 @@ def _write_pose(cf: CamFollower, state, q: Jet, fi: int) -> None:
     state.forget_trig([fi])
 
 
-def _equations_on_jets(cf: CamFollower, state, q: Jet, u: Jet) -> tuple[Jet, Jet]:
-    """The two equations on jets (the cam's and base's poses from Q, q and u given)."""
+def _equations_on_jets(cf: CamFollower, state, q: Jet, u: Jet, D: np.ndarray) -> tuple[Jet, Jet]:
+    """The two equations on jets (the cam's and base's poses from Q, q and u given; D: the
+    profile's derivatives at u's value, of order q.order + 1 at least)."""
     mech = state.mech
     j = cf.pair
     d = contact._design(mech, j.name)
@@ -268,7 +269,8 @@ def _equations_on_jets(cf: CamFollower, state, q: Jet, u: Jet) -> tuple[Jet, Jet
         return c * vx - s * vy, s * vx + c * vy
 
     ax_, ay_, ac, as_ = pose(cf.cam)
-    px, py, tx0, ty0 = contact._curve(mech.profiles[j.profile], u, K)
+    c, t = u.compose(D[: K + 1]), u.compose(D[1: K + 2])
+    px, py, tx0, ty0 = Jet(c.c[..., 0]), Jet(c.c[..., 1]), Jet(t.c[..., 0]), Jet(t.c[..., 1])
     cx, cy = rot(ac, as_, px, py)
     cx, cy = cx + ax_, cy + ay_
     tx, ty = rot(ac, as_, tx0, ty0)
@@ -326,11 +328,12 @@ def derivatives(cf: CamFollower, state, ok: np.ndarray, unreliable: float) -> np
         cond = (fro2 + np.sqrt(np.maximum(fro2 * fro2 - 4 * dets * dets, 0.0))) / (2 * dets)
     good = ok & np.isfinite(cond) & (cond < unreliable)
     cond = np.where(ok & np.isfinite(cond), cond, np.inf)
+    D = mech.profiles[cf.pair.profile].derivatives(u0, K + 1)  # once for every order
     qc = np.zeros((K + 1, N))
     uc = np.zeros((K + 1, N))
     qc[0], uc[0] = q0, u0
     for k in range(1, K + 1):
-        r1, r2 = _equations_on_jets(cf, state, Jet(qc[: k + 1]), Jet(uc[: k + 1]))
+        r1, r2 = _equations_on_jets(cf, state, Jet(qc[: k + 1]), Jet(uc[: k + 1]), D)
         r1, r2 = r1.c[k], r2.c[k]
         with np.errstate(invalid="ignore", divide="ignore"):
             qc[k] = np.where(good, -(g2u * r1 - g1u * r2) / det, np.nan)
