@@ -121,13 +121,13 @@ def _follower_point(cf: CamFollower, state, q, p: np.ndarray):
     return bx + px + q * ax, by + py + q * ay, ax, ay
 
 
-def _equations(cf: CamFollower, mech: Mechanism, state, q, u, d):
+def _equations(cf: CamFollower, mech: Mechanism, state, q, u, d, D=None):
     """The two equations and their partial derivatives by q and u (each (N,)), and the weights
     that turn each equation into a length (as the generic rows are) and a profile parameter
     into a length along the profile (|c′|)."""
     j = cf.pair
-    prof = mech.profiles[j.profile]
-    D = prof.derivatives(u, 2)
+    if D is None:  # else given: the profile's derivatives at u, to order 2 at least
+        D = mech.profiles[j.profile].derivatives(u, 2)
     ax_, ay_, ac, as_ = _pose(state, cf.cam)
     cx, cy = _rot(ac, as_, D[0])
     cx, cy = cx + ax_, cy + ay_
@@ -316,7 +316,8 @@ def derivatives(cf: CamFollower, state, ok: np.ndarray, unreliable: float) -> np
     q0 = state.Q[0, :, fi, 2] if cf.hinge is not None else _start(
         cf, state, state.Q[0][:, [fi, ri]], d.u0)[0]
     u0 = state.Q[0, :, ri, 0] + d.u0
-    g1, g2, g1q, g1u, g2q, g2u, (w1, w2, nt) = _equations(cf, mech, state, q0, u0, d)
+    D = mech.profiles[cf.pair.profile].derivatives(u0, max(K + 1, 2))  # once for every order
+    g1, g2, g1q, g1u, g2q, g2u, (w1, w2, nt) = _equations(cf, mech, state, q0, u0, d, D)
     det = g1q * g2u - g1u * g2q
     # scaled Jacobian: rows in lengths, the u column per length along the profile, a hinge's
     # q column per radian over the mechanism's size (as the generic path scales angles)
@@ -328,7 +329,6 @@ def derivatives(cf: CamFollower, state, ok: np.ndarray, unreliable: float) -> np
         cond = (fro2 + np.sqrt(np.maximum(fro2 * fro2 - 4 * dets * dets, 0.0))) / (2 * dets)
     good = ok & np.isfinite(cond) & (cond < unreliable)
     cond = np.where(ok & np.isfinite(cond), cond, np.inf)
-    D = mech.profiles[cf.pair.profile].derivatives(u0, K + 1)  # once for every order
     qc = np.zeros((K + 1, N))
     uc = np.zeros((K + 1, N))
     qc[0], uc[0] = q0, u0
