@@ -30,6 +30,7 @@ from typing import Mapping
 import numpy as np
 from scipy.spatial import cKDTree
 
+from ..geometry.profiles import curvature
 from ..model import CamContact, Mechanism, RollingContact, design_contact
 from .jet import Jet
 
@@ -150,16 +151,20 @@ def residuals(mech: Mechanism, j, pose, point, rotate) -> list[Jet]:
     return rows_
 
 
+def _side(profile, u0: float, normal: np.ndarray) -> float:
+    """+1 where `normal` (the common normal of the drawing, towards the follower) lies on the
+    left of the profile's direction at u0, −1 on its right."""
+    t = profile.derivatives(np.array(u0), 1)[1]
+    return float(np.sign(np.array([-t[1], t[0]]) @ normal))
+
+
 def _concavities(mech: Mechanism, j, u: np.ndarray, v: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """How much each element bends towards the other at the contact (1/length; positive where
     it is hollow towards the other body): links[0]'s profile at u, the follower's element at v.
     Curvature does not change with the links' poses, and the sides are those of the drawing."""
     d = _design(mech, j.name)
     prof = mech.profiles[j.profile if isinstance(j, CamContact) else j.profiles[0]]
-    D1 = prof.derivatives(np.array(d.u0), 1)
-    left = np.array([-D1[1][1], D1[1][0]])
-    towards = float(np.sign(left @ d.normal))  # the follower's side relative to the left normal
-    k1 = towards * np.asarray(_curvature(prof, u))
+    k1 = _side(prof, d.u0, d.normal) * np.asarray(curvature(prof, u))
     follower = j.follower if isinstance(j, CamContact) else "rolling"
     if follower == "roller":
         return k1, np.full_like(k1, -1.0 / j.radius)
@@ -168,15 +173,7 @@ def _concavities(mech: Mechanism, j, u: np.ndarray, v: np.ndarray) -> tuple[np.n
     if follower == "knife":
         return k1, np.full_like(k1, -np.inf)
     mate = mech.profiles[j.mate if isinstance(j, CamContact) else j.profiles[1]]
-    D2 = mate.derivatives(np.array(d.v0), 1)
-    mate_left = np.array([-D2[1][1], D2[1][0]])
-    return k1, -float(np.sign(mate_left @ d.normal)) * np.asarray(_curvature(mate, v))
-
-
-def _curvature(profile, u: np.ndarray, side: int = 1) -> np.ndarray:
-    D = profile.derivatives(u, 2, side=side)
-    t = D[1]
-    return (t[..., 0] * D[2][..., 1] - t[..., 1] * D[2][..., 0]) / np.hypot(t[..., 0], t[..., 1]) ** 3
+    return k1, -_side(mate, d.v0, d.normal) * np.asarray(curvature(mate, v))
 
 
 @lru_cache(maxsize=256)
@@ -240,12 +237,11 @@ def _convex_outside(mech: Mechanism, name: str) -> bool:
     if not prof.closed or not np.isfinite(prof.domain).all():
         return False
     d = _design(mech, name)
-    D1 = prof.derivatives(np.array(d.u0), 1)
-    towards = float(np.sign(np.array([-D1[1][1], D1[1][0]]) @ d.normal))
+    towards = _side(prof, d.u0, d.normal)
     u = np.linspace(prof.domain[0], prof.domain[1], 4096, endpoint=False)
     breaks = np.asarray(prof.breaks, dtype=float)
-    k = np.concatenate([_curvature(prof, u), _curvature(prof, breaks, side=-1),
-                        _curvature(prof, breaks, side=1)])
+    k = np.concatenate([curvature(prof, u), curvature(prof, breaks, side=-1),
+                        curvature(prof, breaks, side=1)])
     if not (np.all(np.isfinite(k)) and np.all(towards * k <= 0.0)):
         return False
     t = prof.derivatives(u, 1)[1]

@@ -152,8 +152,8 @@ def _rolling_on_pivots(mech: Mechanism, j, names, starts, J: np.ndarray, block: 
     R = block[:, :3 * k]
     if pivots:
         P = np.vstack([J[starts[p]:starts[p] + 2, :3 * k] for p in pivots])
-        basis = np.linalg.svd(P, full_matrices=False)[2]
-        basis = basis[np.linalg.svd(P, compute_uv=False) > 1e-12 * max(1.0, np.abs(P).max())]
+        _, sv, basis = np.linalg.svd(P, full_matrices=False)
+        basis = basis[sv > 1e-12 * max(1.0, np.abs(P).max())]
         R = R - (R @ basis.T) @ basis
     w = np.linalg.svd(R)[0][:, 0]
     return w[None] @ block

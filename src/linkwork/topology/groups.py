@@ -38,7 +38,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import StructureError
-from ..model import Gear, Joint, Mechanism, is_intermittent
+from ..model import Joint, Mechanism
 
 #: degrees of freedom each pair removes (Grübler's g₁ pairs count 2, point contact pairs 1; a
 #: cam contact h = 1, a rolling contact, self-closed, h = 2 as Rosenauer §110 counts it; the
