@@ -12,8 +12,8 @@ SRC = Path(__file__).resolve().parents[1] / "src" / "linkwork"
 
 # lowest first; a layer may import any layer at or below its own rank
 RANK = {"errors": 0, "units": 0, "geometry": 0, "model": 1, "io": 2, "topology": 2,
-        "kinematics": 3, "structure": 4, "instant": 4, "constructions": 5, "synthesis": 5, "drawing": 6,
-        "cli": 7}
+        "kinematics": 3, "structure": 4, "instant": 4, "forces": 4, "constructions": 5, "synthesis": 5,
+        "sweeps": 5, "drawing": 6, "web": 7, "cli": 8}
 
 
 def _layer(module: str) -> str | None:
