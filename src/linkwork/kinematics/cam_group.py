@@ -407,11 +407,11 @@ class _Rates:
 
     def _cam_coeffs(self, Y1, Y2, Y0):
         """d_1, d_2 of d = R(−θ_cam)·X from the coefficients Y_k = R(−θ_cam,0)·X_k."""
-        a = self.Qa
-        t1, t2 = a[1, :, 2], a[2, :, 2]
+        t1 = self.Qa[1, :, 2]
         d1 = _add((1.0, Y1), (-t1, _turn(Y0)))
         if Y2 is None:
             return d1, None
+        t2 = self.Qa[2, :, 2]
         d2 = _add((1.0, Y2), (-t1, _turn(Y1)), (-t2, _turn(Y0)), (-0.5 * t1 * t1, Y0))
         return d1, d2
 
