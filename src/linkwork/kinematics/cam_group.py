@@ -102,15 +102,18 @@ def _cross(ax, ay, bx, by):
     return ax * by - ay * bx
 
 
-def _pose(state, link: str):
+def _pose(state, link: str, sel=None):
+    """x, y, cos θ, sin θ of `link` at the samples (those indexed by `sel`, if given)."""
     q = state.Q[0, :, state.li(link)]
     c, s = state.cs(state.li(link))
-    return q[:, 0], q[:, 1], c, s
+    if sel is None:
+        return q[:, 0], q[:, 1], c, s
+    return q[sel, 0], q[sel, 1], c[sel], s[sel]
 
 
-def _follower_point(cf: CamFollower, state, q, p: np.ndarray):
+def _follower_point(cf: CamFollower, state, q, p: np.ndarray, sel=None):
     """World position of design point p of the follower and its derivative by q."""
-    bx, by, bc, bs = _pose(state, cf.base)
+    bx, by, bc, bs = _pose(state, cf.base, sel)
     if cf.hinge is not None:
         hx, hy = _rot(bc, bs, cf.hinge)
         c, s = np.cos(q), np.sin(q)
@@ -121,20 +124,21 @@ def _follower_point(cf: CamFollower, state, q, p: np.ndarray):
     return bx + px + q * ax, by + py + q * ay, ax, ay
 
 
-def _equations(cf: CamFollower, mech: Mechanism, state, q, u, d, D=None):
+def _equations(cf: CamFollower, mech: Mechanism, state, q, u, d, D=None, sel=None):
     """The two equations and their partial derivatives by q and u (each (N,)), and the weights
     that turn each equation into a length (as the generic rows are) and a profile parameter
-    into a length along the profile (|c′|)."""
+    into a length along the profile (|c′|). With `sel`, at those samples only (q and u given
+    there)."""
     j = cf.pair
     if D is None:  # else given: the profile's derivatives at u, to order 2 at least
         D = mech.profiles[j.profile].derivatives(u, 2)
-    ax_, ay_, ac, as_ = _pose(state, cf.cam)
+    ax_, ay_, ac, as_ = _pose(state, cf.cam, sel)
     cx, cy = _rot(ac, as_, D[0])
     cx, cy = cx + ax_, cy + ay_
     tx, ty = _rot(ac, as_, D[1])
     kx, ky = _rot(ac, as_, D[2])
     if j.follower in ("roller", "knife"):
-        Cx, Cy, dCx, dCy = _follower_point(cf, state, q, mech.points[j.point])
+        Cx, Cy, dCx, dCy = _follower_point(cf, state, q, mech.points[j.point], sel)
         dx, dy = Cx - cx, Cy - cy
         nt = np.hypot(tx, ty)
         g1 = dx * tx + dy * ty
@@ -145,13 +149,13 @@ def _equations(cf: CamFollower, mech: Mechanism, state, q, u, d, D=None):
         g2u = _cross(kx, ky, dx, dy) - sr * (tx * kx + ty * ky) / nt
         g2q = _cross(tx, ty, dCx, dCy)
         return g1, g2, g1q, g1u, g2q, g2u, (1.0 / nt, 1.0 / nt, nt)
-    Px, Py, dPx, dPy = _follower_point(cf, state, q, mech.points[j.point])
+    Px, Py, dPx, dPy = _follower_point(cf, state, q, mech.points[j.point], sel)
     if cf.hinge is not None:
         c, s = np.cos(q), np.sin(q)
         ex, ey = _rot(c, s, j.axis)
         dex, dey = -ey, ex
     else:
-        bc, bs = state.cs(state.li(cf.base))
+        bc, bs = _pose(state, cf.base, sel)[2:]
         ex, ey = _rot(bc, bs, j.axis)
         dex = dey = np.zeros_like(ex)
     g1 = _cross(ex, ey, cx - Px, cy - Py)
@@ -194,25 +198,39 @@ def positions(cf: CamFollower, state, guess: np.ndarray | None, tol: float
     span = 1.0 if cf.hinge is not None else mech.length_scale  # the largest step of q
     prof = mech.profiles[cf.pair.profile]
     u_span = (prof.domain[1] - prof.domain[0]) / 8 if np.isfinite(prof.domain).all() else np.inf
-    # the evaluation expected to be the last (every sample converged and polished) takes the
-    # profile's derivatives to the order the rates need, so that they reuse it
+    # Newton's method on every sample while many are still to do, then on those left only. The
+    # evaluations expected to be a sample's last (few samples still unconverged) take the
+    # profile's derivatives to the order the rates need, kept so that the rates reuse them.
     rates_order = max(2, state.order + 1)
-    last, kept = False, None
+    few = max(N // 8, 1)
+    err = np.full(N, np.nan)
+    kept, fresh = None, np.zeros(N, dtype=bool)
+    sel, high = None, False
     for it in range(MAX_ITERATIONS):
-        D = prof.derivatives(u, rates_order if last else 2)
-        ev = _equations(cf, mech, state, q, u, d, D)
+        here = slice(None) if sel is None else sel
+        qs, us = (q, u) if sel is None else (q[sel], u[sel])
+        D = prof.derivatives(us, rates_order if high else 2)
+        ev = _equations(cf, mech, state, qs, us, d, D, sel)
         g1, g2, g1q, g1u, g2q, g2u, (w1, w2, _) = ev
         with np.errstate(invalid="ignore", divide="ignore"):
-            err = np.maximum(np.abs(g1) * w1, np.abs(g2) * w2)
+            err[here] = np.maximum(np.abs(g1) * w1, np.abs(g2) * w2)
+        if high:
+            if kept is None:
+                kept = (np.full((rates_order + 1, N, 2), np.nan),
+                        [np.full(N, np.nan) for _ in range(9)])
+            kept[0][:, here] = D
+            for a_, b_ in zip(kept[1], ev[:6] + ev[6]):
+                a_[here] = b_
+        fresh[here] = high
         if it == 0:
             active &= np.isfinite(err)
         converged = active & (err <= tol)
         todo = active & ~(converged & polished)
         if not todo.any():
-            kept = (D, ev) if last else None
             break  # err is the residual at the final q, u
-        last = not (active & ~converged).any()
+        high = np.count_nonzero(active & ~converged) <= few
         polished |= converged  # one more step after convergence leaves only rounding
+        t = todo[here]
         with np.errstate(invalid="ignore", divide="ignore"):
             det = g1q * g2u - g1u * g2q
             dq = (g1u * g2 - g2u * g1) / det
@@ -220,22 +238,28 @@ def positions(cf: CamFollower, state, guess: np.ndarray | None, tol: float
         # damped as the generic path: at most a radian (a length) of q, an eighth of the profile
         damp = np.minimum(1.0, np.minimum(span / np.maximum(np.abs(dq), 1e-300),
                                           u_span / np.maximum(np.abs(du), 1e-300)))
-        ok_step = todo & np.isfinite(dq) & np.isfinite(du)
-        active &= ~(todo & ~ok_step)
-        q = np.where(ok_step, q + damp * dq, q)
-        u = np.where(ok_step, u + damp * du, u)
+        ok_step = t & np.isfinite(dq) & np.isfinite(du)
+        active[here] &= ~(t & ~ok_step)
+        q[here] = np.where(ok_step, qs + damp * dq, qs)
+        u[here] = np.where(ok_step, us + damp * du, us)
+        todo &= active
+        idx = np.flatnonzero(todo)
+        sel = idx if idx.size <= few else None
     else:
         g1, g2, *_, (w1, w2, _) = _equations(cf, mech, state, q, u, d)
         with np.errstate(invalid="ignore", divide="ignore"):
             err = np.maximum(np.abs(g1) * w1, np.abs(g2) * w2)
+        fresh[:] = False
     q = np.where(converged, q, np.nan)
     u = np.where(converged, u, np.nan)
     _write_pose(cf, state, Jet(q[None]), fi)
     state.Q[0, :, ri, 0] = u - d.u0
     state.Q[0, :, ri, 1:] = np.where(converged, 0.0, np.nan)[:, None]
     state.contacts.pop(cf.pair.name, None)
-    if kept is not None:  # with the poses written, to tell whether they are still the ones
-        state.contacts[cf.pair.name] = (state.Q[0, :, [fi, ri]].copy(), q, u) + kept
+    if kept is not None and fresh[converged].all():
+        # with the poses written, to tell whether they are still the ones
+        ev = tuple(kept[1][:6]) + (tuple(kept[1][6:]),)
+        state.contacts[cf.pair.name] = (state.Q[0, :, [fi, ri]].copy(), q, u, kept[0], ev)
     return converged, np.where(converged, err, np.nan)
 
 
