@@ -345,10 +345,15 @@ def _turn(v):
 
 
 def _add(*terms):
-    """Σ of (weight, vector) pairs, vectors as (x, y) arrays."""
-    x = sum(w * v[0] for w, v in terms)
-    y = sum(w * v[1] for w, v in terms)
-    return x, y
+    """Σ of (weight, vector) pairs, vectors as (x, y) arrays; a weight None is 1, a vector None
+    is zero (a part of the motion that is not there, as the rates of a still base)."""
+    x = y = None
+    for w, v in terms:
+        if v is None:
+            continue
+        vx, vy = (v[0], v[1]) if w is None else (w * v[0], w * v[1])
+        x, y = (vx, vy) if x is None else (x + vx, y + vy)
+    return None if x is None else (x, y)
 
 
 def _dot(a, b):
@@ -367,13 +372,14 @@ class _Rates:
     with q_k = u_k = 0 (they enter linearly, through the Jacobian). The jets of
     `_equations_on_jets` give the same numbers (and the orders above 2)."""
 
-    def __init__(self, cf: CamFollower, state, q0, D):
+    def __init__(self, cf: CamFollower, state, q0, D, sign: float):
         mech = state.mech
-        self.cf, self.D = cf, D
+        self.cf, self.D, self.sign = cf, D, sign
         j = cf.pair
         Qa = state.Q[:, :, state.li(cf.cam)]
         Qb = state.Q[:, :, state.li(cf.base)]
         self.Qa, self.Qb = Qa, Qb
+        self.still = cf.base == mech.frame  # (its rates are zero)
         self.ca, self.sa = state.cs(state.li(cf.cam))
         bc, bs = state.cs(state.li(cf.base))
         self.flat = j.follower == "flat"
@@ -385,82 +391,95 @@ class _Rates:
             c, s = np.cos(q0), np.sin(q0)
             self.rqv = _rot(c, s, p - cf.hinge)         # R_q·(p − h)
             self.dC = _turn(self.rqv)
+            C0 = _add((None, self.rbh), (None, self.rqv))
             if self.flat:
                 self.ew = _rot(c, s, j.axis)            # the face turns with q
         else:
             a = cf.axis * cf.sense
             self.rba = _rot(bc, bs, a)                   # R_b·a
-            self.w = _add((1.0, _rot(bc, bs, p)), (q0, self.rba))  # R_b·(p + q0 a)
-            self.dC = self.rba
+            self.w = _add((None, _rot(bc, bs, p)), (q0, self.rba))  # R_b·(p + q0 a)
+            self.dC, C0 = self.rba, self.w
             if self.flat:
                 self.ew = _rot(bc, bs, j.axis)           # the face turns with the base
-        self.C0 = (Qb[0, :, 0] + (self.rbh[0] + self.rqv[0] if cf.hinge is not None else self.w[0]),
-                   Qb[0, :, 1] + (self.rbh[1] + self.rqv[1] if cf.hinge is not None else self.w[1]))
         self.dq = self._in_cam(self.dC)                  # ∂d/∂q
-        self.Y0 = self._in_cam((self.C0[0] - Qa[0, :, 0], self.C0[1] - Qa[0, :, 1]))
+        self.Y0 = self._in_cam((C0[0] + Qb[0, :, 0] - Qa[0, :, 0], C0[1] + Qb[0, :, 1] - Qa[0, :, 1]))
         if self.flat:
             self.E0 = self._in_cam(self.ew)
-            self.dE = self._in_cam(_turn(self.ew)) if cf.hinge is not None else (0.0, 0.0)
+            self.dE = self._in_cam(_turn(self.ew)) if cf.hinge is not None else None
 
     def _in_cam(self, v):
-        """R(−θ_cam)·v at the samples' cam angles."""
+        """R(−θ_cam)·v at the samples' cam angles (None stays None)."""
+        if v is None:
+            return None
         return self.ca * v[0] + self.sa * v[1], -self.sa * v[0] + self.ca * v[1]
 
     def _point(self, k: int, q1):
-        """C_k (world) with q_k = 0 (k = 1, 2; q1 given for k = 2)."""
+        """C_k (world) with q_k = 0 (k = 1, 2; q1 given for k = 2); None if zero."""
+        hinge = self.cf.hinge is not None
+        if self.still:
+            return _add((-0.5 * q1 * q1, self.rqv)) if hinge and k == 2 else None
         b = self.Qb
         t1 = b[1, :, 2]
-        if self.cf.hinge is not None:
+        bk = (b[k, :, 0], b[k, :, 1])
+        if hinge:
             if k == 1:
-                return _add((1.0, (b[1, :, 0], b[1, :, 1])), (t1, _turn(self.rbh)))
-            return _add((1.0, (b[2, :, 0], b[2, :, 1])), (b[2, :, 2], _turn(self.rbh)),
-                        (-0.5 * t1 * t1, self.rbh), (-0.5 * q1 * q1, self.rqv))
+                return _add((None, bk), (t1, _turn(self.rbh)))
+            return _add((None, bk), (b[2, :, 2], _turn(self.rbh)), (-0.5 * t1 * t1, self.rbh),
+                        (-0.5 * q1 * q1, self.rqv))
         if k == 1:
-            return _add((1.0, (b[1, :, 0], b[1, :, 1])), (t1, _turn(self.w)))
-        return _add((1.0, (b[2, :, 0], b[2, :, 1])), (b[2, :, 2], _turn(self.w)),
-                    (-0.5 * t1 * t1, self.w), (q1 * t1, _turn(self.rba)))
+            return _add((None, bk), (t1, _turn(self.w)))
+        return _add((None, bk), (b[2, :, 2], _turn(self.w)), (-0.5 * t1 * t1, self.w),
+                    (q1 * t1, _turn(self.rba)))
 
     def _face(self, k: int, q1):
-        """e_k (world) of the face with q_k = 0."""
-        th1 = self.Qb[1, :, 2] if self.cf.hinge is None else q1 if k == 2 else 0.0
-        if self.cf.hinge is None and k == 2:
-            return _add((self.Qb[2, :, 2], _turn(self.ew)), (-0.5 * th1 * th1, self.ew))
+        """e_k (world) of the face with q_k = 0; None if zero."""
+        if self.cf.hinge is not None:  # turning with q
+            return None if k == 1 else _add((-0.5 * q1 * q1, self.ew))
+        if self.still:
+            return None
+        th1 = self.Qb[1, :, 2]
         if k == 1:
             return _add((th1, _turn(self.ew)))
-        return _add((-0.5 * th1 * th1, self.ew))
+        return _add((self.Qb[2, :, 2], _turn(self.ew)), (-0.5 * th1 * th1, self.ew))
 
-    def _cam_coeffs(self, Y1, Y2, Y0):
-        """d_1, d_2 of d = R(−θ_cam)·X from the coefficients Y_k = R(−θ_cam,0)·X_k."""
+    def _cam_coeffs(self, Y0, Y1, Y2=None, second=False):
+        """d_1 (and d_2) of d = R(−θ_cam)·X from the coefficients Y_k = R(−θ_cam,0)·X_k."""
         t1 = self.Qa[1, :, 2]
-        d1 = _add((1.0, Y1), (-t1, _turn(Y0)))
-        if Y2 is None:
+        d1 = _add((None, Y1), (-t1, _turn(Y0)))
+        if not second:
             return d1, None
         t2 = self.Qa[2, :, 2]
-        d2 = _add((1.0, Y2), (-t1, _turn(Y1)), (-t2, _turn(Y0)), (-0.5 * t1 * t1, Y0))
+        d2 = _add((None, Y2), (-t1, None if Y1 is None else _turn(Y1)), (-t2, _turn(Y0)),
+                  (-0.5 * t1 * t1, Y0))
         return d1, d2
+
+    def _minus_cam_origin(self, C, k: int):
+        """R(−θ_cam,0)·(C_k − A_k)."""
+        a = self.Qa
+        Ak = (a[k, :, 0], a[k, :, 1])
+        return self._in_cam((-Ak[0], -Ak[1]) if C is None else (C[0] - Ak[0], C[1] - Ak[1]))
 
     def rhs(self, k: int, q1=None, u1=None):
         """(r1, r2): the k-th coefficients of the two equations with q_k = u_k = 0."""
-        D, a = self.D, self.Qa
+        D = self.D
         P0, P1, P2 = (D[0, :, 0], D[0, :, 1]), (D[1, :, 0], D[1, :, 1]), (D[2, :, 0], D[2, :, 1])
-        Cm1 = self._point(1, q1)
-        Y1 = self._in_cam((Cm1[0] - a[1, :, 0], Cm1[1] - a[1, :, 1]))
+        Y1 = self._minus_cam_origin(self._point(1, q1), 1)
         if k == 2:
-            Y1 = _add((1.0, Y1), (q1, self.dq))
-            Cm2 = self._point(2, q1)
-            Y2 = self._in_cam((Cm2[0] - a[2, :, 0], Cm2[1] - a[2, :, 1]))
-            d1, d2 = self._cam_coeffs(Y1, Y2, self.Y0)
+            Y1 = _add((None, Y1), (q1, self.dq))
+            Y2 = self._minus_cam_origin(self._point(2, q1), 2)
+            d1, d2 = self._cam_coeffs(self.Y0, Y1, Y2, True)
             P3 = (D[3, :, 0], D[3, :, 1])
             t1 = (P2[0] * u1, P2[1] * u1)
-            t2 = (P3[0] * (0.5 * u1 * u1), P3[1] * (0.5 * u1 * u1))
+            h = 0.5 * u1 * u1
+            t2 = (P3[0] * h, P3[1] * h)
         else:
-            d1, _ = self._cam_coeffs(Y1, None, self.Y0)
+            d1, _ = self._cam_coeffs(self.Y0, Y1)
         if not self.flat:
-            e0 = (self.Y0[0] - P0[0], self.Y0[1] - P0[1])
             if k == 1:
                 return _dot(d1, P1), _cross(*P1, *d1)
-            e1 = _add((1.0, d1), (-u1, P1))
-            e2 = _add((1.0, d2), (-0.5 * u1 * u1, P2))
+            e0 = (self.Y0[0] - P0[0], self.Y0[1] - P0[1])
+            e1 = (d1[0] - u1 * P1[0], d1[1] - u1 * P1[1])
+            e2 = (d2[0] - h * P2[0], d2[1] - h * P2[1])
             r1 = _dot(e2, P1) + _dot(e1, t1) + _dot(e0, t2)
             r2 = _cross(*P1, *e2) + _cross(*t1, *e1) + _cross(*t2, *e0)
             j = self.cf.pair
@@ -468,21 +487,19 @@ class _Rates:
                 n0 = np.hypot(*P1)
                 n1 = _dot(P1, t1) / n0
                 n2 = (2 * _dot(P1, t2) + _dot(t1, t1) - n1 * n1) / (2 * n0)
-                r2 = r2 - self.cf_sign * j.radius * n2
+                r2 = r2 - self.sign * j.radius * n2
             return r1, r2
         # flat face: g1 = e × (p − P), g2 = p′ × e, in the cam's coordinates
         f0 = (P0[0] - self.Y0[0], P0[1] - self.Y0[1])
-        Ew1 = self._face(1, q1)
-        E1 = self._in_cam(Ew1)
+        E1 = self._in_cam(self._face(1, q1))
         if k == 1:
-            e1, _ = self._cam_coeffs(E1, None, self.E0)
-            f1 = (-d1[0], -d1[1])
-            return _cross(*e1, *f0) + _cross(*self.E0, *f1), _cross(*P1, *e1)
-        E1 = _add((1.0, E1), (q1, self.dE))
+            e1, _ = self._cam_coeffs(self.E0, E1)
+            return _cross(*e1, *f0) - _cross(*self.E0, *d1), _cross(*P1, *e1)
+        E1 = _add((None, E1), (q1, self.dE))
         E2 = self._in_cam(self._face(2, q1))
-        e1, e2 = self._cam_coeffs(E1, E2, self.E0)
-        f1 = _add((u1, P1), (-1.0, d1))
-        f2 = _add((0.5 * u1 * u1, P2), (-1.0, d2))
+        e1, e2 = self._cam_coeffs(self.E0, E1, E2, True)
+        f1 = (u1 * P1[0] - d1[0], u1 * P1[1] - d1[1])
+        f2 = (h * P2[0] - d2[0], h * P2[1] - d2[1])
         r1 = _cross(*e2, *f0) + _cross(*e1, *f1) + _cross(*self.E0, *f2)
         r2 = _cross(*P1, *e2) + _cross(*t1, *e1) + _cross(*t2, *self.E0)
         return r1, r2
@@ -525,9 +542,7 @@ def derivatives(cf: CamFollower, state, ok: np.ndarray, unreliable: float) -> np
     qc = np.zeros((K + 1, N))  # zeros: the jets of order k > 2 need q_k = u_k = 0
     uc = np.zeros((K + 1, N))
     qc[0], uc[0] = q0, u0
-    rates = _Rates(cf, state, q0, D) if K >= 1 else None
-    if rates is not None:
-        rates.cf_sign = d.sign
+    rates = _Rates(cf, state, q0, D, d.sign) if K >= 1 else None
     with np.errstate(invalid="ignore", divide="ignore"):
         inv = np.where(good, 1.0 / det, np.nan)
         for k in range(1, K + 1):
