@@ -52,6 +52,7 @@ STEP_TOL = 1e-6                      # a Newton step this small (in L) ends the 
 FOLD_APPROACH = 0.9                  # fraction of the distance to a limit position ahead
 CACHE_SIZE = 32
 MAX_ATTEMPTS = 2000                  # steps (accepted or not) per lane and march: bounded cost
+CRAWL_WINDOW = 100                   # attempts over which a lane's progress is measured
 PERIOD_TURNS = 4                     # turns of a revolute input searched for the motion's period
 
 # (mechanism, its group solvers) -> {+1: lane upwards, -1: lane downwards}. Both are compared
@@ -372,6 +373,10 @@ def _march(mech: Mechanism, solvers: tuple, gen: _Generic, lanes: list[_Lane], r
 
     n_links = len(row_index(mech))  # links and contact rows
     budget = {id(ln): MAX_ATTEMPTS for ln in lanes}
+    # λ reached after each attempt, per lane: a lane that crawls at a pace that cannot reach its
+    # target within the budget is stopped early (each attempt of a higher pair costs
+    # milliseconds, so the budget alone would take seconds to run out)
+    trail: dict = {id(ln): [] for ln in lanes}
     # closed-form groups take the assembly the real motion takes across change points, as in
     # `solve` (a parallelogram under an over-closing crank stays a parallelogram)
     schedule = gen.schedule
@@ -383,10 +388,11 @@ def _march(mech: Mechanism, solvers: tuple, gen: _Generic, lanes: list[_Lane], r
             return
         for ln in todo:
             budget[id(ln)] -= 1
-            if budget[id(ln)] < 0:
+            if budget[id(ln)] < 0 or _crawls(trail[id(ln)], budget[id(ln)], reach[ln.sense]):
                 at = ln.point(ln.lam[-1]) / gen.weights if ln.lam else ln.vertices[0] / gen.weights
+                took = "took" if budget[id(ln)] < 0 else "would take more than"
                 raise SolveError(
-                    f"mechanism '{mech.name}': following the design's assembly branch took "
+                    f"mechanism '{mech.name}': following the design's assembly branch {took} "
                     f"{MAX_ATTEMPTS} continuation steps and got only to input "
                     f"{', '.join(f'{v:.6g}' for v in at)} (the poses change too fast to follow "
                     "there: nearly parallel guides, or a group close to a singular position all "
@@ -423,6 +429,18 @@ def _march(mech: Mechanism, solvers: tuple, gen: _Generic, lanes: list[_Lane], r
         for k, (ln, (h, lam, p)) in enumerate(zip(todo, props)):
             ln.settle(gen, h, lam, p, bool(ok[k]), q[k].copy(), t_arrive[k].copy(),
                       t_leave[k].copy())
+            trail[id(ln)].append(ln.lam[-1] if ln.lam else 0.0)
+
+
+def _crawls(trail: list, left: int, target: float) -> bool:
+    """Whether a lane that has advanced along `trail` (λ after each attempt) would still be
+    short of `target` after its `left` attempts at the pace of its last `CRAWL_WINDOW` ones.
+    A narrow passage slows a lane only briefly (the step grows again, doubling every other
+    attempt, once it is through), so a window of that length measures a pace that lasts."""
+    if len(trail) < CRAWL_WINDOW:
+        return False
+    pace = (trail[-1] - trail[-CRAWL_WINDOW]) / CRAWL_WINDOW
+    return trail[-1] + pace * left < target
 
 
 def _tangents(state: State, solvers, gen: _Generic, jacobians: dict, ok: np.ndarray) -> np.ndarray:
