@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 import linkwork
-from linkwork.errors import ModelError
+from linkwork.errors import LinkworkWarning, ModelError
 from linkwork.forces import kinetostatics
 from linkwork.model.inertia import (Couple, Dynamics, LinearSpring, Loads, LoadTable, MassProperties,
                                     PointForce, TorsionSpring)
@@ -128,8 +128,12 @@ def test_power_balance_and_virtual_work(name):
     mech = _mechanism(name)
     dyn = _random_dynamics(mech, rng)
     revolute = mech.joint(mech.drivers[0].joint).kind == "revolute"
-    sol = linkwork.whole_motion(mech, step=np.radians(4) if revolute else None)
-    fa = kinetostatics(dyn, sol)
+    sol = linkwork.whole_motion(mech, step=np.radians(6) if revolute else None)
+    if name == "crank-driven-wedge":  # over-closed: reactions indeterminate, the effort is not
+        with pytest.warns(LinkworkWarning, match="over-closed"):
+            fa = kinetostatics(dyn, sol)
+    else:
+        fa = kinetostatics(dyn, sol)
     ok = fa.solved
     assert ok.mean() > 0.8
     rel = np.abs(fa.power_residual[ok]) / fa.power_scale[ok]
