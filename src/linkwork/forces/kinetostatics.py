@@ -178,8 +178,9 @@ def kinetostatics(dyn: Dynamics, sol: Solution, *, inertia: bool = True) -> Forc
     `inertia`); `inertia=False` gives the static equilibrium (*statische Kräfte*) at the same
     positions. See the module's docstring for the sign convention."""
     mech = dyn.mechanism
-    if mech is not sol.mechanism:
-        raise ModelError("the solution is of another mechanism than the mass data")
+    if mech is not sol.mechanism and not _same_drawing(mech, sol.mechanism):
+        raise ModelError(f"the solution is of mechanism '{sol.mechanism.name}', the mass data "
+                         f"of '{mech.name}', whose links or points differ")
     if inertia and sol.order < 2:
         raise ModelError("inertia forces need accelerations: solve to order 2 at least")
     dyn.require_masses(inertia=inertia)
@@ -210,6 +211,12 @@ def kinetostatics(dyn: Dynamics, sol: Solution, *, inertia: bool = True) -> Forc
     return ForceAnalysis(dyn, sol, inertia, MappingProxyType(reactions), MappingProxyType(efforts),
                          MappingProxyType(virtual), frame_force, frame_moment, *shaking, *energy,
                          driver_power, power_residual, power_scale, cond, solved)
+
+
+def _same_drawing(a, b) -> bool:
+    """Two loads of one file: the same links carrying the same points at the same places."""
+    return a.links == b.links and a.points.keys() == b.points.keys() and all(
+        np.array_equal(a.points[p], b.points[p]) for p in a.points)
 
 
 # ---------------------------------------------------------------------- columns of the pairs
