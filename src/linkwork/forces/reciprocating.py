@@ -67,7 +67,8 @@ def reciprocating_inertia(sol: Solution, mass: float) -> ReciprocatingInertia:
     rod = float(np.hypot(*(p[B] - p[A])))
     u = guide.axis / np.hypot(*guide.axis)
     u = u if np.dot(p[B] - p[O], u) >= 0 else -u  # from the crank axis towards the crosshead
-    offset = abs(float(np.cross(u, p[O] - p[B])))
+    d = p[O] - p[B]
+    offset = abs(float(u[0] * d[1] - u[1] * d[0]))
     if offset > 1e-9 * mech.length_scale:
         raise ModelError(f"'{mech.name}' is an offset slider-crank (offset {offset:g}); the "
                          "harmonic series is that of the centric one")
