@@ -43,29 +43,16 @@ from ..kinematics import contact
 from ..model import (CamContact, CircularSlot, Gear, Prismatic, Revolute, RollingContact, Slot,
                      is_intermittent)
 from ..model.inertia import Dynamics
-from .loads import AppliedCouple, AppliedForce, applied_loads, load_power
+from ..geometry._base import cross2 as _cross, norm, rot90 as _perp
+from .loads import AppliedCouple, AppliedForce, applied_loads, load_power, rotate as _rotate
 
 #: condition number (of the system scaled to comparable units) above which a sample's reactions
 #: are not computed: a dead centre or a toggle position, where they grow without bound
 CONDITION_LIMIT = 1e12
 
 
-def _perp(v: np.ndarray) -> np.ndarray:
-    return np.stack([-v[..., 1], v[..., 0]], axis=-1)
-
-
-def _cross(r: np.ndarray, f: np.ndarray) -> np.ndarray:
-    return r[..., 0] * f[..., 1] - r[..., 1] * f[..., 0]
-
-
 def _unit(v: np.ndarray) -> np.ndarray:
-    return v / np.hypot(v[..., 0], v[..., 1])[..., None]
-
-
-def _rotate(theta: np.ndarray, v) -> np.ndarray:
-    v = np.asarray(v, dtype=float)
-    c, s = np.cos(theta), np.sin(theta)
-    return np.stack([c * v[..., 0] - s * v[..., 1], s * v[..., 0] + c * v[..., 1]], axis=-1)
+    return v / norm(v)[..., None]
 
 
 @dataclass(frozen=True)
@@ -298,12 +285,8 @@ def _driver_column(s: _System, d) -> tuple[int, np.ndarray | None, np.ndarray | 
 def _driver_rate(sol: Solution, d, m: float) -> np.ndarray:
     """The driver's speed: ω of the driven link relative to the base (rad/s), or the sliding
     velocity along the guide (m/s)."""
-    j = sol.mechanism.joint(d.joint)
-    if isinstance(j, Prismatic):
-        u = _rotate(sol.pose_derivatives(d.base)[0, :, 2], j.axis / np.hypot(*j.axis))
-        pin = sol.point_on(d.driven, sol.mechanism.points[j.point])
-        coinc = sol.point_on(d.base, sol.local(d.base, pin.position))
-        return m * np.einsum("ij,ij->i", pin.velocity - coinc.velocity, u)
+    if isinstance(sol.mechanism.joint(d.joint), Prismatic):  # its links are (base, driven)
+        return m * sol.joint(d.joint)["sliding_velocity"]
     return sol.pose_derivatives(d.driven)[1, :, 2] - sol.pose_derivatives(d.base)[1, :, 2]
 
 

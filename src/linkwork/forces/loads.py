@@ -33,7 +33,9 @@ class AppliedCouple:
     kind: str  # "inertia", "torque", "spring"
 
 
-def _rotate(theta: np.ndarray, v: np.ndarray) -> np.ndarray:
+def rotate(theta: np.ndarray, v) -> np.ndarray:
+    """Vectors v (2,) or (N, 2) turned by the angles theta (N,)."""
+    v = np.asarray(v, dtype=float)
     c, s = np.cos(theta), np.sin(theta)
     return np.stack([c * v[..., 0] - s * v[..., 1], s * v[..., 0] + c * v[..., 1]], axis=-1)
 
@@ -80,7 +82,7 @@ def applied_loads(dyn: Dynamics, sol: Solution, *, inertia: bool = True
     for f in loads.forces:
         F = _evaluate(f.force, 2, sol, f"force '{f.name}'")
         if f.axes == "link":
-            F = _rotate(sol.pose_derivatives(f.link)[0, :, 2], F)
+            F = rotate(sol.pose_derivatives(f.link)[0, :, 2], F)
         forces.append(AppliedForce(f.link, f.point, F, "force"))
     for c in loads.couples:
         couples.append(AppliedCouple(c.link, _evaluate(c.torque, 1, sol, f"torque '{c.name}'"),
