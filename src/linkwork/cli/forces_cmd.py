@@ -25,7 +25,8 @@ from ..forces.export import CONVENTION, columns, to_csv_text, to_document
 from ..io import load_dynamics
 from ..kinematics import solve, whole_motion
 from ..model import Prismatic
-from .common import input_speeds, input_values, show_input, user_errors, write_output
+from .common import user_errors, write_output
+from .inputs import input_speeds, input_values, show_input
 
 
 class Format(str, Enum):
