@@ -227,3 +227,18 @@ def test_from_points_agrees_with_poses():
     again = Positions.from_points(A, B)
     assert np.allclose(again.origin, pos.origin)
     assert np.allclose(np.cos(again.angle - pos.angle), 1.0)
+
+
+@pytest.mark.parametrize("seed", range(5))
+def test_dyad_forms_are_the_halved_difference_of_squared_distances(seed):
+    """Ẑᵀ B_k M̂ = (|Z_k − M|² − |Z − M|²)/2, with Z_k from the rotation matrices."""
+    from linkwork.synthesis.positions import dyad_forms
+    rng = np.random.default_rng(600 + seed)
+    pos = random_positions(5, rng)
+    B = dyad_forms(pos, ref=1)
+    Z, M = rng.uniform(-3, 3, 2), rng.uniform(-3, 3, 2)
+    others = [k for k in range(5) if k != 1]
+    for form, k in zip(B, others):
+        Zk = move(pos.poses[1], pos.poses[k], Z)
+        want = (np.sum((Zk - M) ** 2) - np.sum((Z - M) ** 2)) / 2
+        assert np.r_[Z, 1] @ form @ np.r_[M, 1] == pytest.approx(want, rel=1e-12, abs=1e-12)

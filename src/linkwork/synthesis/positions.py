@@ -33,10 +33,10 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import InputError
-from ..geometry import Circle, Line, Point, perpendicular_bisector, reflect
+from ..geometry import Line, Point, reflect
 
-__all__ = ["Positions", "SynthesisError", "centre_points", "circle_points", "image_pole",
-           "image_point", "pole_triangle"]
+__all__ = ["Positions", "SynthesisError", "centre_points", "circle_points", "dyad_forms", "image_pole",
+           "image_point", "mate", "normalised", "pole_triangle", "wrap"]
 
 
 class SynthesisError(InputError):
@@ -193,44 +193,99 @@ def image_point(pos: Positions, circle_point, ref: int = 0) -> Point:
     return reflect(Point.from_xy(circle_point), side)
 
 
-def _centre(points: np.ndarray) -> Point | Line:
-    """The point equidistant from two (→ their perpendicular bisector, a Line) or three
-    (→ the circumcentre; at infinity if they are collinear) points (k, 2)."""
-    if points.shape[0] == 2:
-        return perpendicular_bisector(Point.from_xy(points[0]), Point.from_xy(points[1]))
-    circle = Circle.through(*(Point.from_xy(p) for p in points[:3]))
-    return circle.centre
+def dyad_forms(pos: Positions, ref: int = 0) -> np.ndarray:
+    """(n − 1, 3, 3): for every position k ≠ ref the bilinear form B_k with
+
+        Ẑᵀ B_k M̂ = (|Z_k − M|² − |Z − M|²) / 2,
+
+    Ẑ = (x, y, 1) the point of Σ drawn in position `ref`, Z_k its homologous point in position
+    k, M̂ = (m_x, m_y, 1) a fixed point. Neither |Z|² nor |M|² survives the difference, so the
+    condition "Z stays on a circle about M" is bilinear: for a chosen centre point the rows
+    B_k M̂ are lines that the circle point lies on (two positions: the line itself; three: their
+    meet), and for a chosen circle point the rows Ẑᵀ B_k are lines through the centre point.
+    Homogeneous M̂ = (u_x, u_y, 0) is a centre at infinity (the circle a straight line normal to
+    u: a slider). With Z_k = c Z + e (c = e^{iθ_ref,k}):
+    (|Z_k − M|² − |Z − M|²)/2 = Re(Z c ē) − Re(Z (c − 1) M̄) − Re(e M̄) + |e|²/2."""
+    out = []
+    d_ref = _c(pos.origin[ref])
+    for k in range(len(pos)):
+        if k == ref:
+            continue
+        c = np.exp(1j * (pos.angle[k] - pos.angle[ref]))
+        e = _c(pos.origin[k]) - c * d_ref
+        g, h = c * np.conj(e), c - 1
+        out.append([[-h.real, -h.imag, g.real],
+                    [h.imag, -h.real, -g.imag],
+                    [-e.real, -e.imag, abs(e) ** 2 / 2]])
+    return np.array(out)
+
+
+def normalised(pos: Positions) -> tuple[Positions, np.ndarray, float]:
+    """The positions moved and scaled so that their origins spread over about a unit square
+    about 0 (the forms' entries are then of one size), with the centre and scale used."""
+    c = pos.origin.mean(axis=0)
+    s = pos.size
+    return Positions(pos.angle, (pos.origin - c) / s), c, s
+
+
+def _homogeneous(p, centre: np.ndarray, scale: float) -> np.ndarray:
+    """A point (Point, or x, y) in the normalised frame, homogeneous with unit norm."""
+    P = p if isinstance(p, Point) else Point.from_xy(np.asarray(p, dtype=float))
+    if P.shape != ():
+        raise InputError("give one point")
+    v = P.coords.copy()
+    if v[2] == 1:
+        v[:2] = (v[:2] - centre) / scale
+    return v / np.linalg.norm(v)
+
+
+def _from_homogeneous(v: np.ndarray, centre: np.ndarray, scale: float) -> Point:
+    v = np.asarray(v, dtype=float)
+    if v[2] != 0 and np.isfinite(v[:2] / v[2]).all() and abs(v[2]) > 1e-13 * np.abs(v[:2]).max(initial=0):
+        return Point.from_xy(v[:2] / v[2] * scale + centre)
+    return Point.at_infinity(v[:2])
+
+
+def mate(pos: Positions, given, of: str, ref: int = 0) -> Point | Line:
+    """The circle point of a centre point (`of="centre"`), or the centre point of a circle point
+    (`of="circle"`, the point drawn in position `ref`), as a homogeneous Point (at infinity for
+    a slider) — for two positions the Line of all of them. Four or more positions: the point
+    must lie on its curve, else `SynthesisError`."""
+    unit, c, s = normalised(pos)
+    B = dyad_forms(unit, ref)
+    v = _homogeneous(given, c, s)
+    rows = B @ v if of == "centre" else np.einsum("i,kij->kj", v, B)
+    if len(pos) == 2:
+        r = rows[0]
+        if np.hypot(r[0], r[1]) <= 1e-14 * abs(r[2]):
+            raise SynthesisError(f"the {of} point is the pole P12: every point is its mate")
+        return _line_back(r, c, s)
+    rows = rows / np.linalg.norm(rows, axis=1, keepdims=True).clip(1e-300)
+    _, sv, vt = np.linalg.svd(rows)
+    if len(pos) > 3 and sv[-1] > 1e-9 * sv[0]:
+        curve = "centre" if of == "centre" else "circle"
+        raise SynthesisError(f"the {of} point is not a {of} point of all {len(pos)} positions (off "
+                             f"the {curve}-point curve by {sv[-1] / sv[0]:.3g}, relative)")
+    if len(pos) == 3 and sv[1] <= 1e-12 * sv[0]:
+        raise SynthesisError(f"the {of} point lies on a pole line: its mate is not unique")
+    return _from_homogeneous(vt[-1], c, s)
+
+
+def _line_back(r: np.ndarray, c: np.ndarray, s: float) -> Line:
+    """The line r·(x̂, ŷ, 1) = 0 of the normalised frame in the user's coordinates
+    (x̂ = (x − c)/s)."""
+    return Line(np.array([r[0] / s, r[1] / s, r[2] - (r[0] * c[0] + r[1] * c[1]) / s]))
 
 
 def centre_points(pos: Positions, circle_point, ref: int = 0) -> Point | Line:
-    """The centre point(s) of the circle point given in position `ref`: two positions, the
+    """The centre point of the circle point given in position `ref`: two positions, the
     perpendicular bisector of D₁D₂ (a line through P₁₂); three, the centre of the circle through
-    D₁, D₂, D₃ (a point, at infinity when they are collinear: a slider). For four or more
-    positions the point must be a circle point of all of them (on the circle-point curve)."""
-    D = pos.homologous(np.asarray(circle_point, dtype=float), ref)
-    return _checked(pos, D, "circle point", "centre")
+    D₁, D₂, D₃ (at infinity when they are collinear: a slider); four or more, the point must be
+    a circle point of all of them (on the circle-point curve)."""
+    return mate(pos, circle_point, "circle", ref)
 
 
 def circle_points(pos: Positions, centre, ref: int = 0) -> Point | Line:
-    """The circle point(s), in position `ref`, of the centre point `centre`: the centre points
-    of the centre carried back by the inverted displacements (see the module's docstring)."""
-    M = np.asarray(centre, dtype=float)
-    back = np.stack([pos.carry(M, k, ref) for k in range(len(pos))])
-    return _checked(pos, back, "centre point", "circle")
-
-
-def _checked(pos: Positions, pts: np.ndarray, given: str, wanted: str) -> Point | Line:
-    if len(pos) <= 3:
-        return _centre(pts)
-    c = _centre(pts[:3])
-    if c.is_infinite:
-        line = Line.through(Point.from_xy(pts[0]), Point.from_xy(pts[1]))
-        off = np.abs([line.signed_distance(Point.from_xy(p)) for p in pts[3:]])
-    else:
-        r = np.hypot(*(pts - c.xy).T)
-        off = np.abs(r[3:] - r[0])
-    if off.max() > 1e-9 * max(pos.size, float(np.abs(pts).max())):
-        raise SynthesisError(f"the {given} is not a {given} of all {len(pos)} positions (its homologous "
-                             f"points stray {off.max():.3g} from one {wanted}): choose it on the "
-                             f"{given.split()[0]}-point curve")
-    return c
+    """The circle point(s), drawn in position `ref`, of the centre point `centre` (the mirror
+    task: see `mate`)."""
+    return mate(pos, centre, "centre", ref)
