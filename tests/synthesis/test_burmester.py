@@ -15,34 +15,7 @@ from linkwork.errors import InputError
 from linkwork.synthesis.burmester import (burmester_points, centre_point_curve, circle_point_curve,
                                           curve_samples)
 from linkwork.synthesis.positions import Positions, SynthesisError
-
-O2, O4 = np.array([0.0, 0.0]), np.array([4.0, 0.0])
-A_LEN, B_LEN, C_LEN = 1.5, 3.5, 3.0
-
-
-def four_bar(theta, O2=O2, O4=O4, a=A_LEN, b=B_LEN, c=C_LEN):
-    """Crank pin A and rocker pin B of the four-bar O2 A B O4 at crank angles theta (one
-    assembly: B left of A → O4)."""
-    A = O2 + a * np.column_stack([np.cos(theta), np.sin(theta)])
-    v = O4 - A
-    d = np.hypot(v[:, 0], v[:, 1])
-    u = v / d[:, None]
-    x = (b * b - c * c + d * d) / (2 * d)
-    h = np.sqrt(b * b - x * x)
-    B = A + x[:, None] * u + h[:, None] * np.column_stack([-u[:, 1], u[:, 0]])
-    return A, B
-
-
-def generated(degrees):
-    A, B = four_bar(np.radians(degrees))
-    return Positions.from_points(A, B), A, B
-
-
-def move(pose_i, pose_j, X):
-    def R(t):
-        return np.array([[np.cos(t), -np.sin(t)], [np.sin(t), np.cos(t)]])
-    return R(pose_j[2]) @ (R(pose_i[2]).T @ (np.asarray(X) - pose_i[:2])) + pose_j[:2]
-
+from four_bar_by_hand import O2, O4, generated, move
 
 def spread_of_radii(pos, M, Z, ref=0):
     D = np.array([move(pos.poses[ref], pos.poses[k], Z) for k in range(len(pos))])

@@ -46,7 +46,7 @@ from ..geometry import Point
 from .positions import Positions, SynthesisError, _from_homogeneous, dyad_forms, mate, normalised
 
 __all__ = ["BurmesterPoints", "Cubic", "Dyad", "burmester_points", "centre_point_curve",
-           "circle_point_curve", "curve_samples"]
+           "circle_point_curve", "curve_samples", "dyad"]
 
 
 # ---------------------------------------------------------------------------- 2-D polynomials
@@ -119,6 +119,13 @@ class Cubic:
         a, b = self.unit[3, 0], self.unit[0, 3]  # x³ and y³ coefficients: α and β
         v = np.array([-b, a])
         return v / np.hypot(*v)
+
+    def slider(self) -> Dyad:
+        """The centre-point curve's point at infinity and its circle point, whose four
+        homologous points lie on a straight line (the line of stroke of a slider)."""
+        if self.kind != "centre-point":
+            raise InputError("the slider belongs to the centre-point curve")
+        return dyad(self.positions, Point.at_infinity(self.asymptote_direction), ref=self.ref)
 
     def mate(self, xy) -> Point:
         """The circle point of a centre point on the centre-point curve (or the centre point of
@@ -214,6 +221,28 @@ class Dyad:
     def homologous(self) -> np.ndarray:
         """(n, 2): the moving pivot in every position."""
         return self.positions.homologous(self.circle.xy, self.ref)
+
+
+def dyad(pos: Positions, centre=None, *, circle=None, ref: int = 0) -> Dyad:
+    """The dyad of a chosen centre point (x, y, or a `Point`; at infinity: a slider whose line
+    of stroke is normal to its direction) or of a chosen circle point drawn in position `ref`.
+    Two positions leave a line of mates: give both points then (they are checked)."""
+    if (centre is None) == (circle is None) and len(pos) > 2:
+        raise InputError("give the centre point or the circle point")
+    as_point = (lambda p: p if isinstance(p, Point) else Point.from_xy(np.asarray(p, dtype=float)))
+    if len(pos) == 2:
+        if centre is None or circle is None:
+            raise InputError("two positions: give both the centre point and the circle point")
+        M, Z = as_point(centre), as_point(circle)
+        line = mate(pos, Z, "circle", ref)
+        if not line.contains(M, tol=1e-9):
+            raise SynthesisError("the circle point's two positions are not equally far from the centre point")
+        return Dyad(M, Z, pos, ref)
+    if centre is not None:
+        M = as_point(centre)
+        return Dyad(M, mate(pos, M, "centre", ref), pos, ref)
+    Z = as_point(circle)
+    return Dyad(mate(pos, Z, "circle", ref), Z, pos, ref)
 
 
 @dataclass(frozen=True)
