@@ -83,6 +83,18 @@ class Chain:
     directions: tuple[str, ...] = ()
     collinear: tuple[frozenset[str], ...] = ()
     unsupported: tuple[str, ...] = ()  # pairs the test does not know (named in the report)
+    frame: str | None = None  # the link whose images are the pole o (None: a free chain)
+
+    def restricted(self, links, known) -> "Chain":
+        """The part of the chain on ``links`` with the links ``known`` given (a group of the
+        solution order on the links solved before it)."""
+        keep = set(links)
+        return Chain({ln: p for ln, p in self.links.items() if ln in keep},
+                     tuple(h for h in self.hinges if {h[1], h[2]} <= keep),
+                     tuple(s for s in self.slides if {s[1], s[2]} <= keep),
+                     tuple(s for s in self.slots if {s[1], s[2]} <= keep),
+                     tuple(m for m in self.meshes if {m[1], m[2]} <= keep),
+                     known=tuple(known), collinear=self.collinear, frame=self.frame)
 
     @classmethod
     def free(cls, links: Mapping[str, str | tuple[str, ...]], *, given: tuple[str, ...] = (),
@@ -132,7 +144,8 @@ class Chain:
                 unsupported.append(f"driver {d.joint} ({j.kind})")
         return cls(links, tuple(hinges), tuple(slides), tuple(slots), tuple(meshes),
                    known=(mech.frame,), drivers=tuple(drivers),
-                   collinear=design_collinear(mech, meshes), unsupported=tuple(unsupported))
+                   collinear=design_collinear(mech, meshes), unsupported=tuple(unsupported),
+                   frame=mech.frame)
 
 
 def pitch_point_name(mech: Mechanism, gear: Gear) -> str:
@@ -234,6 +247,8 @@ class VelocityScript:
     unreached: tuple[str, ...]
     unsupported: tuple[str, ...]
     labels: Mapping[tuple[str, str], str] = field(default_factory=dict)
+    #: for each (link, point) the other (link, point) whose image it shares (hinges, pitch points)
+    shared: Mapping[tuple[str, str], tuple[tuple[str, str], ...]] = field(default_factory=dict)
 
     @property
     def direct(self) -> bool:
@@ -395,10 +410,13 @@ class _Planner:
     def label(self, ln: str, p: str) -> str:
         """The plan label of the image of point p of link ln: o for the frame, b for a point
         whose image all its links share, b_link for one link's own point at a shared place."""
-        if ln == POLE or ln in self.c.known:
+        if ln == POLE or ln == self.c.frame:
+            return POLE
+        if self.c.frame is not None and p in self.points[self.c.frame] and \
+                self._find((ln, p)) == self._find((self.c.frame, p)):
             return POLE
         keys = {self._find((other, p)) for other, pts in self.points.items()
-                if p in pts and other not in self.c.known}
+                if p in pts and other != self.c.frame}
         return lower(p) if len(keys) <= 1 else f"{lower(p)}_{ln}"
 
     def mark(self, ln: str, p: str) -> None:
@@ -508,8 +526,13 @@ class _Planner:
                 c = conds[0]
                 x = kp[0]
                 y = next((q for q in self.points[ln] if q != x and self.on(q, c.line)), None)
+                if y is None and c.line.kind != "join" and c.line.points[0] != x:
+                    y = c.line.points[0]  # the link's point at the guide's (a coincident point)
+                    self.add_point(ln, y)
                 aux = None
                 if y is None:
+                    if len(self.points[ln]) < 2:
+                        return False
                     y = self.new_aux(ln, c.line, self.lines.join(x, self.other_point(ln, x)))
                     aux = self.aux[-1]
                 self.emit_meet(ln, y, PlanLine((ln, x), self.lines.join(x, y)), c, aux)
@@ -625,12 +648,14 @@ class _Planner:
                 for p in pts:
                     if ln not in c.known:
                         self.ensure_image(ln, p)
-        labels = {}
+        labels, groups = {}, {}
         for ln, pts in self.points.items():
             for p in pts:
                 labels[(ln, p)] = self.label(ln, p)
+                groups.setdefault(self._find((ln, p)), []).append((ln, p))
+        shared = {k: tuple(x for x in g if x != k) for g in groups.values() for k in g}
         return VelocityScript(tuple(self.steps), tuple(self.aux), tuple(self.order), unreached,
-                              c.unsupported, labels)
+                              c.unsupported, labels, shared)
 
 
 def plan_velocities(chain: Chain | Mechanism) -> VelocityScript:

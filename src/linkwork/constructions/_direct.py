@@ -1,0 +1,169 @@
+"""Rosenauer's direct velocity construction carried out on the drawing, for the groups the
+dyad constructions of :mod:`._plan` do not handle (triads, the Heusinger six-link group, chains
+without four-bar loops, the Römer mechanism's gears and coupler).
+
+Owns :func:`draw_script`: the steps of a :class:`linkwork.topology.constructibility.VelocityScript`
+(the auxiliary points Q, R, … where two link lines meet, each image where two plan lines meet,
+points on a line of two images divided in the drawing's ratio, images copied along a sliding
+pair) performed at every sample with the drafting table of a :class:`._plan.VelocityConstruction`,
+in either of its modes: the polar plan (plan lines ⟂ the mechanism lines) or rotated velocities
+(tips on lines ∥ the mechanism lines, Rosenauer's own form). Each image is handed back to the
+velocity construction, which checks every point, auxiliary points included, against the engine.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..errors import InputError
+from ..model import Gear, Prismatic, Slot
+from ..topology.constructibility import Chain, MechLine, VelocityScript, plan_velocities
+from ._common import dot, perp
+
+_SOURCE = "Rosenauer 1937, papers 1, 2, 7 (auxiliary points, projection theorem across a joint)"
+
+
+class ScriptDrawer:
+    """Performs a velocity script on the images of ``vc`` (a `VelocityConstruction`)."""
+
+    def __init__(self, vc, script: VelocityScript, solved: set[str]) -> None:
+        self.vc, self.s, self.solved = vc, script, solved
+        self.mech = vc.mech
+        self.pos = dict(vc.pos)
+        self.chain = Chain.from_mechanism(vc.mech)
+        self.aux = {a.name: a for a in script.aux}
+        for pair, g1, g2, t, c1, c2 in self.chain.meshes:
+            self.pos[t] = self._pitch_point(self.mech.joint(pair), c1, c2)
+
+    # ---------------------------------------------------------------- drawing geometry
+    def _pitch_point(self, gear: Gear, c1: str, c2: str) -> np.ndarray:
+        r1, r2 = gear.radii
+        k = r1 / (r1 + r2) if gear.gear_kind == "external" else r1 / (r1 - r2)
+        return self.pos[c1] + k * (self.pos[c2] - self.pos[c1])
+
+    def where(self, name: str) -> np.ndarray:
+        if name not in self.pos:
+            a = self.aux[name]
+            (p, u), (q, v) = (self.line(ln) for ln in a.lines)
+            from ._plan import _meet
+            x, par = _meet((p, u), (q, v))
+            self.vc.b.degenerate(par & ~self.vc.b.bad, f"the lines {a.lines[0].text()} and "
+                                 f"{a.lines[1].text()} are parallel: the auxiliary point {name} lies at infinity")
+            self.pos[name] = x
+        return self.pos[name]
+
+    def line(self, line: MechLine) -> tuple[np.ndarray, np.ndarray]:
+        """(point, direction) of a mechanism line at every sample."""
+        if line.kind == "join":
+            p, q = (self.where(n) for n in line.points)
+            return p, q - p
+        if line.kind == "normal":
+            j = self.mech.joint(line.pair)
+            if not isinstance(j, (Prismatic, Slot)):
+                raise InputError(f"pair {line.pair} has no guide")
+            return self.where(line.points[0]), perp(self.vc._axis(j.links[0], j.axis))
+        raise InputError("a given velocity direction is not part of a mechanism's data")
+
+    # ---------------------------------------------------------------- images
+    def img(self, key: tuple[str, str]) -> np.ndarray:
+        keys = (key,) + tuple(self.s.shared.get(key, ()))
+        for k in keys:
+            if k in self.vc.images:
+                return self.vc.images[k]
+        # a point of a link solved before (or of the frame): its image from the link's own
+        for ln, p in keys:
+            if ln in self.solved:
+                return self.vc.image(ln, p, self.where(p), label=self.s.labels.get(key))
+        raise InputError(f"the direct construction reached the image of {key[1]} ({key[0]}) "
+                         "before it was drawn")
+
+    def keep(self, ln: str, p: str, image: np.ndarray) -> None:
+        for key in ((ln, p),) + tuple(self.s.shared.get((ln, p), ())):
+            if key not in self.vc.images:
+                self.vc.set_known(key[0], self.where(key[1]), image, key[1])
+
+    def plan_line(self, pl, key: str) -> tuple[np.ndarray, np.ndarray]:
+        p, d = self.line(pl.line)
+        through = self.img(pl.anchor)
+        direction = self.vc.M(perp(d))
+        self.vc._line(key, through, direction)
+        return through, direction
+
+    def run(self, links: set[str]) -> None:
+        from ._plan import _meet
+        vc = self.vc
+        for k, st in enumerate(self.s.steps):
+            if st.link not in links:
+                continue
+            key = f"v.direct.{st.link}.{st.point}"
+            lab = self.s.labels.get((st.link, st.point), st.point)
+            # images of earlier links that the step starts from are drawn first, in their own steps
+            for pl in st.lines:
+                self.img(pl.anchor)
+            for n in st.base:
+                self.img((st.link, n))
+            vc.b.step(st.text)
+            if st.aux is not None:
+                Q = self.where(st.point)
+                for i, ln in enumerate(st.aux.lines):
+                    p, d = self.line(ln)
+                    vc.b.segment(f"{key}.aux{i}", _pt(p), _pt(Q), kind="line")
+                vc.b.point(f"{key}.pos", _pt(Q), label=st.point)
+            if st.kind == "meet":
+                (p1, d1), (p2, d2) = (self.plan_line(pl, f"{key}.{i}") for i, pl in enumerate(st.lines))
+                image, par = _meet((p1, d1), (p2, d2))
+                vc.b.degenerate(par & ~vc.b.bad, f"step '{st.text}': the two lines are parallel here, "
+                                "the image is undetermined")
+                vc._point(key, image, lab, lines=(f"{key}.0", f"{key}.1"))
+            elif st.kind == "divide":
+                X, Y = (self.where(n) for n in st.base)
+                x, y = (self.img((st.link, n)) for n in st.base)
+                P = self.where(st.point)
+                t = dot(P - X, Y - X) / dot(Y - X, Y - X)
+                image = x + t[:, None] * (y - x)
+                vc._point(key, image, lab)
+            elif st.kind == "copy":
+                (X,) = st.base
+                x = self.img((st.link, X))
+                gp = vc.image(st.partner, f"{st.point}@{st.partner}", self.where(st.point), draw=False)
+                gx = vc.image(st.partner, f"{X}@{st.partner}", self.where(X), draw=False)
+                image = x + (gp - gx)
+                vc._point(key, image, lab)
+            else:
+                raise InputError(f"the direct construction cannot perform a '{st.kind}' step here")
+            self.keep(st.link, st.point, image)
+        # the group's links take their hinges' images from the links solved before
+        for ln in links:
+            for p in self.chain.links[ln]:
+                if (ln, p) not in vc.images:
+                    try:
+                        vc.set_known(ln, self.where(p), self.img((ln, p)), p)
+                    except InputError:
+                        pass
+
+
+def _pt(xy):
+    from .construction import pt
+    return pt(xy)
+
+
+#: the pairs the direct construction knows (a gear pair: external or internal wheels)
+KNOWN_PAIRS = ("revolute", "prismatic", "slot", "gear")
+
+
+def draw_group(vc, links: tuple[str, ...], joints: tuple[str, ...], solved: set[str]) -> VelocityScript:
+    """Construct the images of the group ``links`` on the links ``solved`` before it by
+    Rosenauer's rule; raise `InputError` where it does not reach them (similar point rows
+    would be needed) or the group has pairs the rule does not know."""
+    chain = Chain.from_mechanism(vc.mech)
+    sub = chain.restricted(solved | set(links), solved)
+    script = plan_velocities(sub)
+    missing = [ln for ln in links if ln in script.unreached]
+    bad = [f"{j.name} ({j.kind})" for j in (vc.mech.joint(n) for n in joints)
+           if j.kind not in KNOWN_PAIRS or getattr(j, "gear_kind", "external") == "rack"]
+    if missing or bad:
+        why = (f"the pairs {', '.join(bad)} are not handled" if bad else
+               f"{script.verdict()}")
+        raise InputError(f"the direct velocity construction of the group {', '.join(links)}: {why}")
+    ScriptDrawer(vc, script, solved).run(set(links))
+    return script
