@@ -268,6 +268,13 @@ class VelocityScript:
                  ", ".join(f"{a.name} = {a.lines[0].text()} \u2229 {a.lines[1].text()} (in {a.link})"
                            for a in self.aux) if n else ", without auxiliary points"))
 
+    def as_dict(self) -> dict:
+        return {"direct": self.direct, "verdict": self.verdict(),
+                "auxiliary_points": [{"name": a.name, "link": a.link,
+                                      "lines": [ln.text() for ln in a.lines]} for a in self.aux],
+                "order": list(self.order), "unreached": list(self.unreached),
+                "unsupported": list(self.unsupported), "script": [s.text for s in self.steps]}
+
     def script(self) -> list[str]:
         """The numbered construction script."""
         return [f"{k:2d}. {s.text}" for k, s in enumerate(self.steps, 1)]
@@ -277,6 +284,9 @@ class VelocityScript:
 class WittenbauerVerdict:
     holds: bool
     worst: tuple[str, str, tuple[str, ...]] | None  # two joints and the joints crossed between
+
+    def as_dict(self) -> dict:
+        return {"holds": self.holds, "verdict": self.text()}
 
     def text(self) -> str:
         if self.holds:
