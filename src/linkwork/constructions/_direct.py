@@ -140,6 +140,23 @@ class ScriptDrawer:
                         vc.set_known(ln, self.where(p), self.img((ln, p)), p)
                     except InputError:
                         pass
+            if len(vc.known.get(ln, [])) == 1:
+                self._second_image(ln)
+
+    def _second_image(self, ln: str) -> None:
+        """A link known by one point that turns with a partner across a sliding pair (a block,
+        a translating follower): a second image for reading off ω, copied from the partner."""
+        vc = self.vc
+        (X, x, name), = vc.known[ln]
+        for pair, G, S, _ in self.chain.slides:
+            partner = G if S == ln else S if G == ln else None
+            if partner is None or not (partner == self.mech.frame or len(vc.known.get(partner, [])) >= 2):
+                continue
+            X2 = X + np.array([self.mech.length_scale, 0.0])
+            gx = vc.image(partner, f"{name}@{partner}", X, draw=False)
+            g2 = vc.image(partner, f"{name}+@{partner}", X2, draw=False)
+            vc.set_known(ln, X2, x + (g2 - gx), name + "+")
+            return
 
 
 def _pt(xy):
@@ -151,7 +168,8 @@ def _pt(xy):
 KNOWN_PAIRS = ("revolute", "prismatic", "slot", "gear")
 
 
-def draw_group(vc, links: tuple[str, ...], joints: tuple[str, ...], solved: set[str]) -> VelocityScript:
+def draw_group(vc, links: tuple[str, ...], joints: tuple[str, ...], solved: set[str],
+               drivers: tuple[str, ...] = ()) -> VelocityScript:
     """Construct the images of the group ``links`` on the links ``solved`` before it by
     Rosenauer's rule; raise `InputError` where it does not reach them (similar point rows
     would be needed) or the group has pairs the rule does not know."""
@@ -161,8 +179,9 @@ def draw_group(vc, links: tuple[str, ...], joints: tuple[str, ...], solved: set[
     missing = [ln for ln in links if ln in script.unreached]
     bad = [f"{j.name} ({j.kind})" for j in (vc.mech.joint(n) for n in joints)
            if j.kind not in KNOWN_PAIRS or getattr(j, "gear_kind", "external") == "rack"]
+    bad += [f"driver {d} (inside the group, between moving links)" for d in drivers]
     if missing or bad:
-        why = (f"the pairs {', '.join(bad)} are not handled" if bad else
+        why = (f"not handled: {', '.join(bad)}" if bad else
                f"{script.verdict()}")
         raise InputError(f"the direct velocity construction of the group {', '.join(links)}: {why}")
     ScriptDrawer(vc, script, solved).run(set(links))

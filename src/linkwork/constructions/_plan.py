@@ -269,7 +269,8 @@ class VelocityConstruction(_SlidingGroups):
             else:
                 # triads and larger groups, gears: Rosenauer's auxiliary points (`_direct`)
                 from ._direct import draw_group
-                self.scripts.append(draw_group(self, gs.group.links, gs.group.joints, solved))
+                self.scripts.append(draw_group(self, gs.group.links, gs.group.joints, solved,
+                                               gs.group.drivers))
             solved.update(gs.group.links)
         # every remaining point of every link
         for link in self.mech.links:

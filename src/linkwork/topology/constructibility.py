@@ -168,8 +168,8 @@ def design_collinear(mech: Mechanism, meshes=()) -> tuple[frozenset[str], ...]:
                 d = pb - pa
                 if np.hypot(*d) == 0:
                     continue
-                on = frozenset(p for p in pts
-                               if abs(np.cross(d, mech.points[p] - pa)) <= 1e-9 * mech.length_scale * np.hypot(*d))
+                on = frozenset(p for p in pts if abs(d[0] * (mech.points[p] - pa)[1] - d[1] * (mech.points[p] - pa)[0])
+                               <= 1e-9 * mech.length_scale * np.hypot(*d))
                 if len(on) >= 3 and on not in out:
                     out.append(on)
     for _, _, _, t, c1, c2 in meshes:
@@ -522,7 +522,9 @@ class _Planner:
 
         ``level`` 0: only from what is known (two points, or a point and the turning of a
         partner); 1: also a point and one line condition (the dyad step); 2: also an auxiliary
-        point where two line conditions meet."""
+        point where two line conditions meet. Returns whether a step was made or the link
+        became known."""
+        start = len(self.steps)
         while True:
             kp = self.kpoints[ln]
             if len(kp) >= 2 or (kp and self.omega_known(ln)):
@@ -532,7 +534,7 @@ class _Planner:
             conds = [c for c in self.conds[ln] if not any(self.on(k, c.line) for k in kp)]
             if kp:
                 if not conds or level < 1:
-                    return False
+                    return len(self.steps) > start
                 c = conds[0]
                 x = kp[0]
                 y = next((q for q in self.points[ln] if q != x and self.on(q, c.line)), None)
@@ -542,14 +544,14 @@ class _Planner:
                 aux = None
                 if y is None:
                     if len(self.points[ln]) < 2:
-                        return False
+                        return len(self.steps) > start
                     y = self.new_aux(ln, c.line, self.lines.join(x, self.other_point(ln, x)))
                     aux = self.aux[-1]
                 self.emit_meet(ln, y, PlanLine((ln, x), self.lines.join(x, y)), c, aux)
                 continue
             pair = self.meeting_pair(conds)
             if pair is None or level < 2:
-                return False
+                return len(self.steps) > start
             a, b = pair
             common = [q for q in self.points[ln] if self.on(q, a.line) and self.on(q, b.line)]
             if common:
