@@ -17,7 +17,7 @@ import pytest
 from typer.testing import CliRunner
 
 import linkwork
-from linkwork.cli.main import app
+from linkwork.cli import app
 from linkwork.constructions import rotated_velocities, velocity_plan
 from linkwork.kinematics import Status, solve
 from linkwork.topology.constructibility import Chain, plan_velocities, wittenbauer_rule

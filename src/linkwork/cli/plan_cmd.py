@@ -1,4 +1,5 @@
-"""`linkwork plan`: the velocity plan of a mechanism drawn by ruler, as Rosenauer writes it.
+"""`linkwork plan`: the velocity plan of a mechanism drawn by ruler, as Rosenauer writes it
+(module level: the standard library, Typer and `cli.common` only, so registering it is cheap).
 
 The command's face only: the constructibility test and the script are
 `linkwork.topology.constructibility`, the construction at a position is
@@ -11,13 +12,9 @@ import json
 from enum import Enum
 from typing import Optional
 
-import numpy as np
 import typer
 
-from ..constructions import rotated_velocities, velocity_plan
-from ..errors import InputError
-from ..topology.constructibility import Chain, plan_velocities, wittenbauer_rule
-from .common import input_values, load_mechanism, user_errors, write_output
+from .common import load_mechanism, user_errors, write_output
 
 
 class Mode(str, Enum):
@@ -32,6 +29,14 @@ class Format(str, Enum):
 
 def _plan_command(mechanism: str, at: Optional[list[str]], explain: bool, mode: Mode,
                   fmt: Format, output: Optional[str]) -> None:
+    # imported here: registering the command must stay cheap (tests/cli/test_startup.py)
+    import numpy as np
+
+    from ..constructions import rotated_velocities, velocity_plan
+    from ..errors import InputError
+    from ..topology.constructibility import Chain, plan_velocities, wittenbauer_rule
+    from .inputs import input_values
+
     with user_errors():
         mech = load_mechanism(mechanism)
         chain = Chain.from_mechanism(mech)

@@ -20,7 +20,6 @@ from rich.table import Table
 
 from ..structure import StructureReport, structure_report
 from ..structure.assur import ROMAN
-from ..topology.constructibility import Chain, plan_velocities, wittenbauer_rule
 from .common import load_mechanism, user_errors, write_output
 
 
@@ -145,6 +144,8 @@ def _loops_table(rep: StructureReport) -> Table:
 
 def _construction_table(mech) -> Table:
     """Rosenauer 1937 paper 2: can the velocity plan be drawn directly (no similar point rows)?"""
+    from ..topology.constructibility import Chain, plan_velocities, wittenbauer_rule
+
     chain = Chain.from_mechanism(mech)
     script = plan_velocities(chain)
     t = Table(title="velocity plan by ruler (Wittenbauer's and Rosenauer's rules)", show_header=False)
@@ -158,6 +159,8 @@ def _construction_table(mech) -> Table:
 
 
 def _construction_doc(mech) -> dict:
+    from ..topology.constructibility import Chain, plan_velocities, wittenbauer_rule
+
     chain = Chain.from_mechanism(mech)
     return {"wittenbauer": wittenbauer_rule(chain).as_dict(),
             "rosenauer": plan_velocities(chain).as_dict()}
