@@ -18,7 +18,7 @@ from typer.testing import CliRunner
 
 import linkwork
 from linkwork.cli import app
-from linkwork.constructions import rotated_velocities, velocity_plan
+from linkwork.constructions import acceleration_plan, rotated_velocities, velocity_plan
 from linkwork.kinematics import Status, solve
 from linkwork.topology.constructibility import Chain, plan_velocities, wittenbauer_rule
 
@@ -194,6 +194,22 @@ def test_direct_construction_matches_the_engine(name, build):
     script = plan_velocities(mech)
     for a in script.aux:
         assert any(k.startswith(f"v_{a.name}@") for k in con.results), a.name
+
+
+@pytest.mark.parametrize("name", MECHANISMS + ["library:crank-driven-wedge",
+                                              "library:whitworth-quick-return"])
+def test_relative_normal_acceleration_plan_matches_the_engine(name):
+    """Paper 4: the same script drawn through the ends of the accelerations laid off at the
+    plan of relative normal accelerations, transferred across each pair (the hinges' several
+    images, the Coriolis term of a sliding pair, the gears' pitch-point normal accelerations)."""
+    mech = load(name)
+    sol = positions(mech)
+    con = acceleration_plan(mech, sol)
+    con.check()
+    assert con.max_error() <= 1e-9
+    assert not con.degenerate.any()
+    for a in plan_velocities(mech).aux:
+        assert any(k.startswith(f"a_{a.name}@") for k in con.results), a.name
 
 
 def test_heusinger_auxiliary_point_lies_on_both_lines_and_has_the_links_velocity():

@@ -478,13 +478,17 @@ class AccelerationConstruction(_SlidingGroups):
         return img
 
     def run(self) -> None:
+        solved = {self.mech.frame}
         for gs in group_plan(self.mech):
             fn = getattr(self, "_g_" + gs.kind.replace("-", "_"), None)
-            if fn is None:
-                raise InputError(f"the acceleration plan does not handle the group "
-                                 f"{', '.join(gs.group.links)} ({gs.kind}) yet; it handles the driver, "
-                                 "RRR, RRP, RPR, rod-in-slot and slotted-lever groups")
-            fn(gs)
+            if fn is not None:
+                fn(gs)
+            else:
+                # the groups the velocity plan drew with auxiliary points: the same script on
+                # the plan of relative normal accelerations (`_direct`)
+                from ._direct import draw_group_acceleration
+                draw_group_acceleration(self, gs.group.links, gs.group.joints, solved, gs.group.drivers)
+            solved.update(gs.group.links)
         for link in self.mech.links:
             if link.name == self.mech.frame:
                 continue

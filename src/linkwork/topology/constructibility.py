@@ -203,6 +203,10 @@ class PlanLine:
 
     anchor: tuple[str, str]
     line: MechLine
+    #: the pairs crossed from the anchor's link to the link the line is drawn for, as
+    #: (from link, to link, hinge point or sliding pair): the velocity projection carries over
+    #: unchanged, an acceleration's changes by the normal (and Coriolis) terms of each crossing
+    via: tuple[tuple[str, str, str], ...] = ()
 
 
 @dataclass(frozen=True)
@@ -595,10 +599,10 @@ class _Planner:
                     continue
                 kp = [k for k in self.kpoints[L] if k != p]
                 if len(self.kpoints[L]) == 1 and kp:
-                    new |= self.add_cond(T, PlanLine((L, kp[0]), self.lines.join(kp[0], p)))
+                    new |= self.add_cond(T, PlanLine((L, kp[0]), self.lines.join(kp[0], p), ((L, T, p),)))
                 for cond in list(self.conds[L]):
                     if self.on(p, cond.line):  # Rosenauer's extension: a line through the joint
-                        new |= self.add_cond(T, cond)
+                        new |= self.add_cond(T, PlanLine(cond.anchor, cond.line, cond.via + ((L, T, p),)))
         for pair, G, S, X in c.slides + c.slots:
             slide = (pair, G, S, X) in c.slides
             for L, T in ((G, S), (S, G)):
@@ -607,12 +611,12 @@ class _Planner:
                 normal = self.lines.special("normal", X, pair)
                 if L in self.known:
                     self.ensure_image(L, X)
-                    new |= self.add_cond(T, PlanLine((L, X), normal))
+                    new |= self.add_cond(T, PlanLine((L, X), normal, ((L, T, pair),)))
                 elif slide and len(self.kpoints[L]) == 1:
                     k = self.kpoints[L][0]
-                    new |= self.add_cond(T, PlanLine((L, k), self.lines.special("normal", k, pair)))
+                    new |= self.add_cond(T, PlanLine((L, k), self.lines.special("normal", k, pair), ((L, T, pair),)))
                 elif not slide and L == S and X in self.kpoints[S]:
-                    new |= self.add_cond(T, PlanLine((L, X), normal))
+                    new |= self.add_cond(T, PlanLine((L, X), normal, ((L, T, pair),)))
         return new
 
     # ---------------------------------------------------------------- the run
