@@ -238,12 +238,18 @@ def test_sliding_and_gear_groups_through_the_direct_construction():
 
 # ------------------------------------------------------------------ the commands
 def test_plan_command_prints_the_script_and_checks_it():
-    res = CliRunner().invoke(app, ["plan", str(DATA / "heusinger-12-link.toml"), "--at", "62",
+    res = CliRunner().invoke(app, ["plan", str(DATA / "heusinger-12-link.toml"), "--at", "130",
                                    "--explain"])
     assert res.exit_code == 0, res.output
     assert "Q = O_5K \u2229 HG" in res.output or "Q = HG \u2229 O_5K" in res.output
     assert has_meet(res.output, "f", "(q \u27c2 QF)", "(r \u27c2 RF)")
     assert "largest relative error against the engine" in res.output
+
+
+def test_plan_command_refuses_a_position_that_does_not_assemble():
+    res = CliRunner().invoke(app, ["plan", str(DATA / "heusinger-12-link.toml"), "--at", "62"])
+    assert res.exit_code != 0
+    assert "cannot be assembled" in res.output
 
 
 def test_plan_command_json_and_structure_report():

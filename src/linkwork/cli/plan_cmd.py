@@ -59,6 +59,7 @@ def _plan_command(mechanism: str, at: Optional[list[str]], explain: bool, mode: 
             values = values[:, 0] if values.ndim == 2 else values
             build = velocity_plan if mode is Mode.plan else rotated_velocities
             con = build(mech, values[:1])
+            con.require(0)  # a position where the construction degenerates is reported as such
             con.check()
             lines.append("")
             lines.append(con.describe())

@@ -115,7 +115,7 @@ class ScriptDrawer:
             for n in st.base:
                 self.img((st.link, n))
             vc.b.step(self.text(st))
-            if st.aux is not None:
+            if st.aux is not None and self.prefix == "v":  # drawn once, with the velocities
                 Q = self.where(st.point)
                 for i, ln in enumerate(st.aux.lines):
                     p, d = self.line(ln)
@@ -271,7 +271,7 @@ class AccelerationDrawer(ScriptDrawer):
         for ln, p in keys:
             if ln in self.solved:
                 X = self.where(p)
-                a = self.ac.image(ln, p, X, label=self.s.labels.get(key))
+                a = self.ac.image(ln, p, X)
                 self.E[(ln, p)] = a + self.normal(ln, X)
                 return self.E[(ln, p)] + (self.transfer(ln, key[0], p) if ln != key[0] else 0.0)
         raise InputError(f"the direct construction reached the acceleration of {key[1]} ({key[0]}) "
