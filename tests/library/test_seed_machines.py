@@ -1,0 +1,132 @@
+"""The seeds' machines in the library, each against the fact its seed states about it.
+
+Every expected number comes from outside the solver: a closed form of the drawing (cosine
+rule, circle intersections written out here, the seeds' formulas: Peaucellier's
+O2A·O2Q = a² − b², Hart's O1P·O1Q = b² − a², the conchoid r = a + b/cos φ, the quick-return
+time ratio), or a velocity construction of the seed carried out with the projection theorem
+(*Projektionssatz*: two points of one rigid link have equal velocity components along the line
+joining them) on the solved positions only, never on the solver's velocities of the group it
+checks.
+"""
+
+from __future__ import annotations
+
+from functools import lru_cache
+
+import numpy as np
+import pytest
+
+import linkwork
+from linkwork import Status
+
+
+@lru_cache(maxsize=None)
+def mech(name: str):
+    return linkwork.load(f"library:{name}")
+
+
+@lru_cache(maxsize=None)
+def motion(name: str):
+    return linkwork.whole_motion(mech(name))
+
+
+def P(name: str, point: str) -> np.ndarray:
+    return np.asarray(mech(name).points[point], dtype=float)
+
+
+def unit(v: np.ndarray) -> np.ndarray:
+    return v / np.linalg.norm(v, axis=-1, keepdims=True)
+
+
+def circle_meet(c1, r1, c2, r2, sign):
+    """Closed-form intersection of two circles (batch-first); `sign` picks the side of c1→c2."""
+    c1, c2 = np.broadcast_arrays(np.asarray(c1, float), np.asarray(c2, float))
+    d = np.linalg.norm(c2 - c1, axis=-1)
+    a = (r1 ** 2 - r2 ** 2 + d ** 2) / (2 * d)
+    h = np.sqrt(np.maximum(r1 ** 2 - a ** 2, 0.0))
+    e = (c2 - c1) / d[..., None]
+    n = np.stack([-e[..., 1], e[..., 0]], axis=-1)
+    return c1 + a[..., None] * e + sign * h[..., None] * n
+
+
+def line_meet(p1, d1, p2, d2):
+    """Intersection of the lines p1 + s·d1 and p2 + t·d2 (batch-first)."""
+    p1, d1, p2, d2 = np.broadcast_arrays(*(np.asarray(x, float) for x in (p1, d1, p2, d2)))
+    cross = d1[..., 0] * d2[..., 1] - d1[..., 1] * d2[..., 0]
+    w = p2 - p1
+    s = (w[..., 0] * d2[..., 1] - w[..., 1] * d2[..., 0]) / cross
+    return p1 + s[..., None] * d1
+
+
+def from_projections(u1, c1, u2, c2):
+    """The velocity v with v·u1 = c1 and v·u2 = c2 (two projection-theorem conditions)."""
+    M = np.stack([u1, u2], axis=-2)
+    return np.linalg.solve(M, np.stack([c1, c2], axis=-1)[..., None])[..., 0]
+
+
+def ok(name):
+    return motion(name).status == Status.OK
+
+
+# ------------------------------------------------------------------ straight-line linkages
+def test_elliptic_straight_line_is_exact():
+    """Rosenauer §31: B runs exactly on the vertical through O, y_B = AB·sin φ."""
+    sol = motion("elliptic-straight-line")
+    phi = sol.link("crank").angle
+    B = sol.point("B").position
+    assert np.ptp(phi) > 2 * np.pi - 0.1  # the crank turns fully
+    np.testing.assert_allclose(B[:, 0], 0.0, atol=1e-9 * 100)
+    np.testing.assert_allclose(B[:, 1], 100 * np.sin(phi), atol=1e-9 * 100)
+
+
+def test_watt_tracing_point_divides_the_coupler_inversely_as_the_arms():
+    """Rosenauer §37: where the arms are parallel, the point O with AO : OB = b : a keeps its
+    direction of motion (its path has an inflection: v × a = 0); the coupler's midpoint does not.
+    Over the straight stretch O stays near the line, against the circle-intersection closed form."""
+    m = mech("watt-straight-line")
+    sol = linkwork.solve(m, [0.0], order=2)  # the drawn position: arm a along +x from Ca
+    v, acc = sol.point("O").velocity[0], sol.point("O").acceleration[0]
+    assert abs(v[0] * acc[1] - v[1] * acc[0]) <= 1e-9 * np.linalg.norm(v) * np.linalg.norm(acc) + 1e-12
+    mid = sol.point_on("coupler", (P("watt-straight-line", "A") + P("watt-straight-line", "B")) / 2)
+    vm, am = mid.velocity[0], mid.acceleration[0]
+    assert abs(vm[0] * am[1] - vm[1] * am[0]) > 1e-3 * np.linalg.norm(vm) * np.linalg.norm(am)
+    # closed form: A on its arm, B from the circles about A (AB = 30) and Cb (b = 40)
+    th = np.radians(np.linspace(-8, 8, 33))
+    Ca, Cb = P("watt-straight-line", "Ca"), P("watt-straight-line", "Cb")
+    A = Ca + 60 * np.c_[np.cos(th), np.sin(th)]
+    B = circle_meet(A, 30.0, Cb, 40.0, -1)
+    O = A + (B - A) * (12.0 / 30.0)
+    s = linkwork.solve(m, th)
+    np.testing.assert_allclose(s.point("O").position, O, atol=1e-9 * 100)
+    assert np.abs(O[:, 0]).max() < 0.05  # straight to 1/20 mm over ±8° of the arm
+
+
+def test_chebyshev_midpoint_passes_three_points_of_one_line():
+    """Rosenauer §36 with frame : rockers : coupler = 2 : 2.5 : 1: the midpoint P is on y = 80
+    exactly where rocker a stands at atan2(80, 60) (drawn), at 90° and at atan2(60, 80)
+    (the other rocker vertical): cosine rule of the proportions."""
+    m = mech("chebyshev-straight-line")
+    th = np.array([np.arctan2(80, 60), np.pi / 2, np.arctan2(60, 80)])
+    Pxy = linkwork.solve(m, th).point("P").position
+    np.testing.assert_allclose(Pxy, [[40, 80], [0, 80], [80, 80]], atol=1e-9 * 100)
+    # between them P leaves the line by less than 0.4 % of the frame (closed form of the
+    # crossed four-bar)
+    t = np.linspace(np.arctan2(60, 80), np.pi / 2, 41)
+    A = 100 * np.c_[np.cos(t), np.sin(t)]
+    B = circle_meet(A, 40.0, P("chebyshev-straight-line", "O4"), 100.0, -1)
+    mid = (A + B) / 2
+    np.testing.assert_allclose(linkwork.solve(m, t).point("P").position, mid, atol=1e-9 * 100)
+    assert np.abs(mid[:, 1] - 80).max() < 0.004 * 80
+
+
+def test_evans_tracing_point_passes_its_start_o_and_the_mirror_point():
+    """Rosenauer §32: by the construction (D on the bisector of CC', E on that of AA') B passes
+    exactly through its start B, through O and through B'' with B''O = OB; the input angles
+    are those of C about D (closed form)."""
+    m = mech("evans-straight-line")
+    D, C0 = P("evans-straight-line", "D"), P("evans-straight-line", "C")
+    Cp, C2 = np.array([-30.0, 0.0]), C0 * [1, -1]
+    th = np.arctan2(*(np.stack([C0, Cp, C2]) - D)[:, ::-1].T)
+    B = linkwork.solve(m, th).point("B").position
+    h = 100 * np.sin(np.radians(45))
+    np.testing.assert_allclose(B, [[0, h], [0, 0], [0, -h]], atol=1e-9 * 100)
