@@ -130,3 +130,60 @@ def test_evans_tracing_point_passes_its_start_o_and_the_mirror_point():
     B = linkwork.solve(m, th).point("B").position
     h = 100 * np.sin(np.radians(45))
     np.testing.assert_allclose(B, [[0, h], [0, 0], [0, -h]], atol=1e-9 * 100)
+
+
+def test_peaucellier_product_is_constant_and_q_runs_straight():
+    """Pöschl §66a, eqs. (104): O2A·O2Q = a² − b² = 100² − 70², and Q on x = (a² − b²)/(2r)."""
+    sol = motion("peaucellier-inversor")
+    O2 = P("peaucellier-inversor", "O2")
+    A, Q = sol.point("A").position - O2, sol.point("Q").position - O2
+    np.testing.assert_allclose(np.hypot(*A.T) * np.hypot(*Q.T), 100 ** 2 - 70 ** 2, rtol=1e-9)
+    good = ok("peaucellier-inversor")  # not the dead centres O2A = a − b, where the bound is wide
+    np.testing.assert_allclose(Q[good, 0], (100 ** 2 - 70 ** 2) / (2 * 40), atol=1e-9 * 100)
+    assert np.ptp(Q[:, 1]) > 100  # a long straight stroke, not a point
+
+
+def test_hart_inversor_product_is_constant_and_q_runs_straight():
+    """Pöschl §66b, eq. (105): O1P·O1Q = b² − a² (Ptolemy) and O1Q·cos ϑ = (b² − a²)/(2r)."""
+    sol = motion("hart-inversor")
+    O1, O2 = P("hart-inversor", "O1"), P("hart-inversor", "O2")
+    Pp, Q = sol.point("P").position - O1, sol.point("Q").position - O1
+    np.testing.assert_allclose(np.hypot(*Pp.T) * np.hypot(*Q.T), 50 ** 2 - 20 ** 2, rtol=1e-9)
+    axis = unit(O2 - O1)
+    np.testing.assert_allclose(Q @ axis, (50 ** 2 - 20 ** 2) / (2 * 45), atol=1e-9 * 100)
+
+
+def test_hart_line_from_a_four_bar_is_exact():
+    """Pöschl §66c: Q runs exactly on the perpendicular to O1O2 through its drawn position."""
+    sol = motion("hart-straight-line")
+    n = "hart-straight-line"
+    axis = unit(P(n, "O2") - P(n, "O1"))
+    Q = sol.point("Q").position
+    np.testing.assert_allclose(Q @ axis, P(n, "Q") @ axis, atol=1e-9 * 500)
+    assert np.ptp(Q @ np.array([-axis[1], axis[0]])) > 50
+
+
+def test_conchoidograph_traces_the_conchoid_of_nicomedes():
+    """Rosenauer §27/§35: about the pole A2 (d = 60 from the guide) the point B at c = 100 from
+    A1 lies at r = d/cos φ + c, φ the angle of A2B from the normal to the guide."""
+    sol = motion("conchoidograph")
+    rel = sol.point("B").position - P("conchoidograph", "A2")
+    r = np.hypot(*rel.T)
+    cos_phi = np.abs(rel[:, 0]) / r
+    # B lies beyond A2 from A1: A1 at distance d/cos φ on the other side, B = A1 + c·(unit)
+    np.testing.assert_allclose(r, 100 - 60 / cos_phi, atol=1e-9 * 100)
+    A1 = sol.point("A1").position
+    np.testing.assert_allclose(A1[:, 0], 0.0, atol=1e-9 * 100)
+
+
+def test_swinging_block_swings_by_asin_r_over_d_and_slides_by_the_cosine_rule():
+    """Pöschl §24d: the block's swing is ±asin(r/d) about OB; the rod's slide through it is
+    |BA| = √(r² + d² − 2rd·cos θ)."""
+    sol = motion("swinging-block")
+    th = sol.link("crank").angle
+    BA = np.hypot(*(sol.point("A").position - P("swinging-block", "B")).T)
+    np.testing.assert_allclose(BA, np.sqrt(30 ** 2 + 80 ** 2 - 2 * 30 * 80 * np.cos(th)), rtol=1e-9)
+    d = P("swinging-block", "B") - sol.point("A").position  # along the rod, through the block
+    swing = np.arctan2(d[:, 1], d[:, 0])  # from the line OB (the x-axis)
+    # sampled at 1°: the extremes lie between samples, within 1e-3 rad
+    assert abs(np.abs(swing).max() - np.arcsin(30 / 80)) < 1e-3
