@@ -187,3 +187,63 @@ def test_swinging_block_swings_by_asin_r_over_d_and_slides_by_the_cosine_rule():
     swing = np.arctan2(d[:, 1], d[:, 0])  # from the line OB (the x-axis)
     # sampled at 1°: the extremes lie between samples, within 1e-3 rad
     assert abs(np.abs(swing).max() - np.arcsin(30 / 80)) < 1e-3
+
+
+# ------------------------------------------------------------------ governors
+def _pole_and_inflection_pole(name):
+    from linkwork import instant
+    sol = linkwork.solve(mech(name), [0.0], order=2)
+    c = instant.inflection_circle(sol, "rod")
+    centre = c.anchor.coords[0, :2] + c.normal.xy[0] * c.radius[0]
+    return sol, centre, c.radius[0]
+
+
+def test_kley_ball_follows_the_offset_slider_crank():
+    """Rosenauer §28: in the spindle's plane Kley's governor is an offset slider-crank; for the
+    sleeve at height y2 the ball A1 is where the circles about C1 (arm 120) and about A2 (rod 100)
+    meet, on the drawn side of C1A2, up to the first dead centre (arm and rod in line), where the
+    motion turns back on the other branch."""
+    sol = motion("kley-governor")
+    first = np.flatnonzero(sol.status != Status.OK)[0]
+    assert first > 20
+    A2 = sol.point("A2").position[:first]
+    np.testing.assert_allclose(A2[:, 0], 0.0, atol=1e-9 * 200)
+    A1 = circle_meet(P("kley-governor", "C1"), 120.0, A2, 100.0, 1)
+    np.testing.assert_allclose(sol.point("A1").position[:first], A1, atol=1e-9 * 200)
+
+
+def test_kley_inflection_circle_by_bobillier():
+    """Rosenauer §28 steps 1–5: the pole P = C1A1 ∩ the horizontal through A2; A2 = W2 (its path is
+    straight) and W1 on PA1 from Euler–Savary (A1P² = A1W1·A1C1): the inflection circle passes
+    through P, A2 and W1."""
+    n = "kley-governor"
+    _, centre, radius = _pole_and_inflection_pole(n)
+    C1, A1, A2 = P(n, "C1"), P(n, "A1"), P(n, "A2")
+    Pp = line_meet(C1, A1 - C1, A2, np.array([1.0, 0.0]))
+    e = unit(A1 - Pp)
+    tA, tC = np.linalg.norm(A1 - Pp), (C1 - Pp) @ e
+    W1 = Pp + (tA + tA ** 2 / (tC - tA)) * e
+    for pt in (Pp, A2, W1):
+        assert abs(np.linalg.norm(pt - centre) - radius) < 1e-9 * 200
+
+
+def test_proell_has_kleys_pole_and_inflection_circle_and_moves_the_ball_alike():
+    """Rosenauer §29: Pröll's substitution keeps the pole and the inflection circle of the rod in
+    the drawn position, so with the same sleeve motion the ball A1 has the same velocity and
+    acceleration there (second-order contact), and departs only to third order."""
+    from linkwork import instant
+    sk, ck, rk = _pole_and_inflection_pole("kley-governor")
+    sp, cp, rp = _pole_and_inflection_pole("proell-governor")
+    np.testing.assert_allclose(cp, ck, atol=1e-9 * 200)
+    assert abs(rp - rk) < 1e-9 * 200
+    pk = instant.poles(sk)["rod", "spindle"]
+    pp = instant.poles(sp)["rod", "spindle"]
+    np.testing.assert_allclose(pp.xy if hasattr(pp, "xy") else pp, pk.xy if hasattr(pk, "xy") else pk,
+                               atol=1e-9 * 200)
+    for q in ("velocity", "acceleration"):
+        np.testing.assert_allclose(getattr(sp.point("A1"), q), getattr(sk.point("A1"), q), atol=1e-9 * 200)
+    s = np.array([-1.0, -0.5, 0.5, 1.0]) * 4  # sleeve displacements from the drawing, mm
+    dk = linkwork.solve(mech("kley-governor"), s).point("A1").position
+    dp = linkwork.solve(mech("proell-governor"), s).point("A1").position
+    gap = np.hypot(*(dp - dk).T)
+    assert (gap > 0).all() and gap[3] / gap[2] > 6  # doubling the step: ≈ 2³ apart
