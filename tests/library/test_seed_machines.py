@@ -247,3 +247,64 @@ def test_proell_has_kleys_pole_and_inflection_circle_and_moves_the_ball_alike():
     dp = linkwork.solve(mech("proell-governor"), s).point("A1").position
     gap = np.hypot(*(dp - dk).T)
     assert (gap > 0).all() and gap[3] / gap[2] > 6  # doubling the step: ≈ 2³ apart
+
+
+# ------------------------------------------------------------------ special and over-closed chains
+def test_galloway_kite_stays_symmetric_about_its_diagonal():
+    """Rosenauer §100: with O2A = O2O4 and AB = BO4 the four-bar is a kite, symmetric about O2B:
+    B lies on the bisector of the angle AO2O4 (direction θ/2 for the crank at θ), at the distance
+    the cosine rule gives, through the change point θ = 0 where A meets O4."""
+    sol = motion("galloway-kite")
+    good = ok("galloway-kite")  # at the change point itself B is free on its circle (singular)
+    assert (~good).sum() <= 2
+    th = sol.link("crank").angle[good]
+    B = sol.point("B").position[good]
+    half = np.c_[np.cos(th / 2), np.sin(th / 2)]
+    np.testing.assert_allclose(B[:, 0] * half[:, 1] - B[:, 1] * half[:, 0], 0.0, atol=1e-9 * 100)
+    dist = np.abs(40 * np.cos(th / 2) - np.sqrt(70 ** 2 - (40 * np.sin(th / 2)) ** 2))
+    np.testing.assert_allclose(np.hypot(*B.T), dist, atol=1e-9 * 100)
+    assert np.min(np.hypot(*(sol.point("A").position - P("galloway-kite", "O4")).T)) < 1.0
+
+
+@pytest.mark.parametrize("name, second", [("five-bar", "O5"), ("crank-slider", "slide")])
+def test_two_driver_chains_follow_both_laws(name, second):
+    """The README's two-driver examples: C where the circles about A and B meet (closed form of
+    both drivers' laws), at every time of the whole motion."""
+    sol = motion(name)
+    t = sol.time
+    th2 = np.radians(30 + 360 * t)
+    A = 20 * np.c_[np.cos(th2), np.sin(th2)]
+    if name == "five-bar":
+        th5 = np.radians(80 + 180 * t)
+        B = P(name, "O5") + 20 * np.c_[np.cos(th5), np.sin(th5)]
+        C = circle_meet(A, 60.0, B, 60.0, 1)
+    else:
+        B = P(name, "B") + np.c_[20 * t, 0 * t]
+        C = circle_meet(A, 50.0, B, 40.0, 1)
+    np.testing.assert_allclose(sol.point("B").position, B, atol=1e-9 * 100)
+    np.testing.assert_allclose(sol.point("C").position, C, atol=1e-9 * 100)
+    held = linkwork.solve(mech(name), [[np.radians(90), v] for v in (
+        np.radians([80, 100, 120]) if name == "five-bar" else [0.0, 2.5, 5.0])])
+    np.testing.assert_allclose(held.point("A").position, [[0, 20]] * 3, atol=1e-9 * 100)
+
+
+def test_roberval_pans_translate_and_move_oppositely():
+    """The Roberval balance (Rosenauer §101): each pan column is the coupler of a parallelogram, so it
+    translates (never turns), and the pans rise and fall by 60·sin β for the beam at β."""
+    sol = motion("roberval-balance")
+    beta = sol.link("upper_beam").angle
+    for pan, sign in (("pan_left", -1), ("pan_right", 1)):
+        np.testing.assert_allclose(sol.pose_derivatives(pan)[0, :, 2], 0.0, atol=1e-12)
+        pt = "PL" if pan == "pan_left" else "PR"
+        np.testing.assert_allclose(sol.point(pt).position[:, 1] - P("roberval-balance", pt)[1],
+                                   sign * 60 * np.sin(beta), atol=1e-9 * 100)
+
+
+def test_pantograph_copies_b_enlarged_by_one_over_k():
+    """Rosenauer §101: od/oD = bd/BD = ob/oB = k, so B = o + (b − o)/k at every position; b runs on
+    the crank's circle, B on the circle of radius 20/k about M/k."""
+    sol = motion("pantograph")
+    good = ok("pantograph")  # not the crank's two dead centres
+    b, B = sol.point("b").position[good], sol.point("B").position[good]
+    np.testing.assert_allclose(B, b / 0.4, atol=1e-9 * 100)
+    np.testing.assert_allclose(np.hypot(*(B - P("pantograph", "M") / 0.4).T), 20 / 0.4, atol=1e-9 * 100)
