@@ -308,3 +308,55 @@ def test_pantograph_copies_b_enlarged_by_one_over_k():
     b, B = sol.point("b").position[good], sol.point("B").position[good]
     np.testing.assert_allclose(B, b / 0.4, atol=1e-9 * 100)
     np.testing.assert_allclose(np.hypot(*(B - P("pantograph", "M") / 0.4).T), 20 / 0.4, atol=1e-9 * 100)
+
+
+# ------------------------------------------------------------------ multi-loop chains
+def _rot(v):
+    return np.stack([-v[..., 1], v[..., 0]], axis=-1)
+
+
+def _proj(v, a, b):
+    """v's component along the unit vector from a to b."""
+    return (v * unit(b - a)).sum(-1)
+
+
+@pytest.mark.parametrize("name", ["alt-eight-link", "alt-ten-link"])
+def test_alt_chains_by_rosenauers_two_auxiliary_points(name):
+    """Rosenauer, paper 7 (1937): from the crank's ω alone, Q = AD ∩ O1E (a point of link 4)
+    moves across O1E and like A along AD; R = BG ∩ O2H (of link 5) likewise; then F from Q and R,
+    E, D, G, H from F, and (ten links) K from B and G, M from K: each step the projection theorem
+    on the solved positions. The solver's velocities must agree."""
+    m, sol = mech(name), motion(name)
+    good = ok(name)
+    X = {p: sol.point(p).position[good] for p in m.points}
+    w = m.drivers[0].law.speed
+    C, O1, O2 = (P(name, p) for p in ("C", "O1", "O2"))
+    vA, vB = w * _rot(X["A"] - C), w * _rot(X["B"] - C)
+    Q = line_meet(X["A"], X["D"] - X["A"], O1, X["E"] - O1)
+    R = line_meet(X["B"], X["G"] - X["B"], O2, X["H"] - O2)
+    zero = np.zeros(len(Q))
+    vQ = from_projections(unit(X["E"] - O1), zero, unit(X["D"] - X["A"]), _proj(vA, X["A"], X["D"]))
+    vR = from_projections(unit(X["H"] - O2), zero, unit(X["G"] - X["B"]), _proj(vB, X["B"], X["G"]))
+    v = {"F": from_projections(unit(X["F"] - Q), _proj(vQ, Q, X["F"]),
+                               unit(X["F"] - R), _proj(vR, R, X["F"]))}
+    v["E"] = from_projections(unit(X["E"] - X["F"]), _proj(v["F"], X["F"], X["E"]), unit(X["E"] - O1), zero)
+    v["H"] = from_projections(unit(X["H"] - X["F"]), _proj(v["F"], X["F"], X["H"]), unit(X["H"] - O2), zero)
+    v["D"] = from_projections(unit(X["D"] - X["F"]), _proj(v["F"], X["F"], X["D"]),
+                              unit(X["D"] - X["A"]), _proj(vA, X["A"], X["D"]))
+    v["G"] = from_projections(unit(X["G"] - X["F"]), _proj(v["F"], X["F"], X["G"]),
+                              unit(X["G"] - X["B"]), _proj(vB, X["B"], X["G"]))
+    if name == "alt-ten-link":
+        O3 = P(name, "O3")
+        v["K"] = from_projections(unit(X["K"] - X["G"]), _proj(v["G"], X["G"], X["K"]),
+                                  unit(X["K"] - X["B"]), _proj(vB, X["B"], X["K"]))
+        v["M"] = from_projections(unit(X["M"] - X["K"]), _proj(v["K"], X["K"], X["M"]), unit(X["M"] - O3), zero)
+    scale = m.length_scale * abs(w)
+    for p, vp in v.items():
+        np.testing.assert_allclose(sol.point(p).velocity[good], vp, atol=1e-8 * scale, err_msg=p)
+    # the structure Rosenauer counts: 3n/2 − 2 hinges, no four-bar loop
+    import networkx as nx
+    n = len(m.links)
+    assert len(m.joints) == 3 * n // 2 - 2
+    g = nx.Graph([j.links for j in m.joints])
+    assert not [c for c in nx.simple_cycles(g, length_bound=4)]
+    assert min(len(c) for c in nx.simple_cycles(g, length_bound=6)) == 5  # pentagons
