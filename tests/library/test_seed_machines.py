@@ -360,3 +360,65 @@ def test_alt_chains_by_rosenauers_two_auxiliary_points(name):
     g = nx.Graph([j.links for j in m.joints])
     assert not [c for c in nx.simple_cycles(g, length_bound=4)]
     assert min(len(c) for c in nx.simple_cycles(g, length_bound=6)) == 5  # pentagons
+
+
+# ------------------------------------------------------------------ slider mechanisms of the seeds
+def test_holst_slider_velocity_from_the_pole_26():
+    """Rosenauer §119: the pole 26 of the ternary link is AB ∩ CF; B's velocity (crank about A)
+    gives the link's ω about it, D's velocity follows, and E's along the guide by the projection
+    theorem on DE."""
+    name = "holst-mechanism"
+    m, sol = mech(name), motion(name)
+    X = {p: sol.point(p).position for p in m.points}
+    A, F = P(name, "A"), P(name, "F")
+    w = m.drivers[0].law.speed
+    vB = w * _rot(X["B"] - A)
+    p26 = line_meet(A, X["B"] - A, F, X["C"] - F)
+    rB = X["B"] - p26
+    w2 = (vB * _rot(rB)).sum(-1) / (rB * rB).sum(-1)
+    vD = w2[:, None] * _rot(X["D"] - p26)
+    u = unit(X["E"] - X["D"])
+    vE = (vD * u).sum(-1) / u[:, 0]
+    good = ok(name)
+    np.testing.assert_allclose(sol.point("E").velocity[good, 0], vE[good], atol=1e-8 * 120 * abs(w))
+    np.testing.assert_allclose(sol.point("E").velocity[:, 1], 0.0, atol=1e-12)
+
+
+def test_rosenauer_shaper_ram_velocity_from_the_pole_36():
+    """Rosenauer §120: the pole 36 of the bar is the normal to the ram's guide at B cut with the
+    rocker O2C; the crank pin's velocity splits into a slide along the bar and the bar's own
+    velocity about 36 (V_a^26 = V_a^23 + V_a^36), which fixes the bar's ω and so the ram's speed."""
+    name = "rosenauer-shaping-machine"
+    m, sol = mech(name), motion(name)
+    X = {p: sol.point(p).position for p in ("A", "B", "C")}
+    O1, O2 = P(name, "O1"), P(name, "O2")
+    w = m.drivers[0].law.speed
+    vA = w * _rot(X["A"] - O1)
+    p36 = line_meet(X["B"], np.array([0.0, 1.0]), O2, X["C"] - O2)
+    u = unit(X["B"] - X["C"])
+    cross = lambda a, b: a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0]
+    w3 = cross(vA, u) / cross(_rot(X["A"] - p36), u)
+    vB = w3[:, None] * _rot(X["B"] - p36)
+    good = ok(name)
+    np.testing.assert_allclose(sol.point("B").velocity[good], vB[good], atol=1e-8 * 200 * abs(w))
+
+
+def test_poeschl_shaper_reverses_where_crank_and_lever_are_perpendicular():
+    """Pöschl §24b: the lever, and with it the slide, stands still where the crank AB is
+    perpendicular to the lever CB, at crank angles −90° ± acos(r/d); the slide's two strokes take
+    the crank arcs 2·acos(r/d) and 2π − 2·acos(r/d): time ratio (π + 2 asin(r/d))/(π − 2 asin(r/d))."""
+    m = mech("poeschl-quick-return-shaper")
+    r, d = 40.0, 100.0
+    dead = -np.pi / 2 + np.array([-1, 1]) * np.arccos(r / d)
+    s = linkwork.solve(m, dead)
+    np.testing.assert_allclose(s.point("E").velocity[:, 0], 0.0, atol=1e-9 * 200 * np.pi)
+    # between the dead centres the slide moves one way on the short arc, the other on the long
+    short = linkwork.solve(m, np.linspace(dead[0], dead[1], 50)[1:-1]).point("E").velocity[:, 0]
+    long_ = linkwork.solve(m, np.linspace(dead[1], dead[0] + 2 * np.pi, 90)[1:-1]).point("E").velocity[:, 0]
+    assert (np.sign(short) == np.sign(short[0])).all() and (np.sign(long_) == -np.sign(short[0])).all()
+    ratio = (2 * np.pi - np.ptp(dead)) / np.ptp(dead)
+    np.testing.assert_allclose(ratio, (np.pi + 2 * np.arcsin(r / d)) / (np.pi - 2 * np.arcsin(r / d)), rtol=1e-12)
+    # and the stroke: the slide's extremes are at the dead centres (the 1° samples lie within)
+    E = motion("poeschl-quick-return-shaper").point("E").position[:, 0]
+    lo, hi = np.sort(s.point("E").position[:, 0])
+    assert lo <= E.min() + 1e-9 and hi >= E.max() - 1e-9 and hi - lo - np.ptp(E) < 0.01
