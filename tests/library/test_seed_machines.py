@@ -422,3 +422,89 @@ def test_poeschl_shaper_reverses_where_crank_and_lever_are_perpendicular():
     E = motion("poeschl-quick-return-shaper").point("E").position[:, 0]
     lo, hi = np.sort(s.point("E").position[:, 0])
     assert lo <= E.min() + 1e-9 and hi >= E.max() - 1e-9 and hi - lo - np.ptp(E) < 0.01
+
+
+# ------------------------------------------------------------------ valve gears
+def test_stephenson_link_and_valve_velocities_by_projection():
+    """Pöschl §54: the link 3 hangs on the rods 2, 4 and the hanger 5: C moves like A along AC, D
+    like B along BD, E across the hanger; two of these fix the link's motion (the third checks
+    it), and the die F's velocity along the link's radius KF gives the valve rod's along its guide."""
+    name = "stephenson-link-motion"
+    m, sol = mech(name), motion(name)
+    X = {p: sol.point(p).position for p in m.points}
+    O, H = P(name, "O"), P(name, "H")
+    w = m.drivers[0].law.speed
+    vA, vB = w * _rot(X["A"] - O), w * _rot(X["B"] - O)
+    # the link's velocity field v(X) = vE + ω3·rot(X − E), with vE ⟂ EH: unknowns s (vE = s·n) and ω3
+    n = _rot(unit(X["E"] - H))
+    uc, ud = unit(X["C"] - X["A"]), unit(X["D"] - X["B"])
+    M = np.stack([np.stack([(n * uc).sum(-1), (_rot(X["C"] - X["E"]) * uc).sum(-1)], -1),
+                  np.stack([(n * ud).sum(-1), (_rot(X["D"] - X["E"]) * ud).sum(-1)], -1)], -2)
+    rhs = np.stack([(vA * uc).sum(-1), (vB * ud).sum(-1)], -1)
+    s_, w3 = np.linalg.solve(M, rhs[..., None])[..., 0].T
+    field = lambda Y: s_[:, None] * n + w3[:, None] * _rot(Y - X["E"])
+    good = ok(name)
+    scale = 1000 * abs(w)
+    for p in ("C", "D", "E"):
+        np.testing.assert_allclose(sol.point_on("link_3", P(name, p)).velocity[good], field(X[p])[good],
+                                   atol=1e-8 * scale, err_msg=p)
+    r = unit(X["F"] - X["K"])
+    v_valve = (field(X["F"]) * r).sum(-1) / r[:, 0]
+    np.testing.assert_allclose(sol.point("F").velocity[good, 0], v_valve[good], atol=1e-8 * scale)
+
+
+def test_heusinger_lead_does_not_depend_on_the_cut_off():
+    """The Heusinger gear's constant lead (Rosenauer §112): at the crank's dead centre the link
+    stands upright and the slot's arc is centred on the radius rod's end 79, so raising or
+    lowering the die (the reversing arm at any setting) leaves 79 and the valve where they are;
+    away from the dead centre the setting does move the valve."""
+    m = mech("heusinger-valve-gear")
+    settings = np.radians([172.0, 176.0, 180.0, 184.0, 188.0])
+    at_dead = linkwork.solve(m, np.c_[np.zeros(5), settings])
+    np.testing.assert_allclose(at_dead.point("P79").position, np.tile(P("heusinger-valve-gear", "K5"), (5, 1)),
+                               atol=1e-9 * 3000)
+    np.testing.assert_allclose(np.ptp(at_dead.point("P9X").position[:, 0]), 0.0, atol=1e-9 * 3000)
+    assert np.ptp(at_dead.point("P67").position[:, 1]) > 50  # the die did move in the slot
+    away = linkwork.solve(m, np.c_[np.full(5, np.pi / 2), settings])
+    assert np.ptp(away.point("P9X").position[:, 0]) > 5
+
+
+def _rosenauer_79(name, X, v56, v1xi, upper8, pivot_x):
+    """Rosenauer §112/§113: R = (line 78–8XII) ∩ (the line of link 6), a point of 7, moves across
+    78–8XII and like 67 along link 6; Q = (union link XI) ∩ (the normal to X's motion at 9X), a
+    point of 9, moves like 1XI along XI and along that normal only as 9X does (not at all);
+    then 79 from R and Q."""
+    R = line_meet(X["P78"], upper8 - X["P78"], X["P67"], X["P67"] - X["six"])
+    vR = from_projections(unit(upper8 - X["P78"]), np.zeros(len(R)),
+                          unit(X["P67"] - X["six"]), (v56 * unit(X["P67"] - X["six"])).sum(-1))
+    nX = pivot_x(X)  # the direction in which 9X cannot move
+    Q = line_meet(X["P9XI"], X["P1XI"] - X["P9XI"], X["P9X"], nX)
+    vQ = from_projections(unit(X["P1XI"] - X["P9XI"]), (v1xi * unit(X["P1XI"] - X["P9XI"])).sum(-1),
+                          unit(nX), np.zeros(len(Q)))
+    return from_projections(unit(X["P79"] - R), _proj(vR, R, X["P79"]),
+                            unit(X["P79"] - Q), _proj(vQ, Q, X["P79"]))
+
+
+def test_heusinger_slotted_gear_velocity_of_79_by_rosenauers_construction():
+    name = "heusinger-valve-gear"
+    m, sol = mech(name), motion(name)
+    X = {p: sol.point(p).position for p in m.points}
+    X["six"] = X["K5"]  # the block folded into the die pin: link 6 lies along the slot's radius
+    # the point of the slotted link under the die, turning about the pivot P5
+    v5 = sol.link("slotted_link").omega[:, None] * _rot(X["P67"] - P(name, "P5"))
+    v79 = _rosenauer_79(name, X, v5, sol.point("P1XI").velocity, X["P8"],
+                        lambda X: np.tile([0.0, 1.0], (len(X["P9X"]), 1)))
+    np.testing.assert_allclose(sol.point("P79").velocity, v79, atol=1e-8 * 3000 * 2 * np.pi)
+
+
+def test_heusinger_hinge_chain_velocity_of_79_by_rosenauers_construction():
+    name = "heusinger-hinge-chain"
+    m, sol = mech(name), motion(name)
+    assert (len(m.links), len(m.joints)) == (12, 16)  # Rosenauer's n = 12, g = 16
+    X = {p: sol.point(p).position for p in m.points}
+    X["six"] = X["P56"]
+    v79 = _rosenauer_79(name, X, sol.point("P56").velocity, sol.point("P1XI").velocity,
+                        np.tile(P(name, "P8"), (len(sol), 1)),
+                        lambda X: X["P9X"] - P(name, "PXXII"))
+    w = m.drivers[0].law.speed
+    np.testing.assert_allclose(sol.point("P79").velocity, v79, atol=1e-8 * 3000 * abs(w))
