@@ -119,13 +119,16 @@ def test_chebyshev_midpoint_passes_three_points_of_one_line():
     assert np.abs(mid[:, 1] - 80).max() < 0.004 * 80
 
 
-def test_evans_tracing_point_passes_its_start_o_and_the_mirror_point():
-    """Rosenauer §32: by the construction (D on the bisector of CC', E on that of AA') B passes
-    exactly through its start B, through O and through B'' with B''O = OB; the input angles
-    are those of C about D (closed form)."""
-    m = mech("evans-straight-line")
-    D, C0 = P("evans-straight-line", "D"), P("evans-straight-line", "C")
-    Cp, C2 = np.array([-30.0, 0.0]), C0 * [1, -1]
+@pytest.mark.parametrize("name, k", [("evans-straight-line", 0.7), ("evans-straight-line-second-form", 1.3),
+                                     ("evans-straight-line-third-form", -0.3)])
+def test_evans_tracing_point_passes_its_start_o_and_the_mirror_point(name, k):
+    """Rosenauer §§32–34: by the construction (D on the bisector of CC' and the line AO, E on that of
+    AA') B passes exactly through its start B, through O and through B'' with B''O = OB; the input
+    angles are those of C about D at C, C' = A' + k·(O − A') and C'' (C mirrored in AO)."""
+    m = mech(name)
+    D, C0 = P(name, "D"), P(name, "C")
+    Cp, C2 = np.array([-100.0 + 100.0 * k, 0.0]), C0 * [1, -1]
+    np.testing.assert_allclose(C0, [-70.710678118655 * (1 - k), 70.710678118655 * k], atol=1e-9)
     th = np.arctan2(*(np.stack([C0, Cp, C2]) - D)[:, ::-1].T)
     B = linkwork.solve(m, th).point("B").position
     h = 100 * np.sin(np.radians(45))
