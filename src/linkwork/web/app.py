@@ -35,12 +35,9 @@ MAX_BODY = 1_000_000
 STATIC = Path(str(resources.files("linkwork") / "web" / "static"))
 
 
-class BodyTooLarge(Exception):
-    pass
-
-
 class _BodyLimit:
-    """Refuse request bodies above `limit` bytes, announced or streamed (413)."""
+    """Refuse request bodies above `limit` bytes, announced or streamed (413): the body is read
+    here, counted, and handed on whole."""
 
     def __init__(self, app, limit: int) -> None:
         self.app, self.limit = app, limit
@@ -48,23 +45,31 @@ class _BodyLimit:
     async def __call__(self, scope, receive, send):
         if scope["type"] != "http":
             return await self.app(scope, receive, send)
+        too_large = _error(413, f"the request body is larger than {self.limit} bytes", "BodyTooLarge")
         length = dict(scope.get("headers") or []).get(b"content-length")
         if length is not None and (not length.isdigit() or int(length) > self.limit):
-            response = _error(413, f"the request body is larger than {self.limit} bytes",
-                              "BodyTooLarge")
-            return await response(scope, receive, send)
-        seen = 0
-
-        async def limited():
-            nonlocal seen
+            return await too_large(scope, receive, send)
+        parts, size, more = [], 0, True
+        while more:
             message = await receive()
-            if message["type"] == "http.request":
-                seen += len(message.get("body", b""))
-                if seen > self.limit:
-                    raise BodyTooLarge()
-            return message
+            if message["type"] != "http.request":  # the client went away
+                return
+            parts.append(message.get("body", b""))
+            size += len(parts[-1])
+            if size > self.limit:
+                return await too_large(scope, receive, send)
+            more = message.get("more_body", False)
+        body = {"type": "http.request", "body": b"".join(parts), "more_body": False}
+        sent = False
 
-        return await self.app(scope, limited, send)
+        async def replay():
+            nonlocal sent
+            if not sent:
+                sent = True
+                return body
+            return await receive()
+
+        return await self.app(scope, replay, send)
 
 
 def _error(status: int, message: str, kind: str) -> JSONResponse:
@@ -193,10 +198,6 @@ def create_app(workdir: str | Path | None = None) -> FastAPI:
     @app.exception_handler(RequestValidationError)
     async def _invalid(request: Request, exc: RequestValidationError):
         return _error(422, _validation_message(exc), "RequestValidationError")
-
-    @app.exception_handler(BodyTooLarge)
-    async def _too_large(request: Request, exc: BodyTooLarge):
-        return _error(413, f"the request body is larger than {MAX_BODY} bytes", "BodyTooLarge")
 
     @app.exception_handler(Exception)
     async def _bug(request: Request, exc: Exception):
