@@ -23,7 +23,8 @@ from ..instant import (agreement, centrodes, curvature_centre, inflection_circle
                        return_circle, bresse_circle)
 from ..kinematics import Solution, Status, solve
 from ..model import Mechanism
-from .common import input_values, load_mechanism, user_errors, write_output
+from .common import load_mechanism, user_errors, write_output
+from .inputs import input_values
 
 
 class Format(str, Enum):

@@ -22,6 +22,12 @@ import math
 
 import numba as nb
 import numpy as np
+from platformdirs import user_cache_dir
+
+# numba caches compiled loops beside their source by default, which fails where the package is
+# installed read-only; a per-user cache folder works everywhere (NUMBA_CACHE_DIR still wins)
+if not nb.config.CACHE_DIR:
+    nb.config.CACHE_DIR = user_cache_dir("linkwork", appauthor=False)
 
 _jit = nb.njit(cache=True, nogil=True, error_model="numpy", fastmath={"contract", "arcp", "nsz"})
 
