@@ -24,7 +24,7 @@ from linkwork.cli import app as cli_app
 from linkwork.constructions import construct
 from linkwork.instant.export import curvature_document, poles_document
 from linkwork.io import resolve
-from linkwork.io.files import library_names
+from linkwork.io.library import library_names
 from linkwork.kinematics.export import to_document
 from linkwork.structure import structure_report
 from linkwork.web import create_app

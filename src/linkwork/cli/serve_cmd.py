@@ -14,7 +14,7 @@ from urllib.parse import urlencode
 import typer
 
 from ..errors import InputError
-from ..io.files import LIBRARY_PREFIX, library_names
+from ..io.library import LIBRARY_PREFIX, library_names
 from .common import print_message, user_errors
 
 LOCAL_HOSTS = ("127.0.0.1", "localhost", "::1")
@@ -73,7 +73,7 @@ def register(app: typer.Typer) -> None:
                 raise InputError(f"--workdir {workdir}: no such folder")
             query, root = _query(mechanism, workdir)
             port = _free_port(host, port)
-            import uvicorn
+            import uvicorn  # the server and the engine load only for this command
 
             from ..web import create_app
             from ..web.app import STATIC

@@ -17,7 +17,7 @@ import numpy as np
 
 from ..errors import InputError, UnknownMechanismError
 from ..io import load_text, resolve
-from ..io.files import LIBRARY_PREFIX, library_names
+from ..io.library import LIBRARY_PREFIX, library_names
 from ..model import Mechanism
 from ..units import MAX_MAGNITUDE
 
