@@ -16,11 +16,10 @@ from rich.table import Table
 
 from ..errors import InputError
 from ..geometry import Circle, Point
-from ..instant.export import (circle_doc as _circle_doc, curvature_document, point_doc as _point_doc,
-                              poles_document)
-from ..instant import (agreement, centrodes, curvature_centre, inflection_circle, instant,
-                       kennedy_poles, pole_line_count, pole_lines, pole_schedule, poles,
-                       return_circle, bresse_circle)
+from ..instant.export import (circle_doc as _circle_doc, curvature_document, curvature_report,
+                              point_doc as _point_doc, poles_document)
+from ..instant import (agreement, kennedy_poles, pole_line_count, pole_schedule,
+                       poles)
 from ..kinematics import Solution, Status, solve
 from ..model import Mechanism
 from .common import load_mechanism, user_errors, write_output
@@ -95,7 +94,6 @@ def _poles_command(mechanism: str, at: Optional[list[str]], schedule: bool, fmt:
         sch = pole_schedule(mech)
         K = kennedy_poles(sol, sch)
         agree = agreement(P, K, mech.length_scale)
-        lines = pole_lines(P, mech.length_scale)
         n = len(mech.links)
         tables = []
         for k in range(len(sol)):
@@ -140,12 +138,8 @@ def _curvature_command(mechanism: str, link: str, relative_to: Optional[str], po
         if fmt is Format.json:
             write_output(json.dumps(curvature_document(sol, link, relative_to, asked), indent=1) + "\n", output)
             return
-        ins = instant(sol, link, relative_to)
-        circles = {"inflection_circle": inflection_circle(sol, link, relative_to),
-                   "return_circle": return_circle(sol, link, relative_to),
-                   "bresse_circle": bresse_circle(sol, link, relative_to)}
-        cen = centrodes(sol, link, relative_to)
-        paths = [(p, curvature_centre(sol, link, s, relative_to)) for p, s in asked]
+        rep = curvature_report(sol, link, relative_to, asked)
+        ins, circles, cen, paths = rep.instant, rep.circles, rep.centrodes, rep.paths
         rel = ins.relative_to
         u = ins.pole_velocity.xy
         b = ins.pole_acceleration.xy

@@ -6,14 +6,15 @@ value is null."""
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
 import numpy as np
 
 from ..geometry import Circle, Point
 from ..kinematics import Solution, Status
-from .centrodes import centrodes
-from .curvature import (bresse_circle, curvature_centre, inflection_circle, instant,
-                        return_circle)
+from .centrodes import Centrodes, centrodes
+from .curvature import (Instant, PathCurvature, bresse_circle, curvature_centre,
+                        inflection_circle, instant, return_circle)
 from .poles import agreement, kennedy_poles, pole_line_count, pole_lines, pole_schedule, poles
 
 
@@ -81,19 +82,38 @@ def poles_document(sol: Solution, schedule: bool = False) -> dict:
     return doc
 
 
+@dataclass(frozen=True)
+class CurvatureReport:
+    """What `linkwork curvature` reports: the instant, the three circles (by their JSON
+    names), the centrodes and the path curvature of the asked points (label, result)."""
+
+    instant: Instant
+    circles: dict[str, Circle]
+    centrodes: Centrodes
+    paths: list[tuple[str, PathCurvature]]
+
+
+def curvature_report(sol: Solution, link: str, relative_to: str | None = None,
+                     points: list[tuple[str, str | np.ndarray]] = ()) -> CurvatureReport:
+    """Curvature theory of `link`'s motion relative to `relative_to` (default the frame) at
+    every sample of `sol` (solved to order 3), with the curvature centres of `points` ((label,
+    point name or design coordinates) pairs)."""
+    return CurvatureReport(
+        instant(sol, link, relative_to),
+        {"inflection_circle": inflection_circle(sol, link, relative_to),
+         "return_circle": return_circle(sol, link, relative_to),
+         "bresse_circle": bresse_circle(sol, link, relative_to)},
+        centrodes(sol, link, relative_to),
+        [(p, curvature_centre(sol, link, s, relative_to)) for p, s in points])
+
+
 def curvature_document(sol: Solution, link: str, relative_to: str | None = None,
                        points: list[tuple[str, str | np.ndarray]] = ()) -> dict:
-    """Curvature theory of `link`'s motion relative to `relative_to` (default the frame) at
-    every sample of `sol` (solved to order 3): pole, pole velocity and acceleration, inflection
-    pole and circles, Γ, centrode radii, and the curvature centres of `points` ((label, point
-    name or design coordinates) pairs)."""
+    """The `curvature_report` as JSON: pole, pole velocity and acceleration, inflection pole
+    and circles, Γ, centrode radii and the curvature centres of `points`."""
     mech = sol.mechanism
-    ins = instant(sol, link, relative_to)
-    circles = {"inflection_circle": inflection_circle(sol, link, relative_to),
-               "return_circle": return_circle(sol, link, relative_to),
-               "bresse_circle": bresse_circle(sol, link, relative_to)}
-    cen = centrodes(sol, link, relative_to)
-    paths = [(p, curvature_centre(sol, link, s, relative_to)) for p, s in points]
+    rep = curvature_report(sol, link, relative_to, points)
+    ins, circles, cen, paths = rep.instant, rep.circles, rep.centrodes, rep.paths
     u = ins.pole_velocity.xy
     b = ins.pole_acceleration.xy
     doc = {"mechanism": mech.name, "link": link, "relative_to": ins.relative_to,
