@@ -419,3 +419,27 @@ def test_cli_svg_errors_are_one_line(cli, tmp_path, monkeypatch):
     assert r.exit_code == 2, r.output
     assert "No space left on device" in r.output and "Traceback" not in r.output
     assert [p.name for p in (tmp_path / "svg").iterdir()] == []
+
+
+@pytest.mark.parametrize("n_links", [8, 10, 12])
+def test_contracted_graph_automorphisms_equal_a_graph_matcher_search(n_links):
+    """`atlas_contracted.automorphisms` (backtracking on the multiplicity matrix) against the
+    automorphisms of the subdivided graph found by NetworkX's VF2 matcher: the same set."""
+    from linkwork.topology.atlas_contracted import work_units
+
+    units = [u for u in work_units(n_links) if u.graph is not None]
+    assert units
+    for unit in units:
+        cg = unit.graph
+        s = nx.Graph()
+        for v, t in enumerate(cg.types):
+            s.add_node(("v", v), kind=f"v{t}")
+        for e, (a, b) in enumerate(cg.edges):
+            s.add_node(("e", e), kind="e")
+            s.add_edges_from([(("v", a), ("e", e)), (("v", b), ("e", e))])
+        vf2 = {(tuple(iso[("v", v)][1] for v in range(len(cg.types))),
+                tuple(iso[("e", e)][1] for e in range(len(cg.edges))))
+               for iso in GraphMatcher(s, s, node_match=lambda x, y: x["kind"] == y["kind"])
+               .isomorphisms_iter()}
+        assert set(cg.automorphisms) == vf2
+        assert len(cg.automorphisms) == len(vf2)  # no automorphism twice
