@@ -26,6 +26,7 @@ export interface MechanismInfo {
   frame: string;
   points: Record<string, XY>;
   links: Record<string, string[]>;
+  owners: Record<string, string>;
   drivers: DriverInfo[];
   layers: string[];
   constructions: string[];
@@ -64,6 +65,7 @@ export interface Drawing {
   status: Status;
   input: (number | null)[];
   points: Record<string, XY | null>;
+  poses: Record<string, [number, number, number] | null>;
   transforms: Record<string, Transform>;
   steps: string[];
   warnings: string[];

@@ -130,6 +130,7 @@ def mechanism_info(loaded, warned: list[str]) -> dict:
         "frame": mech.frame,
         "points": {p: [float(v) for v in xy] for p, xy in mech.points.items()},
         "links": {ln.name: list(ln.points) for ln in mech.links},
+        "owners": dict(mech.point_owner),
         "joints": [{"name": j.name, "type": j.kind, "links": list(j.links),
                     "point": getattr(j, "point", None)} for j in mech.joints],
         "drivers": [{"joint": d.joint,
@@ -178,6 +179,8 @@ def drawing(mech: Mechanism, req: m.DrawingRequest) -> dict:
             "time": None if sol.time is None else float(sol.time[0]),
             "points": {p: (None if not np.all(np.isfinite(xy)) else [float(xy[0]), float(xy[1])])
                        for p in mech.points for xy in [sol.point(p).position[0]]},
+            "poses": {ln: (None if not np.all(np.isfinite(q)) else [float(v) for v in q])
+                      for ln in mech.link_names for q in [sol.pose_derivatives(ln)[0, 0]]},
             "transforms": fig.transforms(), "steps": steps}
 
 

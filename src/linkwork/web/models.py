@@ -157,6 +157,7 @@ class MechanismInfo(BaseModel):
     frame: str
     points: dict[str, list[float]]
     links: dict[str, list[str]]
+    owners: dict[str, str] = Field(description="the link each point's design coordinates belong to")
     joints: list[JointInfo]
     drivers: list[DriverInfo]
     layers: list[str]
@@ -196,6 +197,8 @@ class Drawing(BaseModel):
     input: list[Optional[float]]
     time: Optional[float] = None
     points: dict[str, Optional[list[float]]] = Field(description="point positions drawn")
+    poses: dict[str, Optional[list[float]]] = Field(
+        description="each link's pose [x, y, θ]: a point's position is R(θ)·design + (x, y)")
     transforms: dict[str, dict[str, Any]] = Field(
         description="per panel: x_svg = origin[0] + (x − lo[0])/per_mm, "
                     "y_svg = origin[1] + (hi[1] − y)/per_mm")
