@@ -217,6 +217,17 @@ def test_drawing_places_points_where_the_engine_puts_them(client):
     assert a == b
 
 
+def test_drawing_without_the_whole_motion(client):
+    """The frames of a drag: the same position, no paths."""
+    r = post(client, "/api/drawing", source=SRC, at=[0.7], layers=["mechanism", "paths"], motion=False)
+    assert r.status_code == 200
+    doc = r.json()
+    xy = linkwork.solve(MECH, [0.7]).point("C").position[0]
+    assert doc["points"]["C"] == pytest.approx(list(xy), abs=1e-12)
+    assert "path-C" not in doc["svg"] and "could not be computed" in doc["svg"]
+    assert "path-C" in post(client, "/api/drawing", source=SRC, at=[0.7], layers=["mechanism", "paths"]).json()["svg"]
+
+
 def test_drawing_with_a_construction_and_its_steps(client):
     r = post(client, "/api/drawing", source=SRC, at=[0.4], layers=["mechanism"],
              construction="velocity-plan", step=1)

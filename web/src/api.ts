@@ -77,6 +77,7 @@ export interface DrawingRequest {
   layers: string[];
   construction?: string;
   fit?: "motion" | "drawing";
+  motion?: boolean;
 }
 
 /** An answer of the API that is not 2xx: its message, as the server wrote it. */

@@ -100,6 +100,8 @@ function drawingRequest(): DrawingRequest {
   const req: DrawingRequest = { source: source(), layers };
   if (state.motion) req.at = sampleInput(state.index);
   if (state.plan) req.construction = state.plan;
+  // while dragging, the frames leave the whole motion out: they follow the pointer sooner
+  if (dragging) req.motion = false;
   return req;
 }
 

@@ -155,6 +155,8 @@ def drawing(mech: Mechanism, req: m.DrawingRequest) -> dict:
     if sol.status[0] == Status.UNREACHABLE:
         raise InputError(f"mechanism '{mech.name}' cannot be assembled at {where}")
     sc = Scene(mech, sol)
+    if not req.motion:
+        sc.motion = None  # what the layers draw when the whole motion is not known
     con = None
     steps: list[str] = []
     if req.construction:
@@ -171,7 +173,7 @@ def drawing(mech: Mechanism, req: m.DrawingRequest) -> dict:
             raise InputError(f"step {req.step}: the construction has {len(steps)} steps (0 to "
                              f"{len(steps) - 1})")
     fig = scene_figure(sc, list(req.layers), construction=con, step=req.step)
-    if req.fit == "motion" and con is None:
+    if req.fit == "motion" and con is None and req.motion:
         fig.view["mechanism"] = sc.box(grow=0.12)
     svg = fig.to_svg()
     return {"svg": svg, "status": str(Status(int(sol.status[0]))),

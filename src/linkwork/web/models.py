@@ -109,6 +109,9 @@ class DrawingRequest(At):
     point: Optional[Name] = None
     link: Optional[Name] = None
     step: Optional[int] = Field(None, ge=0, le=1000)
+    motion: bool = Field(
+        True, description="false: leave the whole motion out (no paths; the panel fits the "
+                          "position drawn), for the frames of a drag")
     fit: Literal["motion", "drawing"] = Field(
         "motion", description="motion: the panel fits the whole motion, so that frames of an "
                               "animation share one layout; drawing: it fits what is drawn")
