@@ -115,6 +115,10 @@ def test_page_opens_a_library_mechanism(page):
     assert page.inner_text("#input-value") == "90.00°"
     assert page.inner_text("#sample-status") == "ok"
     assert page.is_hidden("#error")
+    # the structure panel: Grübler's count for four links and four hinges, 3(4 − 1) − 2·4 = 1
+    page.wait_for_selector("#structure dd")
+    panel = page.inner_text("#structure")
+    assert "mobility (count)\n1" in panel.replace("\t", "\n") and "crank-rocker" in panel
     # another mechanism from the list
     page.select_option("#mechanism", "library:slider-crank-centric")
     wait_drawn(page, lambda: page.inner_text("#title") == linkwork.load("library:slider-crank-centric").name,

@@ -30,6 +30,7 @@ const ui = {
   layers: $<HTMLFieldSetElement>("layers"),
   edit: $<HTMLInputElement>("edit"),
   numbers: $<HTMLTableElement>("numbers"),
+  structure: $<HTMLDListElement>("structure"),
 };
 
 /** Layers drawn over the mechanism, and the plans (constructions drawn beside it). */
@@ -186,6 +187,7 @@ async function open(base: Source): Promise<void> {
     ui.title.textContent = info.name;
     ui.description.textContent = info.description;
     buildLayers(info);
+    void structure(base);
     await loadMotion();
     if (info.warnings.length) showError(info.warnings.join("\n"));
   } catch (e) {
@@ -212,6 +214,38 @@ function nearestSample(motion: Motion, values: number[]): number {
     }
   });
   return best;
+}
+
+interface StructureDoc {
+  count_mobility: number;
+  real_mobility: number;
+  verdict: string;
+  mechanism_class_roman: string | null;
+  grashof: { name: string }[] | null;
+}
+
+/** Mobility by the count and by the Jacobian, Assur class, Grashof type (`linkwork structure`). */
+async function structure(base: Source): Promise<void> {
+  ui.structure.innerHTML = "";
+  try {
+    const d = await post<StructureDoc>("/api/structure", { source: base });
+    const rows: [string, string][] = [
+      ["mobility (count)", String(d.count_mobility)],
+      ["mobility (real)", String(d.real_mobility)],
+      ["verdict", d.verdict],
+    ];
+    if (d.mechanism_class_roman) rows.push(["Assur class", d.mechanism_class_roman]);
+    for (const loop of d.grashof ?? []) rows.push(["type", loop.name]);
+    for (const [k, v] of rows) {
+      const dt = document.createElement("dt");
+      const dd = document.createElement("dd");
+      dt.textContent = k;
+      dd.textContent = v;
+      ui.structure.append(dt, dd);
+    }
+  } catch (e) {
+    ui.structure.textContent = messageOf(e);
+  }
 }
 
 async function loadMotion(keep = false): Promise<void> {
