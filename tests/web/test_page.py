@@ -153,16 +153,19 @@ def test_slider_moves_the_mechanism(page):
 
 
 def test_play_and_pause(page):
+    sol = linkwork.whole_motion(MECH)
     start = drawn_input(page)
     page.click("#play")
     assert page.get_attribute("#play", "aria-pressed") == "true"
     wait_drawn(page, lambda: drawn_input(page) != start, "play the motion")
     page.click("#play")
     assert page.get_attribute("#play", "aria-pressed") == "false"
-    page.wait_for_timeout(300)  # a drawing on its way when paused may still arrive
-    paused = drawn_input(page)
-    page.wait_for_timeout(400)
-    assert drawn_input(page) == paused
+    k = page.eval_on_selector("#input-slider", "e => e.value")
+    page.wait_for_timeout(500)
+    assert page.eval_on_selector("#input-slider", "e => e.value") == k  # it stopped
+    # and what is drawn comes to the sample it stopped at
+    want = float(sol.inputs[int(k), 0])
+    wait_drawn(page, lambda: drawn_input(page) == pytest.approx([want], abs=1e-15), "draw where it stopped")
 
 
 def _client_of(page, xy):
