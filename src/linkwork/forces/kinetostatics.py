@@ -183,6 +183,9 @@ def kinetostatics(dyn: Dynamics, sol: Solution, *, inertia: bool = True) -> Forc
     A = system.matrix()
     x, cond, solved = _solve(A, system.b, mech.length_scale * m, sol)
     reactions = {name: _reaction(x, spec) for name, spec in pairs.items()}
+    if dyn.loads.friction:
+        x, reactions, f_forces, f_couples = _with_friction(dyn, sol, system, A, x, pairs, reactions)
+        forces, couples = forces + f_forces, couples + f_couples
     efforts = {name: x[:, k] for name, (k, _, _) in drivers.items()}
     frame_force, frame_moment = _on_frame(mech, reactions, efforts, drivers, m)
     rates = {d.joint: _driver_rate(sol, d, m) for d in mech.drivers}
@@ -198,6 +201,81 @@ def kinetostatics(dyn: Dynamics, sol: Solution, *, inertia: bool = True) -> Forc
     return ForceAnalysis(dyn, sol, inertia, MappingProxyType(reactions), MappingProxyType(efforts),
                          MappingProxyType(virtual), frame_force, frame_moment, *shaking, *energy,
                          driver_power, power_residual, power_scale, cond, solved)
+
+
+#: fixed-point iterations for Coulomb friction, and their relative tolerance
+FRICTION_ITERATIONS, FRICTION_TOLERANCE = 100, 1e-14
+
+
+def _with_friction(dyn: Dynamics, sol: Solution, system: "_System", A: np.ndarray, x: np.ndarray,
+                   pairs: dict, reactions: dict):
+    """Coulomb friction by fixed-point iteration: the friction forces from the reactions of
+    the previous step, moved to the right-hand side, until the reactions stop changing
+    (contraction for μ·(lever arms) small enough: the usual case). The friction becomes part
+    of each pair's reaction (component 'friction': a revolute pair's friction torque on
+    links[1], N·m, signed; a sliding pair's friction force μ·|N|, N, opposing the sliding of
+    links[1]) and of the loads (so that the power balance books its dissipation)."""
+    m, b0 = dyn.metres_per_unit, system.b.copy()
+    L = dyn.mechanism.length_scale * m
+    scale = np.nanmax(np.abs(x), axis=1, initial=0.0)
+    for _ in range(FRICTION_ITERATIONS):
+        f_forces, f_couples, signed = _friction_loads(dyn, sol, reactions)
+        system.b = b0.copy()
+        for f in f_forces:
+            system.load(f.link, f.force, m * sol.point_on(f.link, f.point).position)
+        for c in f_couples:
+            system.load(c.link, None, None, c.torque)
+        x_new, _, _ = _solve(A, system.b, L, sol)
+        change = np.nanmax(np.abs(x_new - x), axis=1, initial=0.0)
+        x = x_new
+        reactions = {name: _reaction(x, spec) for name, spec in pairs.items()}
+        if np.all(~(change > FRICTION_TOLERANCE * np.maximum(scale, np.nanmax(np.abs(x), axis=1, initial=0.0)))):
+            break
+    else:
+        warnings.warn(f"Coulomb friction: the reactions did not settle in {FRICTION_ITERATIONS} "
+                      "iterations (friction coefficients too large for this mechanism?); the "
+                      "last iterate is given", LinkworkWarning, stacklevel=3)
+    f_forces, f_couples, signed = _friction_loads(dyn, sol, reactions)
+    for jn, (force, couple, value) in signed.items():
+        r = reactions[jn]
+        reactions[jn] = Reaction(r.joint, r.links, r.point, r.force + force, r.couple + couple,
+                                 MappingProxyType({**r.components, "friction": value}))
+    return x, reactions, f_forces, f_couples
+
+
+def _friction_loads(dyn: Dynamics, sol: Solution, reactions: dict):
+    """The friction of every pair with friction, as loads on both links, and per pair (force on
+    links[1] (N, 2), couple on links[1] (N,), signed value (N,))."""
+    mech, m = dyn.mechanism, dyn.metres_per_unit
+    forces: list[AppliedForce] = []
+    couples: list[AppliedCouple] = []
+    signed = {}
+    N = len(sol)
+    for fr in dyn.loads.friction:
+        j = mech.joint(fr.joint)
+        a, b = j.links
+        r = reactions[fr.joint]
+        if j.kind == "revolute":
+            w = sol.pose_derivatives(b)[1, :, 2] - sol.pose_derivatives(a)[1, :, 2]
+            torque = -fr.coefficient * fr.radius * m * r.magnitude * np.sign(w)
+            couples += [AppliedCouple(b, torque, "friction"), AppliedCouple(a, -torque, "friction")]
+            signed[fr.joint] = (np.zeros((N, 2)), torque, torque)
+            continue
+        normal = np.abs(r.components["normal"] if "normal" in r.components else r.components["radial"])
+        if j.kind == "cam":
+            at = sol.joint(fr.joint)["point"]
+            on_b = sol.local(b, at)
+        else:
+            on_b = np.broadcast_to(mech.points[j.point], (N, 2))
+            at = sol.point_on(b, on_b).position
+        on_a = sol.local(a, at)
+        v = sol.point_on(b, on_b).velocity - sol.point_on(a, on_a).velocity
+        speed = norm(v)
+        t = np.divide(v, speed[:, None], out=np.zeros_like(v), where=speed[:, None] > 0)
+        force = -fr.coefficient * normal[:, None] * t
+        forces += [AppliedForce(b, on_b, force, "friction"), AppliedForce(a, on_a, -force, "friction")]
+        signed[fr.joint] = (force, np.zeros(N), fr.coefficient * normal * (speed > 0))
+    return forces, couples, signed
 
 
 def _same_drawing(a, b) -> bool:
