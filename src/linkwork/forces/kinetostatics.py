@@ -146,24 +146,29 @@ class _System:
         if torque is not None:
             self.b[:, r + 2] -= torque
 
-    def matrix(self) -> np.ndarray:
-        N, M, K = len(self.sol), self.b.shape[1], len(self.columns)
-        A = np.zeros((N, M, K))
+    def matrix(self, sl: slice) -> np.ndarray:
+        """A of the samples `sl` (n, equations, unknowns)."""
+        n = len(range(*sl.indices(len(self.sol))))
+        M, K = self.b.shape[1], len(self.columns)
+        A = np.zeros((n, M, K))
         for k, parts in enumerate(self.columns):
             for ln, d, p, sign in parts:
                 r = self.row[ln]
                 if d is None:
                     A[:, r + 2, k] += sign
                 else:
-                    A[:, r:r + 2, k] += sign * d
-                    A[:, r + 2, k] += sign * _cross(p - self.ref[ln], d)
+                    A[:, r:r + 2, k] += sign * d[sl]
+                    A[:, r + 2, k] += sign * _cross(p[sl] - self.ref[ln][sl], d[sl])
         return A
 
 
-def kinetostatics(dyn: Dynamics, sol: Solution, *, inertia: bool = True) -> ForceAnalysis:
+def kinetostatics(dyn: Dynamics, sol: Solution, *, inertia: bool = True,
+                  virtual_work: bool = True) -> ForceAnalysis:
     """Pair reactions and driver efforts of `dyn` moving as `sol` (solved to accelerations when
     `inertia`); `inertia=False` gives the static equilibrium (*statische Kräfte*) at the same
-    positions. See the module's docstring for the sign convention."""
+    positions. See the module's docstring for the sign convention. `virtual_work=False` skips
+    that check (a second kinematic solve per driver; `ForceAnalysis.virtual_work` is then
+    empty); the power balance is always computed."""
     mech = dyn.mechanism
     if mech is not sol.mechanism and not _same_drawing(mech, sol.mechanism):
         raise ModelError(f"the solution is of mechanism '{sol.mechanism.name}', the mass data "
@@ -180,11 +185,10 @@ def kinetostatics(dyn: Dynamics, sol: Solution, *, inertia: bool = True) -> Forc
         system.load(c.link, None, None, c.torque)
     pairs = {j.name: _pair_columns(system, j) for j in mech.joints}
     drivers = {d.joint: _driver_column(system, d) for d in mech.drivers}
-    A = system.matrix()
-    x, cond, solved = _solve(A, system.b, mech.length_scale * m, sol)
+    x, cond, solved = _solve(system, mech.length_scale * m, sol)
     reactions = {name: _reaction(x, spec) for name, spec in pairs.items()}
     if dyn.loads.friction:
-        x, reactions, f_forces, f_couples = _with_friction(dyn, sol, system, A, x, pairs, reactions)
+        x, reactions, f_forces, f_couples = _with_friction(dyn, sol, system, x, pairs, reactions)
         forces, couples = forces + f_forces, couples + f_couples
     efforts = {name: x[:, k] for name, (k, _, _) in drivers.items()}
     frame_force, frame_moment = _on_frame(mech, reactions, efforts, drivers, m)
@@ -194,7 +198,7 @@ def kinetostatics(dyn: Dynamics, sol: Solution, *, inertia: bool = True) -> Forc
         [load_power(sol, [], [c], m) for c in couples]
     power_residual = driver_power + sum(p_loads, np.zeros(len(sol)))
     power_scale = np.abs(driver_power) + sum((np.abs(p) for p in p_loads), np.zeros(len(sol)))
-    virtual = _virtual_work(dyn, sol, forces, couples)
+    virtual = _virtual_work(dyn, sol, forces, couples) if virtual_work else {}
     have_masses = all(ln in dyn.masses for ln in mech.moving_links)
     energy = _energy(dyn, sol) if have_masses else (None, None)
     shaking = _shaking(dyn, sol) if have_masses and sol.order >= 2 else (None, None)
@@ -207,7 +211,7 @@ def kinetostatics(dyn: Dynamics, sol: Solution, *, inertia: bool = True) -> Forc
 FRICTION_ITERATIONS, FRICTION_TOLERANCE = 100, 1e-14
 
 
-def _with_friction(dyn: Dynamics, sol: Solution, system: "_System", A: np.ndarray, x: np.ndarray,
+def _with_friction(dyn: Dynamics, sol: Solution, system: "_System", x: np.ndarray,
                    pairs: dict, reactions: dict):
     """Coulomb friction by fixed-point iteration: the friction forces from the reactions of
     the previous step, moved to the right-hand side, until the reactions stop changing
@@ -225,7 +229,9 @@ def _with_friction(dyn: Dynamics, sol: Solution, system: "_System", A: np.ndarra
             system.load(f.link, f.force, m * sol.point_on(f.link, f.point).position)
         for c in f_couples:
             system.load(c.link, None, None, c.torque)
-        x_new, _, _ = _solve(A, system.b, L, sol)
+        with warnings.catch_warnings():  # said once, by the first solve
+            warnings.simplefilter("ignore", LinkworkWarning)
+            x_new, _, _ = _solve(system, L, sol)
         change = np.nanmax(np.abs(x_new - x), axis=1, initial=0.0)
         x = x_new
         reactions = {name: _reaction(x, spec) for name, spec in pairs.items()}
@@ -369,38 +375,55 @@ def _driver_rate(sol: Solution, d, m: float) -> np.ndarray:
 
 
 # ---------------------------------------------------------------------- solving
-def _solve(A: np.ndarray, b: np.ndarray, L: float, sol: Solution
-           ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """x (N, K) of A x = b per sample; moment rows divided by L (and couple columns by L) so
-    that the condition number compares like with like."""
-    N, M, K = A.shape
+#: samples per block of the batched solve: the systems of a block stay in the CPU cache
+BLOCK = 4096
+
+
+def _solve(system: "_System", L: float, sol: Solution) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """x (N, K) of A x = b per sample, block by block; moment rows divided by L (and couple
+    columns multiplied by L) so that the condition number (1-norm) compares like with like."""
+    N, M, K = len(sol), system.b.shape[1], len(system.columns)
     if K < M:
         raise StructureError(
             f"the mechanism has {M - K} more degree(s) of freedom than drivers: its links are "
             "not in equilibrium under arbitrary loads (drive every freedom)")
-    row_scale = np.ones(M)
-    row_scale[2::3] = 1.0 / L
-    col_scale = np.where((np.abs(A[:, 0::3, :]).sum(axis=(0, 1)) + np.abs(A[:, 1::3, :]).sum(axis=(0, 1))) > 0,
-                         1.0, L)
-    As = A * row_scale[None, :, None] * col_scale[None, None, :]
-    bs = b * row_scale
-    ok = np.isfinite(As).all(axis=(1, 2)) & np.isfinite(bs).all(axis=1) & \
-        (sol.status != Status.UNREACHABLE)
-    x = np.full((N, K), np.nan)
-    cond = np.full(N, np.nan)
-    if not ok.any():
-        return x, cond, ok
-    sv = np.linalg.svd(As[ok], compute_uv=False)
-    cond[ok] = sv[:, 0] / np.maximum(sv[:, min(M, K) - 1], np.finfo(float).tiny)
-    solved = ok.copy()
-    solved[ok] = cond[ok] < CONDITION_LIMIT
     if K > M:
         warnings.warn(f"the mechanism is over-closed: {K - M} reaction component(s) are "
                       "statically indeterminate for rigid links; the reactions given are the "
                       "least-squares (minimum-norm) ones", LinkworkWarning, stacklevel=3)
-        x[solved] = np.einsum("nkm,nm->nk", np.linalg.pinv(As[solved]), bs[solved])
-    elif solved.any():
-        x[solved] = np.linalg.solve(As[solved], bs[solved][..., None])[..., 0]
+    row_scale = np.ones(M)
+    row_scale[2::3] = 1.0 / L
+    col_scale = np.array([L if all(d is None for _, d, _, _ in parts) else 1.0
+                          for parts in system.columns])
+    x = np.full((N, K), np.nan)
+    cond = np.full(N, np.nan)
+    solved = np.zeros(N, dtype=bool)
+    for lo in range(0, N, BLOCK):
+        sl = slice(lo, min(N, lo + BLOCK))
+        As = system.matrix(sl) * row_scale[None, :, None] * col_scale[None, None, :]
+        bs = system.b[sl] * row_scale
+        ok = np.isfinite(As).all(axis=(1, 2)) & np.isfinite(bs).all(axis=1) & \
+            (sol.status[sl] != Status.UNREACHABLE)
+        if not ok.any():
+            continue
+        As, bs = As[ok], bs[ok]
+        inv = None
+        if K == M:
+            try:
+                inv = np.linalg.inv(As)
+            except np.linalg.LinAlgError:  # a sample exactly at a dead centre: the SVD below
+                pass
+        if inv is not None:
+            c = np.abs(As).sum(axis=1).max(axis=1) * np.abs(inv).sum(axis=1).max(axis=1)
+        else:
+            sv = np.linalg.svd(As, compute_uv=False)
+            c = sv[:, 0] / np.maximum(sv[:, -1], np.finfo(float).tiny)
+            inv = np.linalg.pinv(As)
+        good = np.isfinite(c) & (c < CONDITION_LIMIT)
+        idx = np.flatnonzero(ok) + lo
+        cond[idx] = c
+        solved[idx] = good
+        x[idx[good]] = np.einsum("nkm,nm->nk", inv[good], bs[good])
     return x * col_scale, cond, solved
 
 
@@ -455,7 +478,8 @@ def _virtual_work(dyn: Dynamics, sol: Solution, forces: list[AppliedForce],
     for i, d in enumerate(mech.drivers):
         unit = np.zeros((len(sol), nd))
         unit[:, i] = 1.0
-        vsol = solve(mech, sol.inputs, velocities=unit, accelerations=np.zeros_like(unit), order=1)
+        # order 2: the compiled path of the solver (its accelerations are not used)
+        vsol = solve(mech, sol.inputs, velocities=unit, accelerations=np.zeros_like(unit))
         scale = dyn.metres_per_unit if isinstance(mech.joint(d.joint), Prismatic) else 1.0
         out[d.joint] = -load_power(vsol, forces, couples, dyn.metres_per_unit) / scale
     return out
