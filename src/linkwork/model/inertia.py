@@ -245,11 +245,6 @@ class Dynamics:
                              f"{why} need the mass, centre of mass and moment of inertia of "
                              "every moving link (give mass = 0 for a link without mass)")
 
-    def mass(self, link: str) -> MassProperties:
-        mp = self.masses.get(link)
-        return mp if mp is not None else MassProperties(0.0, self.mechanism.points[
-            self.mechanism.link(link).points[0]], 0.0)
-
 
 __all__ = ["Couple", "Dynamics", "FRICTION_PAIRS", "PairFriction", "LinearSpring", "LoadTable", "LoadValue", "Loads",
            "MassProperties", "PointForce", "STANDARD_GRAVITY", "TorsionSpring"]
