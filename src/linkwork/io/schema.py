@@ -242,6 +242,8 @@ class LoadsSpec(_Strict):
 class MechanismFile(_Strict):
     name: str
     description: str = ""
+    category: str = Field("", description="the library's group for this mechanism (four-bars, "
+                          "slider mechanisms, valve gears, straight-line linkages, governors, ...)")
     units: Units = Units()
     frame: str = "frame"
     points: dict[str, Coordinates]
