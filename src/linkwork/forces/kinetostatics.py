@@ -292,8 +292,8 @@ def _same_drawing(a, b) -> bool:
 
 # ---------------------------------------------------------------------- columns of the pairs
 def _pair_columns(s: _System, j) -> dict:
-    """The unknowns of pair j: {'kind', 'links', 'point' (metres), 'cols': {component: (k,
-    direction or None)}}."""
+    """The unknowns of pair j: {'joint', 'links', 'point' (length unit), 'cols': {component:
+    (column, direction or None for a couple)}}."""
     sol, mech, m = s.sol, s.mech, s.m
     a, b = j.links[0], j.links[1]
     if is_intermittent(j):
@@ -332,7 +332,7 @@ def _pair_columns(s: _System, j) -> dict:
             force("tangential", _perp(n), p)
     else:  # pragma: no cover - every pair kind is handled above
         raise ModelError(f"pair '{j.name}': forces in {j.kind} pairs are not computed")
-    return {"joint": j.name, "links": (a, b), "point": p, "cols": cols}
+    return {"joint": j.name, "links": (a, b), "point": p / m, "cols": cols}
 
 
 def _pitch_point(sol: Solution, g: Gear) -> tuple[np.ndarray, np.ndarray]:
@@ -443,6 +443,7 @@ def _reaction(x: np.ndarray, spec: dict) -> Reaction:
 
 def _on_frame(mech, reactions: dict, efforts: dict, drivers: dict, m: float
               ) -> tuple[np.ndarray, np.ndarray]:
+    # reaction points are in the length unit, driver points (`_driver_column`) in metres
     """Force and moment (about the frame's origin) that the moving links exert on the frame
     through its pairs and drivers."""
     N = len(next(iter(efforts.values())))
@@ -452,7 +453,7 @@ def _on_frame(mech, reactions: dict, efforts: dict, drivers: dict, m: float
         sign = -1.0 if a == mech.frame else 1.0 if b == mech.frame else 0.0
         if sign:
             F += sign * r.force
-            M += sign * (_cross(r.point, r.force) + r.couple)
+            M += sign * (_cross(m * r.point, r.force) + r.couple)
     for d in mech.drivers:
         if d.base != mech.frame:
             continue
