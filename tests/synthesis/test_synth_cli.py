@@ -115,3 +115,24 @@ def test_mistakes_give_one_message(tmp_path, monkeypatch, args, message):
     assert r.exit_code == 2
     assert message in r.output
     assert "Traceback" not in r.output
+
+
+def test_dwell_and_substitute_commands(tmp_path):
+    import linkwork
+    from linkwork.kinematics import solve
+
+    out = tmp_path / "dwell.toml"
+    r = run("synth", "dwell", "library:crank-rocker", "--at", "60", "--point", "C", "-o", out)
+    assert r.exit_code == 0, r.output
+    six = linkwork.load(out)
+    s = solve(six, [np.radians(60.0)], order=2)
+    assert abs(s.link("output").omega[0]) < 1e-9 * 2 * np.pi
+    sub = tmp_path / "sub.toml"
+    r = run("synth", "substitute", "library:crank-rocker", "--at", "60", "--pivot", "5,-8", "-o", sub)
+    assert r.exit_code == 0, r.output
+    new, old = linkwork.load(sub), linkwork.load("library:crank-rocker")
+    # at the design position the coupler point C is where the old four-bar has it at 60°
+    assert np.allclose(new.points["C"], solve(old, [np.radians(60.0)], order=1).point("C").position[0], atol=1e-9)
+    r = run("synth", "substitute", "library:crank-rocker", "--at", "60", "--pivot", "5,-8", "--replace", "frame",
+            "-o", sub)
+    assert r.exit_code == 2 and "replace" in r.output
