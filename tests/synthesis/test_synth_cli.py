@@ -56,14 +56,14 @@ def test_three_positions_with_chosen_pivots(tmp_path):
     out = tmp_path / "three.toml"
     poses = [(0.0, 0.0, 0.0), (1.0, 0.4, 20.0), (1.8, 1.2, 45.0)]
     args = [a for p in poses for a in ("--pose", ",".join(map(str, p)))]
-    r = run("synth", "poses", *args, "--centre", "0,-2", "--circle", "1,1", "-o", out)
+    r = run("synth", "poses", *args, "--centre", "0,-2", "--circle", "1,1", "-o", out, "--report", tmp_path / "r.json")
     assert r.exit_code == 0, r.output
-    doc = run("synth", "poses", *args, "--centre", "0,-2", "--circle", "1,1", "-o", out, "--report", tmp_path / "r.json")
     rep = json.loads((tmp_path / "r.json").read_text())
     samples = analyze_at(out, rep["linkages"][0]["input_angles_deg"])
     for s, (x, y, t) in zip(samples, poses):
         assert s["points"]["P"]["position"] == pytest.approx([x, y], abs=1e-9)
-    assert doc.exit_code == 0
+        d = np.subtract(s["points"]["Q"]["position"], s["points"]["P"]["position"])
+        assert np.degrees(np.arctan2(d[1], d[0])) == pytest.approx(t, abs=1e-9)  # the plane's x-axis
 
 
 def test_four_positions_slider(tmp_path):

@@ -105,6 +105,19 @@ def _linkage_table(found, errors) -> Table:
     return t
 
 
+def _summary(title: str, rows: list[tuple[str, str]]) -> Table:
+    t = Table(title=title, show_header=False)
+    t.add_column("quantity")
+    t.add_column("value", justify="right")
+    for r in rows:
+        t.add_row(*r)
+    return t
+
+
+def _xy_text(p) -> str:
+    return f"{p[0]:.9g}, {p[1]:.9g}"
+
+
 def _point_json(p):
     return {"at_infinity": list(map(float, p.direction.xy))} if p.is_infinite else list(map(float, p.xy))
 
@@ -280,9 +293,7 @@ def register(app: typer.Typer) -> None:
             at_points = gen.generated(gen.precision) - task.output(gen.precision)
             scale = 1.0 if not slider else max(abs(v) for v in gen.lengths.values())
             exact = len(gen.precision) == 3
-            t = Table(title=f"{kind} function generator", show_header=False)
-            t.add_column("quantity")
-            t.add_column("value", justify="right")
+            t = _summary(f"{kind} function generator", [])
             for k, v in gen.lengths.items():  # signed: a negative crank's pin is opposite its angle
                 t.add_row(k + (" (signed)" if k in ("input", "output", "offset") else ""), f"{v:.9g} {unit}")
             t.add_row("precision points x", ", ".join(f"{v:.6g}" for v in gen.precision))
@@ -340,15 +351,10 @@ def register_curvature_designs(synth: typer.Typer) -> None:
             write_output_file(output, d.text)
             sol = solve(load(output), [d.input], order=3)
             out = sol.link(d.output_link)
-            t = Table(title="Alt's dwell linkage", show_header=False)
-            t.add_column("quantity")
-            t.add_column("value", justify="right")
-            t.add_row("centre of curvature K", f"{d.centre[0]:.9g}, {d.centre[1]:.9g}")
-            t.add_row("dwell link (radius of curvature)", f"{d.radius:.9g}")
-            t.add_row("output pivot E", f"{d.pivot[0]:.9g}, {d.pivot[1]:.9g}")
-            t.add_row("output ω, α, jerk at the dwell",
-                      f"{out.omega[0]:.2e}, {out.alpha[0]:.2e}, {out.jerk[0]:.2e}")
-            Console().print(t)
+            Console().print(_summary("Alt's dwell linkage", [
+                ("centre of curvature K", _xy_text(d.centre)), ("dwell link (radius of curvature)", f"{d.radius:.9g}"),
+                ("output pivot E", _xy_text(d.pivot)),
+                ("output ω, α, jerk at the dwell", f"{out.omega[0]:.2e}, {out.alpha[0]:.2e}, {out.jerk[0]:.2e}")]))
             Console().print(f"wrote {output}")
 
     @synth.command("substitute")
@@ -368,12 +374,7 @@ def register_curvature_designs(synth: typer.Typer) -> None:
             sub = proell_substitution(mech, _angle_option(at, "--at"), _pair(pivot, "--pivot"), replace=replace)
             write_output_file(output, sub.text)
             load(output)
-            t = Table(title="Pröll's substitution", show_header=False)
-            t.add_column("quantity")
-            t.add_column("value", justify="right")
-            t.add_row("pole P", f"{sub.pole[0]:.9g}, {sub.pole[1]:.9g}")
-            t.add_row("inflection pole W", f"{sub.inflection_pole[0]:.9g}, {sub.inflection_pole[1]:.9g}")
-            t.add_row("new fixed pivot C3", f"{sub.pivot[0]:.9g}, {sub.pivot[1]:.9g}")
-            t.add_row("its conjugate A3 (coupler)", f"{sub.moving_pivot[0]:.9g}, {sub.moving_pivot[1]:.9g}")
-            Console().print(t)
+            Console().print(_summary("Pröll's substitution", [
+                ("pole P", _xy_text(sub.pole)), ("inflection pole W", _xy_text(sub.inflection_pole)),
+                ("new fixed pivot C3", _xy_text(sub.pivot)), ("its conjugate A3 (coupler)", _xy_text(sub.moving_pivot))]))
             Console().print(f"wrote {output}")
