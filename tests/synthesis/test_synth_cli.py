@@ -71,8 +71,17 @@ def test_four_positions_slider(tmp_path):
     out, rep = tmp_path / "slider.toml", tmp_path / "s.json"
     r = run("synth", "poses", *pose_args(pos), "--centre", "0,0", "--slider", "-o", out, "--report", rep)
     assert r.exit_code == 0, r.output
-    lk = json.loads(rep.read_text())["linkages"][0]
+    doc = json.loads(rep.read_text())
+    lk = doc["linkages"][0]
     assert lk["kind"] == "slider-crank"
+    # the sampled centre-point curve: its points' circle points have four concyclic positions
+    from linkwork.synthesis import circle_points
+    from four_bar_by_hand import move
+    pts = [p for p in doc["centre_point_curve"]["points"] if p is not None and np.hypot(*p) < 20]
+    for M in pts[::40]:
+        Z = circle_points(pos, M).xy
+        r = [np.hypot(*(move(pos.poses[0], pos.poses[k], Z) - M)) for k in range(4)]
+        assert np.ptp(r) < 1e-8 * max(r)
     for s, (x, y, t) in zip(analyze_at(out, lk["input_angles_deg"]), pos.poses):
         assert s["points"]["P"]["position"] == pytest.approx([x, y], abs=1e-9)
 

@@ -227,6 +227,14 @@ def register(app: typer.Typer) -> None:
                     raise InputError(f"{bp.message}, but none is usable (no defect, least transmission angle "
                                      f"≥ {min_transmission:g}°); --all writes them anyway")
             else:
+                if n == 4:  # the curves to choose the pivots from, sampled for drawing
+                    from ..synthesis import centre_point_curve, circle_point_curve, curve_samples
+
+                    for key, curve in (("centre_point_curve", centre_point_curve(pos)),
+                                       ("circle_point_curve", circle_point_curve(pos))):
+                        pts = curve_samples(curve, samples=360)
+                        doc[key] = {"coefficients": curve.coefficients.tolist(),
+                                    "points": [None if not np.isfinite(p).all() else p.tolist() for p in pts]}
                 ds = _dyads(pos, centre, circle, slider)
                 if len(ds) != 2:
                     raise InputError(f"{n} positions: give two pivots (--centre X,Y or --circle X,Y"
