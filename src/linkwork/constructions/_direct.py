@@ -310,19 +310,6 @@ class AccelerationDrawer(ScriptDrawer):
                 "plan of relative normal accelerations (ends transferred across each pair): "
                 + st.text + f"; then take away \u03c9\u00b2\u00b7{st.point}O")
 
-    def _second_image(self, ln: str) -> None:
-        ac = self.ac
-        (X, x, name), = ac.known[ln]
-        for pair, G, S, _ in self.chain.slides:
-            partner = G if S == ln else S if G == ln else None
-            if partner is None or not (partner == self.mech.frame or len(ac.known.get(partner, [])) >= 2):
-                continue
-            X2 = X + np.array([self.mech.length_scale, 0.0])
-            gx = ac.image(partner, f"{name}@{partner}", X, draw=False)
-            g2 = ac.image(partner, f"{name}+@{partner}", X2, draw=False)
-            ac.set_known(ln, X2, x + (g2 - gx), name + "+")
-            return
-
 
 def draw_group_acceleration(ac, links: tuple[str, ...], joints: tuple[str, ...], solved: set[str],
                             drivers: tuple[str, ...] = ()) -> VelocityScript:
