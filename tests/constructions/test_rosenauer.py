@@ -261,3 +261,32 @@ def test_plan_command_json_and_structure_report():
     res = CliRunner().invoke(app, ["structure", "library:roemer-mechanism", "--format", "json"])
     assert res.exit_code == 0, res.output
     assert json.loads(res.output)["velocity_construction"]["rosenauer"]["auxiliary_points"][0]["link"] == "coupler"
+
+
+# ------------------------------------------------------------------ false position
+def test_binary_driver_needs_false_position():
+    """Paper 7, remark: with a binary link (3) driving Alt's chain the plan is not direct; a trial
+    rate of link 1 makes it direct, and the plan is then rescaled (one trial: the velocities are
+    proportional to the input, so the rows of trial images pass through o)."""
+    mech = load("alt-8-link-binary-driver")
+    s = plan_velocities(mech)
+    assert not s.direct and s.complete
+    assert s.trial[0] == "link_1" and s.scale_by[0] == "link_3"
+    assert "false position" in s.verdict()
+    assert s.steps[-1].kind == "scale"
+
+
+@pytest.mark.parametrize("build", [velocity_plan, rotated_velocities], ids=["plan", "rotated"])
+def test_false_position_plan_matches_the_engine(build):
+    mech = load("alt-8-link-binary-driver")
+    sol = positions(mech)
+    con = build(mech, sol)
+    con.check()
+    assert con.max_error() <= 1e-9 and not con.degenerate.any()
+    assert {"v_Q@link_4", "v_R@link_5"} <= set(con.results)
+
+
+def test_acceleration_plan_after_false_position_is_a_clear_error():
+    mech = load("alt-8-link-binary-driver")
+    with pytest.raises(linkwork.LinkworkError, match="needs false position"):
+        acceleration_plan(mech, positions(mech))

@@ -101,47 +101,52 @@ class ScriptDrawer:
     def text(self, st) -> str:
         return st.text
 
-    def run(self, links: set[str]) -> None:
+    def _one(self, st) -> None:
+        """Draw one step of the script."""
         from ._plan import _meet
+        vc = self.vc
+        key = f"{self.prefix}.direct.{st.link}.{st.point}"
+        lab = self.s.labels.get((st.link, st.point), st.point)
+        # images of earlier links that the step starts from are drawn first, in their own steps
+        for pl in st.lines:
+            self.img(pl.anchor)
+        for n in st.base:
+            self.img((st.link, n))
+        vc.b.step(self.text(st))
+        if st.aux is not None and not self.prefix.startswith("a"):  # drawn once, with the velocities
+            Q = self.where(st.point)
+            for i, ln in enumerate(st.aux.lines):
+                p, d = self.line(ln)
+                vc.b.segment(f"{key}.aux{i}", _pt(p), _pt(Q), kind="line")
+            vc.b.point(f"{key}.pos", _pt(Q), label=st.point)
+        if st.kind == "meet":
+            (p1, d1), (p2, d2) = (self.plan_line(pl, f"{key}.{i}") for i, pl in enumerate(st.lines))
+            image, par = _meet((p1, d1), (p2, d2))
+            vc.b.degenerate(par & ~vc.b.bad, f"step '{st.text}': the two lines are parallel here, "
+                            "the image is undetermined")
+            self.show(key, st, image, lab, (f"{key}.0", f"{key}.1"))
+        elif st.kind == "divide":
+            X, Y = (self.where(n) for n in st.base)
+            x, y = (self.img((st.link, n)) for n in st.base)
+            P = self.where(st.point)
+            t = dot(P - X, Y - X) / dot(Y - X, Y - X)
+            image = x + t[:, None] * (y - x)
+            self.show(key, st, image, lab)
+        elif st.kind == "copy":
+            (X,) = st.base
+            x = self.img((st.link, X))
+            image = x + (self.partner_image(st.partner, st.point) - self.partner_image(st.partner, X))
+            self.show(key, st, image, lab)
+        else:
+            raise InputError(f"the direct construction cannot perform a '{st.kind}' step here")
+        self.keep(st.link, st.point, image)
+
+    def run(self, links: set[str]) -> None:
         vc = self.vc
         for k, st in enumerate(self.s.steps):
             if st.link not in links:
                 continue
-            key = f"{self.prefix}.direct.{st.link}.{st.point}"
-            lab = self.s.labels.get((st.link, st.point), st.point)
-            # images of earlier links that the step starts from are drawn first, in their own steps
-            for pl in st.lines:
-                self.img(pl.anchor)
-            for n in st.base:
-                self.img((st.link, n))
-            vc.b.step(self.text(st))
-            if st.aux is not None and self.prefix == "v":  # drawn once, with the velocities
-                Q = self.where(st.point)
-                for i, ln in enumerate(st.aux.lines):
-                    p, d = self.line(ln)
-                    vc.b.segment(f"{key}.aux{i}", _pt(p), _pt(Q), kind="line")
-                vc.b.point(f"{key}.pos", _pt(Q), label=st.point)
-            if st.kind == "meet":
-                (p1, d1), (p2, d2) = (self.plan_line(pl, f"{key}.{i}") for i, pl in enumerate(st.lines))
-                image, par = _meet((p1, d1), (p2, d2))
-                vc.b.degenerate(par & ~vc.b.bad, f"step '{st.text}': the two lines are parallel here, "
-                                "the image is undetermined")
-                self.show(key, st, image, lab, (f"{key}.0", f"{key}.1"))
-            elif st.kind == "divide":
-                X, Y = (self.where(n) for n in st.base)
-                x, y = (self.img((st.link, n)) for n in st.base)
-                P = self.where(st.point)
-                t = dot(P - X, Y - X) / dot(Y - X, Y - X)
-                image = x + t[:, None] * (y - x)
-                self.show(key, st, image, lab)
-            elif st.kind == "copy":
-                (X,) = st.base
-                x = self.img((st.link, X))
-                image = x + (self.partner_image(st.partner, st.point) - self.partner_image(st.partner, X))
-                self.show(key, st, image, lab)
-            else:
-                raise InputError(f"the direct construction cannot perform a '{st.kind}' step here")
-            self.keep(st.link, st.point, image)
+            self._one(st)
         # the group's links take their hinges' images from the links solved before
         for ln in links:
             for p in self.chain.links[ln]:
@@ -178,6 +183,87 @@ def _pt(xy):
 KNOWN_PAIRS = ("revolute", "prismatic", "slot", "gear")
 
 
+class TrialDrawer(ScriptDrawer):
+    """False position (*ähnliche Punktreihen*): the script of the whole chain drawn from a trial
+    rate of another crank (Rosenauer 1937 paper 7, remark on a binary driver), then every image
+    moved along its ray from o in the ratio of the given driver's true to trial velocity. The
+    velocities are proportional to the input rate, so the rows of trial images pass through o
+    and one trial fixes the ratio."""
+
+    prefix = "v.trial"
+
+    def __init__(self, vc, script: VelocityScript, solved: set[str]) -> None:
+        super().__init__(vc, script, solved)
+        self.T: dict[tuple[str, str], np.ndarray] = {}
+
+    def img(self, key: tuple[str, str]) -> np.ndarray:
+        for k in (key,) + tuple(self.s.shared.get(key, ())):
+            if k in self.T:
+                return self.T[k]
+            if k[0] == self.mech.frame:
+                return self.vc.base(self.where(k[1]))
+        raise InputError(f"the trial construction reached {key[1]} ({key[0]}) before it was drawn")
+
+    def keep(self, ln: str, p: str, image: np.ndarray) -> None:
+        for key in ((ln, p),) + tuple(self.s.shared.get((ln, p), ())):
+            self.T.setdefault(key, image)
+
+    def at(self, link: str, X: np.ndarray) -> np.ndarray:
+        """The trial image of the point of ``link`` at X (the link's image is similar to it)."""
+        if link == self.mech.frame:
+            return self.vc.base(X)
+        (X1, x1), (X2, x2) = [(self.where(p), v) for (ln, p), v in self.T.items() if ln == link][:2]
+        z = lambda a: a[:, 0] + 1j * a[:, 1]  # noqa: E731 (a similarity is complex-affine)
+        w = z(x1) + (z(x2) - z(x1)) / (z(X2) - z(X1)) * (z(X) - z(X1))
+        return np.stack([w.real, w.imag], axis=-1)
+
+    def partner_image(self, partner: str, point: str) -> np.ndarray:
+        return self.at(partner, self.where(point))
+
+    def show(self, key: str, st, image: np.ndarray, lab: str, lines=()) -> None:
+        self.vc.b.point(key, _pt(image), label=lab + "*", space=self.vc.space)
+        for k in lines:
+            self.vc.b.extend(k, _pt(image))
+
+    def run(self, links: set[str]) -> None:
+        vc = self.vc
+        t_link, t_pivot, t_ref = self.s.trial
+        d_link, d_pivot, d_ref = self.s.scale_by
+        true_ref = vc.image(d_link, d_ref)
+        # the trial rate: the trial crank's pin as fast as the given driver's (a readable drawing)
+        O, R = self.where(t_pivot), self.where(t_ref)
+        speed = np.linalg.norm(vc.velocity(self.where(d_ref), true_ref), axis=-1)
+        w = speed / np.linalg.norm(R - O, axis=-1)
+        for st in self.s.steps:
+            if st.kind == "driver":
+                vc.b.step(st.text)
+                image = vc.base(R) + vc.kv * vc.M(w[:, None] * perp(R - O))
+                self.keep(t_link, t_pivot, vc.base(O))
+                self.keep(t_link, t_ref, image)
+                self.show(f"{self.prefix}.{t_link}.{t_ref}", st, image, self.s.labels.get((t_link, t_ref), t_ref))
+            elif st.kind == "scale":
+                self._scale(st, links, true_ref, self.img((d_link, d_ref)))
+            else:
+                self._one(st)
+
+    def _scale(self, st, links: set[str], true_ref: np.ndarray, trial_ref: np.ndarray) -> None:
+        vc = self.vc
+        vc.b.step(st.text)
+        base = vc.base(self.where(st.point))
+        k = dot(true_ref - base, trial_ref - base) / dot(trial_ref - base, trial_ref - base)
+        keys = [(ln, p) for ln in links for p in self.chain.links[ln]] + list(self.T)
+        for ln, p in dict.fromkeys(keys):
+            if ln not in links or (ln, p) in vc.images:
+                continue
+            t = self.img((ln, p))
+            b = vc.base(self.where(p))
+            image = b + k[:, None] * (t - b)
+            key = f"{self.prefix}.scaled.{ln}.{p}"
+            vc._line(key + ".ray", b, t - b)
+            vc._point(key, image, self.s.labels.get((ln, p), p), lines=(key + ".ray",))
+            vc.set_known(ln, self.where(p), image, p)
+
+
 def draw_group(vc, links: tuple[str, ...], joints: tuple[str, ...], solved: set[str],
                drivers: tuple[str, ...] = ()) -> VelocityScript:
     """Construct the images of the group ``links`` on the links ``solved`` before it by
@@ -187,6 +273,12 @@ def draw_group(vc, links: tuple[str, ...], joints: tuple[str, ...], solved: set[
     sub = chain.restricted(solved | set(links), solved)
     script = plan_velocities(sub)
     missing = [ln for ln in links if ln in script.unreached]
+    if missing and not script.unsupported:
+        # false position: the whole chain from a trial driver, scaled to the given one
+        full = plan_velocities(chain)
+        if full.trial is not None and full.complete:
+            TrialDrawer(vc, full, solved).run(set(links))
+            return full
     bad = [f"{j.name} ({j.kind})" for j in (vc.mech.joint(n) for n in joints)
            if j.kind not in KNOWN_PAIRS or getattr(j, "gear_kind", "external") == "rack"]
     bad += [f"driver {d} (inside the group, between moving links)" for d in drivers]
@@ -317,5 +409,9 @@ def draw_group_acceleration(ac, links: tuple[str, ...], joints: tuple[str, ...],
     along the same script as the velocities (`draw_group`)."""
     chain = Chain.from_mechanism(ac.mech)
     script = plan_velocities(chain.restricted(solved | set(links), solved))
+    if not script.complete:
+        raise InputError(f"the acceleration plan of the group {', '.join(links)}: its velocity plan "
+                         "needs false position (similar point rows), and the acceleration plan of such "
+                         "a group is not drawn (its normal accelerations do not scale with one trial)")
     AccelerationDrawer(ac, script, solved).run(set(links))
     return script

@@ -253,13 +253,29 @@ class VelocityScript:
     labels: Mapping[tuple[str, str], str] = field(default_factory=dict)
     #: for each (link, point) the other (link, point) whose image it shares (hinges, pitch points)
     shared: Mapping[tuple[str, str], tuple[tuple[str, str], ...]] = field(default_factory=dict)
+    #: false position (similar point rows): the script is drawn for this trial driver (link,
+    #: pivot, reference) and then scaled about o to the given driver ``scale_by`` (Rosenauer
+    #: 1937 paper 7, remark: a binary link driving)
+    trial: tuple[str, str, str] | None = None
+    scale_by: tuple[str, str, str] | None = None
 
     @property
     def direct(self) -> bool:
         """Rosenauer's rule holds: every link reached without trial (similar point rows)."""
+        return not self.unreached and not self.unsupported and self.trial is None
+
+    @property
+    def complete(self) -> bool:
+        """Every link reached: directly, or by false position from a trial driver."""
         return not self.unreached and not self.unsupported
 
     def verdict(self) -> str:
+        if self.trial is not None:
+            t, d = self.trial, self.scale_by
+            return (f"not directly constructible from the driver {d[0]} (Rosenauer's rule fails); "
+                    f"by false position: a trial rate of {t[0]} about {upper(t[1])} makes the plan "
+                    f"direct, then every image is moved along its ray from o in the ratio of "
+                    f"{d[0]}'s given to its trial velocity (similar point rows)")
         if self.unsupported:
             return ("not decided: the test does not know the pairs " + ", ".join(self.unsupported))
         if self.unreached:
@@ -274,6 +290,8 @@ class VelocityScript:
 
     def as_dict(self) -> dict:
         return {"direct": self.direct, "verdict": self.verdict(),
+                "false_position": None if self.trial is None else
+                {"trial_driver": self.trial[0], "pivot": self.trial[1], "scaled_to": self.scale_by[0]},
                 "auxiliary_points": [{"name": a.name, "link": a.link,
                                       "lines": [ln.text() for ln in a.lines]} for a in self.aux],
                 "order": list(self.order), "unreached": list(self.unreached),
@@ -679,4 +697,42 @@ def plan_velocities(chain: Chain | Mechanism) -> VelocityScript:
     frame and drivers as given data): Rosenauer's rule as a propagation on the chain's graph."""
     if isinstance(chain, Mechanism):
         chain = Chain.from_mechanism(chain)
-    return _Planner(chain).run()
+    script = _Planner(chain).run()
+    if script.direct or script.unsupported or len(chain.drivers) != 1 or chain.given \
+            or chain.directions or chain.drivers[0][2] is None or chain.frame is None:
+        return script
+    return _false_position(chain) or script
+
+
+def _false_position(chain: Chain) -> VelocityScript | None:
+    """Where one crank drives a chain that Rosenauer's rule does not reach: the velocities are
+    proportional to the driver's rate, so another link on a frame pivot may be given a trial
+    rate; if the plan is direct from it, the true plan is the trial plan scaled about o in the
+    ratio of the driver's given to its trial velocity (one trial: the rows pass through o)."""
+    from dataclasses import replace
+
+    driver = chain.drivers[0]
+    for p, a, b in chain.hinges:
+        if chain.frame not in (a, b):
+            continue
+        link = b if a == chain.frame else a
+        if link == driver[0]:
+            continue
+        ref = next((q for q in chain.links[link] if q != p), None)
+        if ref is None:
+            continue
+        trial = _Planner(replace(chain, drivers=((link, p, ref),))).run()
+        if trial.direct:
+            d, dp, dr = driver
+            first = replace(trial.steps[0], text=(
+                f"trial: {lower(ref)}* = o + ω*·{upper(p)}{upper(ref)} turned 90° "
+                f"(an arbitrary rate of {link} about {upper(p)}; the images that follow are trial "
+                "images x*)"))
+            scale = Step("scale", d, dr, (
+                f"similar point rows: {lower(dr)}* (the trial image of {upper(dr)}) and the given "
+                f"{lower(dr)} = o + ω·{upper(dp)}{upper(dr)} turned 90° lie on one ray "
+                f"from o; every image x lies on the ray o x*, with ox : ox* = o{lower(dr)} : "
+                f"o{lower(dr)}*"))
+            return replace(trial, steps=(first,) + trial.steps[1:] + (scale,),
+                           trial=(link, p, ref), scale_by=driver)
+    return None
