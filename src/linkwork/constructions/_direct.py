@@ -252,15 +252,19 @@ class TrialDrawer(ScriptDrawer):
         base = vc.base(self.where(st.point))
         k = dot(true_ref - base, trial_ref - base) / dot(trial_ref - base, trial_ref - base)
         keys = [(ln, p) for ln in links for p in self.chain.links[ln]] + list(self.T)
+        drawn: set[str] = set()
         for ln, p in dict.fromkeys(keys):
             if ln not in links or (ln, p) in vc.images:
                 continue
             t = self.img((ln, p))
             b = vc.base(self.where(p))
             image = b + k[:, None] * (t - b)
-            key = f"{self.prefix}.scaled.{ln}.{p}"
-            vc._line(key + ".ray", b, t - b)
-            vc._point(key, image, self.s.labels.get((ln, p), p), lines=(key + ".ray",))
+            lab = self.s.labels.get((ln, p), p)
+            if lab not in drawn and lab != "o":  # a hinge's image once; the frame's stay at o
+                drawn.add(lab)
+                key = f"{self.prefix}.scaled.{ln}.{p}"
+                vc._line(key + ".ray", b, t - b)
+                vc._point(key, image, lab, lines=(key + ".ray",))
             vc.set_known(ln, self.where(p), image, p)
 
 
