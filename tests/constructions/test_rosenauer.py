@@ -160,7 +160,7 @@ def test_wittenbauer_rule_holds_for_a_four_bar():
 
 
 def test_unknown_pairs_leave_the_question_open():
-    s = plan_velocities(linkwork.load("library:sulzer-valve-gear"))
+    s = plan_velocities(linkwork.load("library:geneva-4"))
     assert not s.direct and "not decided" in s.verdict()
 
 
@@ -290,3 +290,26 @@ def test_acceleration_plan_after_false_position_is_a_clear_error():
     mech = load("alt-8-link-binary-driver")
     with pytest.raises(linkwork.LinkworkError, match="needs false position"):
         acceleration_plan(mech, positions(mech))
+
+
+# ------------------------------------------------------------------ cam contacts
+@pytest.mark.parametrize("name", ["rolling-lever-valve-gear", "radial-roller-cam", "flat-faced-cam",
+                                  "oscillating-roller-cam", "sulzer-valve-gear"])
+@pytest.mark.parametrize("build", [velocity_plan, rotated_velocities], ids=["plan", "rotated"])
+def test_cam_contact_velocities_through_the_common_normal(name, build):
+    """A cam contact: both links' velocities project equally on the common normal n–n at the
+    contact (Rosenauer 1937 paper 8: the rolling lever's pole on n–n), a line condition like a
+    sliding pair's."""
+    mech = linkwork.load(f"library:{name}")
+    x0 = mech.driver_input_at_design(mech.drivers[0])
+    sol = solve(mech, x0 + np.array([0.05, 0.4, 1.1]))
+    con = build(mech, sol)
+    con.check()
+    assert con.max_error() <= 1e-9
+    assert plan_velocities(mech).direct
+
+
+def test_cam_contact_acceleration_is_refused_with_its_reason():
+    mech = linkwork.load("library:radial-roller-cam")
+    with pytest.raises(linkwork.LinkworkError, match="needs the curvature"):
+        acceleration_plan(mech, [0.3])

@@ -37,6 +37,8 @@ class ScriptDrawer:
         self.aux = {a.name: a for a in script.aux}
         for pair, g1, g2, t, c1, c2 in self.chain.meshes:
             self.pos[t] = self._pitch_point(self.mech.joint(pair), c1, c2)
+        for pair, _, _, k in self.chain.contacts:
+            self.pos[k] = np.asarray(vc.sol.joint(pair)["point"], float)
 
     # ---------------------------------------------------------------- drawing geometry
     def _pitch_point(self, gear: Gear, c1: str, c2: str) -> np.ndarray:
@@ -65,6 +67,8 @@ class ScriptDrawer:
             if not isinstance(j, (Prismatic, Slot)):
                 raise InputError(f"pair {line.pair} has no guide")
             return self.where(line.points[0]), perp(self.vc._axis(j.links[0], j.axis))
+        if line.kind == "contact":
+            return self.where(line.points[0]), np.asarray(self.vc.sol.joint(line.pair)["normal"], float)
         raise InputError("a given velocity direction is not part of a mechanism's data")
 
     # ---------------------------------------------------------------- images
@@ -180,7 +184,7 @@ def _pt(xy):
 
 
 #: the pairs the direct construction knows (a gear pair: external or internal wheels)
-KNOWN_PAIRS = ("revolute", "prismatic", "slot", "gear")
+KNOWN_PAIRS = ("revolute", "prismatic", "slot", "gear", "cam")
 
 
 class TrialDrawer(ScriptDrawer):
@@ -274,6 +278,9 @@ def draw_group(vc, links: tuple[str, ...], joints: tuple[str, ...], solved: set[
     Rosenauer's rule; raise `InputError` where it does not reach them (similar point rows
     would be needed) or the group has pairs the rule does not know."""
     chain = Chain.from_mechanism(vc.mech)
+    # the solver's own (virtual) links of a cam group are no links of the chain
+    links = tuple(ln for ln in links if ln in chain.links)
+    solved = {ln for ln in solved if ln in chain.links}
     sub = chain.restricted(solved | set(links), solved)
     script = plan_velocities(sub)
     missing = [ln for ln in links if ln in script.unreached]
@@ -412,6 +419,13 @@ def draw_group_acceleration(ac, links: tuple[str, ...], joints: tuple[str, ...],
     """The accelerations of the group ``links`` by the plan of relative normal accelerations,
     along the same script as the velocities (`draw_group`)."""
     chain = Chain.from_mechanism(ac.mech)
+    links = tuple(ln for ln in links if ln in chain.links)
+    solved = {ln for ln in solved if ln in chain.links}
+    cams = [c[0] for c in chain.contacts if {c[1], c[2]} & set(links)]
+    if cams:
+        raise InputError(f"the acceleration plan of the group {', '.join(links)}: the cam contact "
+                         f"{', '.join(cams)} needs the curvature of its profiles (its equivalent "
+                         "linkage), which this construction does not draw")
     script = plan_velocities(chain.restricted(solved | set(links), solved))
     if not script.complete:
         raise InputError(f"the acceleration plan of the group {', '.join(links)}: its velocity plan "

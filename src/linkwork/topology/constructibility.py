@@ -39,7 +39,7 @@ from typing import Mapping
 
 import numpy as np
 
-from ..model import Gear, Mechanism, Prismatic, Revolute, Slot
+from ..model import CamContact, Gear, Mechanism, Prismatic, Revolute, Slot
 
 #: the frame's image, the pole o of the velocity plan
 POLE = "o"
@@ -83,7 +83,10 @@ class Chain:
     directions: tuple[str, ...] = ()
     collinear: tuple[frozenset[str], ...] = ()
     unsupported: tuple[str, ...] = ()  # pairs the test does not know (named in the report)
-    frame: str | None = None  # the link whose images are the pole o (None: a free chain)
+    frame: str | None = None
+    #: cam contacts (pair, cam link, follower link, contact point): the velocities of the two
+    #: links project equally on the common normal at the contact
+    contacts: tuple[tuple[str, str, str, str], ...] = ()  # the link whose images are the pole o (None: a free chain)
 
     def restricted(self, links, known) -> "Chain":
         """The part of the chain on ``links`` with the links ``known`` given (a group of the
@@ -94,7 +97,8 @@ class Chain:
                      tuple(s for s in self.slides if {s[1], s[2]} <= keep),
                      tuple(s for s in self.slots if {s[1], s[2]} <= keep),
                      tuple(m for m in self.meshes if {m[1], m[2]} <= keep),
-                     known=tuple(known), collinear=self.collinear, frame=self.frame)
+                     known=tuple(known), collinear=self.collinear, frame=self.frame,
+                     contacts=tuple(c for c in self.contacts if {c[1], c[2]} <= keep))
 
     @classmethod
     def free(cls, links: Mapping[str, str | tuple[str, ...]], *, given: tuple[str, ...] = (),
@@ -115,7 +119,7 @@ class Chain:
     @classmethod
     def from_mechanism(cls, mech: Mechanism) -> "Chain":
         links = {ln.name: tuple(ln.points) for ln in mech.links}
-        hinges, slides, slots, meshes, unsupported = [], [], [], [], []
+        hinges, slides, slots, meshes, unsupported, contacts = [], [], [], [], [], []
         for j in mech.joints:
             if isinstance(j, Revolute):
                 hinges.append((j.point, *j.links))
@@ -123,6 +127,8 @@ class Chain:
                 slides.append((j.name, j.links[0], j.links[1], j.point))
             elif isinstance(j, Slot):
                 slots.append((j.name, j.links[0], j.links[1], j.point))
+            elif isinstance(j, CamContact):
+                contacts.append((j.name, *j.links, contact_point_name(mech, j)))
             elif isinstance(j, Gear) and j.gear_kind in ("external", "internal"):
                 c1, c2 = (mech.wheel_centre(j, w) for w in j.links)
                 meshes.append((j.name, *j.links, pitch_point_name(mech, j), c1, c2))
@@ -131,6 +137,9 @@ class Chain:
         for name, g1, g2, t, c1, c2 in meshes:
             links[g1] += (t,)
             links[g2] += (t,)
+        for name, a, b, k in contacts:
+            links[a] += (k,)
+            links[b] += (k,)
         drivers = []
         for d in mech.drivers:
             j = mech.joint(d.joint)
@@ -145,7 +154,12 @@ class Chain:
         return cls(links, tuple(hinges), tuple(slides), tuple(slots), tuple(meshes),
                    known=(mech.frame,), drivers=tuple(drivers),
                    collinear=design_collinear(mech, meshes), unsupported=tuple(unsupported),
-                   frame=mech.frame)
+                   frame=mech.frame, contacts=tuple(contacts))
+
+
+def contact_point_name(mech: Mechanism, pair) -> str:
+    """The name of a cam contact's point of contact (the pair's name where it is free)."""
+    return pair.name if pair.name not in mech.points else f"{pair.name}_contact"
 
 
 def pitch_point_name(mech: Mechanism, gear: Gear) -> str:
@@ -193,6 +207,8 @@ class MechLine:
             return "".join(upper(p) for p in self.points)
         if self.kind == "normal":
             return f"the normal to {self.pair} at {upper(self.points[0])}"
+        if self.kind == "contact":
+            return f"the common normal of {self.pair} at {upper(self.points[0])}"
         return f"the normal to v_{upper(self.points[0])} at {upper(self.points[0])}"
 
 
@@ -327,7 +343,7 @@ def wittenbauer_rule(chain: Chain) -> WittenbauerVerdict:
     joints: dict[str, set[str]] = {}
     for p, a, b in chain.hinges:
         joints.setdefault(p, set()).update((a, b))
-    for entry in chain.slides + chain.slots:
+    for entry in chain.slides + chain.slots + chain.contacts:
         joints.setdefault(entry[3], set()).update(entry[1:3])
     # the points whose velocities are given count as joints of the chain (its free ends)
     for p in chain.given + chain.directions:
@@ -473,6 +489,8 @@ class _Planner:
             return f"({lab} \u27c2 {upper(pair[0])}{upper(pair[1])})"
         if line.kind == "normal":
             return f"({lab} \u2225 {line.pair})"
+        if line.kind == "contact":
+            return f"({lab} \u27c2 n_{line.pair})"
         return f"({lab} \u2225 v_{upper(line.points[0])})"
 
     # ---------------------------------------------------------------- steps
@@ -635,6 +653,12 @@ class _Planner:
                     new |= self.add_cond(T, PlanLine((L, k), self.lines.special("normal", k, pair), ((L, T, pair),)))
                 elif not slide and L == S and X in self.kpoints[S]:
                     new |= self.add_cond(T, PlanLine((L, X), normal, ((L, T, pair),)))
+        for pair, A, B, K in c.contacts:
+            for L, T in ((A, B), (B, A)):
+                if T not in self.known and L in self.known:
+                    self.ensure_image(L, K)
+                    new |= self.add_cond(T, PlanLine((L, K), self.lines.special("contact", K, pair),
+                                                     ((L, T, pair),)))
         return new
 
     # ---------------------------------------------------------------- the run
