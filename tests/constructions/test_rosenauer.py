@@ -294,12 +294,13 @@ def test_acceleration_plan_after_false_position_is_a_clear_error():
 
 # ------------------------------------------------------------------ cam contacts
 @pytest.mark.parametrize("name", ["rolling-lever-valve-gear", "radial-roller-cam", "flat-faced-cam",
-                                  "oscillating-roller-cam", "sulzer-valve-gear"])
+                                  "oscillating-roller-cam", "sulzer-valve-gear", "elliptical-gears",
+                                  "proell-schwabe-valve-gear"])
 @pytest.mark.parametrize("build", [velocity_plan, rotated_velocities], ids=["plan", "rotated"])
 def test_cam_contact_velocities_through_the_common_normal(name, build):
     """A cam contact: both links' velocities project equally on the common normal n–n at the
     contact (Rosenauer 1937 paper 8: the rolling lever's pole on n–n), a line condition like a
-    sliding pair's."""
+    sliding pair's; a rolling contact: the point of contact is the relative pole, a hinge."""
     mech = linkwork.load(f"library:{name}")
     x0 = mech.driver_input_at_design(mech.drivers[0])
     sol = solve(mech, x0 + np.array([0.05, 0.4, 1.1]))

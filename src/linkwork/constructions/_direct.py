@@ -37,7 +37,7 @@ class ScriptDrawer:
         self.aux = {a.name: a for a in script.aux}
         for pair, g1, g2, t, c1, c2 in self.chain.meshes:
             self.pos[t] = self._pitch_point(self.mech.joint(pair), c1, c2)
-        for pair, _, _, k in self.chain.contacts:
+        for pair, _, _, k in self.chain.contacts + self.chain.rolls:
             self.pos[k] = np.asarray(vc.sol.joint(pair)["point"], float)
 
     # ---------------------------------------------------------------- drawing geometry
@@ -184,7 +184,7 @@ def _pt(xy):
 
 
 #: the pairs the direct construction knows (a gear pair: external or internal wheels)
-KNOWN_PAIRS = ("revolute", "prismatic", "slot", "gear", "cam")
+KNOWN_PAIRS = ("revolute", "prismatic", "slot", "gear", "cam", "rolling")
 
 
 class TrialDrawer(ScriptDrawer):
@@ -421,9 +421,9 @@ def draw_group_acceleration(ac, links: tuple[str, ...], joints: tuple[str, ...],
     chain = Chain.from_mechanism(ac.mech)
     links = tuple(ln for ln in links if ln in chain.links)
     solved = {ln for ln in solved if ln in chain.links}
-    cams = [c[0] for c in chain.contacts if {c[1], c[2]} & set(links)]
+    cams = [c[0] for c in chain.contacts + chain.rolls if {c[1], c[2]} & set(links)]
     if cams:
-        raise InputError(f"the acceleration plan of the group {', '.join(links)}: the cam contact "
+        raise InputError(f"the acceleration plan of the group {', '.join(links)}: the contact "
                          f"{', '.join(cams)} needs the curvature of its profiles (its equivalent "
                          "linkage), which this construction does not draw")
     script = plan_velocities(chain.restricted(solved | set(links), solved))

@@ -39,7 +39,7 @@ from typing import Mapping
 
 import numpy as np
 
-from ..model import CamContact, Gear, Mechanism, Prismatic, Revolute, Slot
+from ..model import CamContact, Gear, Mechanism, Prismatic, Revolute, RollingContact, Slot
 
 #: the frame's image, the pole o of the velocity plan
 POLE = "o"
@@ -86,7 +86,10 @@ class Chain:
     frame: str | None = None
     #: cam contacts (pair, cam link, follower link, contact point): the velocities of the two
     #: links project equally on the common normal at the contact
-    contacts: tuple[tuple[str, str, str, str], ...] = ()  # the link whose images are the pole o (None: a free chain)
+    contacts: tuple[tuple[str, str, str, str], ...] = ()
+    #: rolling contacts (pair, link, link, contact point): the point of contact is the two
+    #: links' relative pole, for velocities a hinge
+    rolls: tuple[tuple[str, str, str, str], ...] = ()  # the link whose images are the pole o (None: a free chain)
 
     def restricted(self, links, known) -> "Chain":
         """The part of the chain on ``links`` with the links ``known`` given (a group of the
@@ -98,7 +101,8 @@ class Chain:
                      tuple(s for s in self.slots if {s[1], s[2]} <= keep),
                      tuple(m for m in self.meshes if {m[1], m[2]} <= keep),
                      known=tuple(known), collinear=self.collinear, frame=self.frame,
-                     contacts=tuple(c for c in self.contacts if {c[1], c[2]} <= keep))
+                     contacts=tuple(c for c in self.contacts if {c[1], c[2]} <= keep),
+                     rolls=tuple(c for c in self.rolls if {c[1], c[2]} <= keep))
 
     @classmethod
     def free(cls, links: Mapping[str, str | tuple[str, ...]], *, given: tuple[str, ...] = (),
@@ -119,7 +123,7 @@ class Chain:
     @classmethod
     def from_mechanism(cls, mech: Mechanism) -> "Chain":
         links = {ln.name: tuple(ln.points) for ln in mech.links}
-        hinges, slides, slots, meshes, unsupported, contacts = [], [], [], [], [], []
+        hinges, slides, slots, meshes, unsupported, contacts, rolls = [], [], [], [], [], [], []
         for j in mech.joints:
             if isinstance(j, Revolute):
                 hinges.append((j.point, *j.links))
@@ -129,6 +133,8 @@ class Chain:
                 slots.append((j.name, j.links[0], j.links[1], j.point))
             elif isinstance(j, CamContact):
                 contacts.append((j.name, *j.links, contact_point_name(mech, j)))
+            elif isinstance(j, RollingContact):
+                rolls.append((j.name, *j.links, contact_point_name(mech, j)))
             elif isinstance(j, Gear) and j.gear_kind in ("external", "internal"):
                 c1, c2 = (mech.wheel_centre(j, w) for w in j.links)
                 meshes.append((j.name, *j.links, pitch_point_name(mech, j), c1, c2))
@@ -137,9 +143,17 @@ class Chain:
         for name, g1, g2, t, c1, c2 in meshes:
             links[g1] += (t,)
             links[g2] += (t,)
-        for name, a, b, k in contacts:
+        for name, a, b, k in contacts + rolls:
             links[a] += (k,)
             links[b] += (k,)
+        collinear = design_collinear(mech, meshes)
+        for name, a, b, k in rolls:
+            # wheels on two pivots of one carrier touch on the line of their centres
+            carrier = getattr(mech.joint(name), "carrier", None)
+            centres = [j.point for j in mech.joints for w in (a, b)
+                       if carrier and isinstance(j, Revolute) and set(j.links) == {w, carrier}]
+            if len(centres) == 2:
+                collinear += (frozenset((k, *centres)),)
         drivers = []
         for d in mech.drivers:
             j = mech.joint(d.joint)
@@ -153,8 +167,8 @@ class Chain:
                 unsupported.append(f"driver {d.joint} ({j.kind})")
         return cls(links, tuple(hinges), tuple(slides), tuple(slots), tuple(meshes),
                    known=(mech.frame,), drivers=tuple(drivers),
-                   collinear=design_collinear(mech, meshes), unsupported=tuple(unsupported),
-                   frame=mech.frame, contacts=tuple(contacts))
+                   collinear=collinear, unsupported=tuple(unsupported),
+                   frame=mech.frame, contacts=tuple(contacts), rolls=tuple(rolls))
 
 
 def contact_point_name(mech: Mechanism, pair) -> str:
@@ -410,7 +424,8 @@ class _Planner:
     def __init__(self, chain: Chain) -> None:
         self.c = chain
         # a gear pair's pitch point is the wheels' relative pole: for velocities, a hinge
-        self.hinges = chain.hinges + tuple((t, g1, g2) for _, g1, g2, t, _, _ in chain.meshes)
+        self.hinges = chain.hinges + tuple((t, g1, g2) for _, g1, g2, t, _, _ in chain.meshes) + \
+            tuple((k, a, b) for _, a, b, k in chain.rolls)
         self.lines = _Lines(chain.collinear)
         self.steps: list[Step] = []
         self.aux: list[AuxPoint] = []
