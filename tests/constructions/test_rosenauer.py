@@ -314,3 +314,24 @@ def test_cam_contact_acceleration_is_refused_with_its_reason():
     mech = linkwork.load("library:radial-roller-cam")
     with pytest.raises(linkwork.LinkworkError, match="needs the curvature"):
         acceleration_plan(mech, [0.3])
+
+
+def test_roemer_coupler_pole_lies_on_the_normal_to_the_slide_at_b():
+    """Paper 1, Construction I, step 3: the pole P of the coupler ABC lies on BN, the line through B
+    perpendicular to the slide of BL. The pole is read off the drawn images of Q and B (where the
+    coupler's velocity vanishes) and compared with the line BN and with the engine's pole."""
+    from linkwork.constructions._common import perp, pole
+
+    mech = linkwork.load("library:roemer-mechanism")
+    sol = positions(mech)
+    con = velocity_plan(mech, sol)
+    vq, vb = con.results["v_Q@coupler"].constructed, con.results["v_B"].constructed
+    Q = np.array([e for e in con.elements.values() if e.label == "Q" and e.space == "mechanism"][0].obj.xy)
+    B = sol.point("B").position
+    # ω from the two images: v_B − v_Q = ω J (B − Q)
+    d = B - Q
+    w = np.sum((vb - vq) * perp(d), axis=1) / np.sum(d * d, axis=1)
+    P = B + perp(vb) / w[:, None]
+    slide = np.array([0.0, 1.0])  # the guide of BL (frame, not turning)
+    assert np.allclose((P - B) @ slide, 0.0, atol=1e-9 * mech.length_scale)
+    assert np.allclose(P, pole(sol, "coupler"), atol=1e-9 * mech.length_scale)
