@@ -81,3 +81,14 @@ def test_cli_lists_groups_searches_and_refuses_an_unknown_group():
     assert r.exit_code != 0 and "no group 'spaceships'" in r.output
     r = runner.invoke(app, ["library", "--search", "zzzz"])
     assert r.exit_code == 1 and "no library mechanism matches 'zzzz'" in r.output
+
+
+def test_catalogue_page_names_only_shipped_mechanisms_with_their_drawings():
+    """docs/library.md (tools/library_catalogue.py) shows existing mechanisms and pictures."""
+    from pathlib import Path
+    docs = Path(__file__).resolve().parents[2] / "docs"
+    text = (docs / "library.md").read_text()
+    shown = set(re.findall(r"`library:([\w-]+)`", text))
+    assert shown and shown <= set(library_names())
+    for name in re.findall(r"\(library/([\w-]+)\.svg\)", text):
+        assert (docs / "library" / f"{name}.svg").read_text().lstrip().startswith("<")
