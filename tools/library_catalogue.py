@@ -17,7 +17,7 @@ import numpy as np
 
 import linkwork
 from linkwork.drawing.layers import Scene, scene_figure
-from linkwork.io.files import library_entries
+from linkwork.io.library import library_entries
 
 ROOT = Path(__file__).resolve().parents[1]
 DOCS = ROOT / "docs"

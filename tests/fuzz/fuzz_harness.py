@@ -275,12 +275,12 @@ def run_cli_case(args: list[str], seconds: float = 30.0) -> Outcome:
     from typer.testing import CliRunner
 
     from linkwork.cli import app
-    from linkwork.cli import common
+    from linkwork.cli import inputs
 
     runner = CliRunner()
     cwd = os.getcwd()
-    max_samples = common.MAX_SAMPLES
-    common.MAX_SAMPLES = 20_000  # the fuzz keeps each case short; the limit itself is tested elsewhere
+    max_samples = inputs.MAX_SAMPLES
+    inputs.MAX_SAMPLES = 20_000  # the fuzz keeps each case short; the limit itself is tested elsewhere
     try:
         with tempfile.TemporaryDirectory() as d:
             os.chdir(d)
@@ -292,7 +292,7 @@ def run_cli_case(args: list[str], seconds: float = 30.0) -> Outcome:
             finally:
                 os.chdir(cwd)
     finally:
-        common.MAX_SAMPLES = max_samples
+        inputs.MAX_SAMPLES = max_samples
     if r.exception is not None and not isinstance(r.exception, SystemExit):
         return Outcome("crash", _cause(r.exception), f"{' '.join(args)} -> {type(r.exception).__name__}: {r.exception}"[:300])
     if r.exit_code == 0:

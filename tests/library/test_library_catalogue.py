@@ -12,7 +12,7 @@ import pytest
 from typer.testing import CliRunner
 
 from linkwork.cli import app
-from linkwork.io.files import CATEGORIES, library_entries, library_names, search_library
+from linkwork.io.library import CATEGORIES, library_entries, library_names, search_library
 
 runner = CliRunner()
 

@@ -1,6 +1,8 @@
 """Long outputs of `analyze`: their size estimated before anything is solved or written, and the
 samples solved and written chunk by chunk under one progress bar (so that a million samples
-take memory for one chunk, not for the whole text).
+take memory for one chunk, not for the whole text). Each chunk goes on from where the one
+before left the path of the inputs (`solve(..., resume=)`: the branches and the continuation
+of several drivers), so the chunks give what one solve of all samples gives.
 
 Formats: `csv` (one row per sample), `jsonl` (JSON Lines: one sample object per line, the
 file's length unit, radians and seconds), `json` (one document; its samples are written one
@@ -137,14 +139,16 @@ def stream(mech, kind: str, values: np.ndarray, speeds: np.ndarray | None, fmt: 
     n = len(values)
     task = bar.add_task("solving and writing", total=2 * n) if bar is not None else None
 
-    def one(v: np.ndarray) -> Solution:
+    def one(v: np.ndarray, resume) -> Solution:
         if kind == "time":
-            return solve(mech, times=v)
+            return solve(mech, times=v, resume=resume)
         vel = None if speeds is None else np.broadcast_to(speeds, v.shape).copy()
-        return solve(mech, v, velocities=vel)
+        return solve(mech, v, velocities=vel, resume=resume)
 
+    end = None  # each chunk goes on where the one before left the path (several drivers)
     for i in range(0, n, CHUNK):
-        sol = one(values[i:i + CHUNK])
+        sol = one(values[i:i + CHUNK], end)
+        end = sol.path_end
         if bar is not None:
             bar.advance(task, len(sol))
         if i == 0 and fmt == "json":

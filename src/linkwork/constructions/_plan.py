@@ -260,14 +260,18 @@ class VelocityConstruction(_SlidingGroups):
 
     # ------------------------------------------------------------------ groups
     def run(self) -> None:
+        solved = {self.mech.frame}
+        self.scripts = []
         for gs in group_plan(self.mech):
             fn = getattr(self, "_g_" + gs.kind.replace("-", "_"), None)
-            if fn is None:
-                raise InputError(f"the {'velocity plan' if self.mode == 'plan' else 'rotated-velocity'} "
-                                 f"construction does not handle the group {', '.join(gs.group.links)} "
-                                 f"({gs.kind}); it handles the driver, RRR, RRP, RPR, rod-in-slot "
-                                 "and slotted-lever groups")
-            fn(gs)
+            if fn is not None:
+                fn(gs)
+            else:
+                # triads and larger groups, gears: Rosenauer's auxiliary points (`_direct`)
+                from ._direct import draw_group
+                self.scripts.append(draw_group(self, gs.group.links, gs.group.joints, solved,
+                                               gs.group.drivers))
+            solved.update(gs.group.links)
         # every remaining point of every link
         for link in self.mech.links:
             if link.name == self.mech.frame:
@@ -474,8 +478,17 @@ class AccelerationConstruction(_SlidingGroups):
         return img
 
     def run(self) -> None:
+        solved = {self.mech.frame}
         for gs in group_plan(self.mech):
-            getattr(self, "_g_" + gs.kind.replace("-", "_"))(gs)
+            fn = getattr(self, "_g_" + gs.kind.replace("-", "_"), None)
+            if fn is not None:
+                fn(gs)
+            else:
+                # the groups the velocity plan drew with auxiliary points: the same script on
+                # the plan of relative normal accelerations (`_direct`)
+                from ._direct import draw_group_acceleration
+                draw_group_acceleration(self, gs.group.links, gs.group.joints, solved, gs.group.drivers)
+            solved.update(gs.group.links)
         for link in self.mech.links:
             if link.name == self.mech.frame:
                 continue

@@ -10,7 +10,6 @@ import difflib
 import json
 import re
 import tomllib
-from importlib import resources
 from pathlib import Path
 
 import numpy as np
@@ -22,81 +21,18 @@ from ..model import (CamContact, CircularSlot, ConstantSpeed, Gear, GenevaPair, 
                      TabulatedLaw)
 from ..units import check_length_unit, parse_quantity, unit_dimension
 from . import schema
+from .library import LIBRARY_PREFIX, library_names, library_text
 from .profiles import build_profile, clean_profile_loc, profile_error_message
 
-LIBRARY_PREFIX = "library:"
 #: mechanism files are a few kilobytes; anything this large is not one
 MAX_FILE_BYTES = 10_000_000
-
-
-def library_names() -> list[str]:
-    root = resources.files("linkwork") / "library"
-    return sorted(p.name[:-5] for p in root.iterdir() if p.name.endswith(".toml"))
-
-
-#: the library's groups, in the order `linkwork library` shows them
-CATEGORIES = ("four-bars", "slider mechanisms", "six-bars and multi-loop linkages",
-              "straight-line linkages", "valve gears", "governors", "cams", "gears",
-              "intermittent", "over-closed chains", "several drivers", "other")
-
-
-def _category(doc: dict) -> str:
-    """A file's `category`, or, for a file without one, the group its pairs put it in: a valve
-    gear by its name, then cams, gears (toothed or rolling) and intermittent pairs by their type."""
-    if doc.get("category"):
-        return doc["category"]
-    if "valve gear" in doc.get("name", "").lower():
-        return "valve gears"
-    kinds = {j.get("type") for j in doc.get("joints", {}).values() if isinstance(j, dict)}
-    for kind, group in (("geneva", "intermittent"), ("star-wheel", "intermittent"), ("cam", "cams"),
-                        ("gear", "gears"), ("rolling", "gears")):
-        if kind in kinds:
-            return group
-    return "other"
-
-
-def library_entries() -> list[dict[str, str]]:
-    """Every shipped mechanism as {name, title, category, description}, grouped in the order
-    of `CATEGORIES` (unknown groups after them, alphabetically), by name within a group."""
-    out = []
-    for n in library_names():
-        doc = tomllib.loads((resources.files("linkwork") / "library" / f"{n}.toml").read_text())
-        out.append({"name": n, "title": doc.get("name", ""), "category": _category(doc),
-                    "description": doc.get("description", "")})
-    rank = {c: i for i, c in enumerate(CATEGORIES)}
-    return sorted(out, key=lambda e: (rank.get(e["category"], len(rank)), e["category"], e["name"]))
-
-
-def search_library(text: str | None = None, category: str | None = None) -> list[dict[str, str]]:
-    """The library entries whose name, title or description contain every word of `text`
-    (case-insensitive, umlauts folded: 'proell' and 'proll' find Pröll) and whose category starts with
-    `category`."""
-    def fold(s: str) -> str:
-        s = s.lower()
-        for a, b in (("ä", "a"), ("ö", "o"), ("ü", "u"), ("ß", "ss"), ("–", "-"), ("ae", "a"), ("oe", "o"),
-                     ("ue", "u")):
-            s = s.replace(a, b)
-        return s
-
-    words = fold(text or "").split()
-    hits = []
-    for e in library_entries():
-        hay = fold(" ".join((e["name"], e["title"], e["description"])))
-        if all(w in hay for w in words) and (not category or fold(e["category"]).startswith(fold(category))):
-            hits.append(e)
-    return hits
 
 
 def resolve(spec: str | Path) -> tuple[str, str]:
     """(source label, TOML text) of a mechanism given as a path or as `library:NAME`."""
     spec = str(spec)
     if spec.startswith(LIBRARY_PREFIX):
-        name = spec[len(LIBRARY_PREFIX):]
-        if name not in library_names():
-            close = [n for n in library_names() if name.lower() in n or n in name.lower()]
-            hint = f"; did you mean {', '.join(close)}?" if close else "; `linkwork library` lists them"
-            raise UnknownMechanismError(f"the library has no mechanism '{name}'{hint}")
-        return spec, (resources.files("linkwork") / "library" / f"{name}.toml").read_text()
+        return spec, library_text(spec[len(LIBRARY_PREFIX):])
     path = Path(spec)
     if not path.is_file():
         raise UnknownMechanismError(
@@ -154,6 +90,13 @@ def _line_of(text: str, loc: tuple) -> int | None:
 def load_text(text: str, *, source: str = "<text>", base_dir: Path | None = None) -> Mechanism:
     """Validate mechanism-file `text` and build the `Mechanism`; `base_dir` is where profile
     CSV files are read from (the working directory if None)."""
+    return parse(text, source=source, base_dir=base_dir)[0]
+
+
+def parse(text: str, *, source: str = "<text>", base_dir: Path | None = None
+          ) -> tuple[Mechanism, schema.MechanismFile]:
+    """`load_text`, also returning the validated file (for the sections that are not the
+    mechanism's: [masses] and [loads], read by `io.dynamics`)."""
     try:
         raw = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
@@ -168,7 +111,7 @@ def load_text(text: str, *, source: str = "<text>", base_dir: Path | None = None
         raise _file_error(exc, text, source) from None
     check_references(spec, text, source)
     try:
-        return _build(spec, text, source, base_dir)
+        return _build(spec, text, source, base_dir), spec
     except MechanismFileError as exc:
         if exc.line is None and exc.key and exc.source == source:  # a profile's key: find its line
             loc = tuple(int(k) if k.isdigit() else k for k in re.findall(r"[^.\[\]]+", exc.key))

@@ -68,6 +68,8 @@ class State:
     branches: dict = field(default_factory=dict)  # group -> (N,) assembly signs (`branches`)
     residuals: dict = field(default_factory=dict)  # group -> (N,) Newton's final residual / L
     budget: object = None  # `precision.ErrorBudget` the derivatives carry on, if any
+    # a cam follower's last Newton evaluation, handed to its rates (`cam_group`)
+    contacts: dict = field(default_factory=dict)
 
     def __post_init__(self) -> None:
         if self.T is None:
