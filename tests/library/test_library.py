@@ -19,6 +19,7 @@ from scipy.optimize import brentq
 
 import linkwork
 from linkwork import Status
+from library_solutions import mech, motion
 from linkwork.io.files import library_names
 from linkwork.kinematics.motion import input_limits
 from linkwork.model import (CamContact, CircularSlot, Gear, GenevaPair, Prismatic, Revolute,
@@ -29,16 +30,6 @@ NEW = ["double-crank", "double-rocker", "parallelogram", "antiparallelogram", "s
        "slider-crank-offset", "oscillating-crank-slotted-lever", "rotating-crank-slotted-lever",
        "whitworth-quick-return", "ellipsograph", "watt-i-six-bar", "stephenson-iii-six-bar",
        "jansen-linkage", "roemer-mechanism"]
-
-
-@lru_cache(maxsize=None)
-def mech(name: str):
-    return linkwork.load(f"library:{name}")
-
-
-@lru_cache(maxsize=None)
-def motion(name: str):
-    return linkwork.whole_motion(mech(name))
 
 
 @lru_cache(maxsize=None)

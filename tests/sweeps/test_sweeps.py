@@ -196,3 +196,25 @@ def test_cli_writes_csv_and_parquet_with_units(tmp_path):
     assert t.num_rows == 3
     r = runner.invoke(app, ["sweep", CR, "--vary", "O4.x=36:40:4", "--metric", "grashof", "-o", "x.txt"])
     assert r.exit_code == 2 and "write .csv or .parquet" in r.output
+
+
+def test_dask_cluster_path_equals_the_local_one(tmp_path):
+    """The distributed path on an in-process LocalCluster (dask.distributed): the same rows as
+    the serial run, by address and by client, and resumable like the local one."""
+    distributed = pytest.importorskip("distributed")
+    p = sweeps.plan(CR, ["O4.x=36:44:4", "O2-A=9:11:2"], ["transmission-min:B", "grashof", "time-ratio:B"])
+    serial = sweeps.execute(p, workers=1)
+    with distributed.LocalCluster(n_workers=1, threads_per_worker=1, processes=False,
+                                  dashboard_address=None) as cluster:
+        assert sweeps.execute(p, scheduler=cluster.scheduler_address, chunk=2) == serial
+        with distributed.Client(cluster, set_as_default=False) as client:
+            side = tmp_path / "d.resume.jsonl"
+            assert sweeps.execute(p, scheduler=client, chunk=2, resume=side) == serial
+            assert len(side.read_text().splitlines()) == 1 + 3
+
+
+def test_unreachable_scheduler_is_a_clear_error():
+    pytest.importorskip("distributed")
+    p = sweeps.plan(CR, ["O4.x=36:36:1"], ["grashof"])
+    with pytest.raises(InputError, match="cannot reach the Dask scheduler at tcp://127.0.0.1:9"):
+        sweeps.execute(p, scheduler="tcp://127.0.0.1:9")

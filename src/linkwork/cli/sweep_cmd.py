@@ -2,7 +2,7 @@
 
 Designs come from a grid (`--vary NAME=START:STOP:STEP`, every combination) or a random sample
 (`--samples N --vary NAME=LOW:HIGH`); each is solved over its whole motion (or `--inputs`) on all
-cores, reduced to the `--metric`s, and written to CSV or Parquet (`-o`, by the suffix, units in
+cores (or on a Dask cluster, `--scheduler`), reduced to the `--metric`s, and written to CSV or Parquet (`-o`, by the suffix, units in
 the header or the metadata) or shown as a table. With `-o`, finished designs are kept in
 FILE.resume.jsonl until the file is written, so that running the same command again after an
 interruption goes on where it stopped.
@@ -59,6 +59,8 @@ def register(app: typer.Typer) -> None:
         inputs: Optional[str] = typer.Option(None, "--inputs", help="START:STOP:STEP of the driver instead of the "
                                              "whole motion (degrees or the length unit)"),
         workers: Optional[int] = typer.Option(None, "--workers", help="processes (default: all cores)"),
+        scheduler: Optional[str] = typer.Option(None, "--scheduler", help="address of an existing Dask "
+                                                "cluster's scheduler (tcp://HOST:8786) to run the designs on"),
         output: Optional[str] = typer.Option(None, "-o", "--output", help="FILE.csv or FILE.parquet"),
     ) -> None:
         """Vary a mechanism's dimensions and tabulate metrics of each design's motion."""
@@ -76,7 +78,7 @@ def register(app: typer.Typer) -> None:
             with Progress(TextColumn("sweep"), BarColumn(), MofNCompleteColumn(), TimeRemainingColumn(),
                           console=Console(stderr=True), transient=True) as bar:
                 task = bar.add_task("designs", total=len(plan.designs))
-                rows = sweeps.execute(plan, workers=workers, resume=resume,
+                rows = sweeps.execute(plan, workers=workers, resume=resume, scheduler=scheduler,
                                       progress=lambda done, n: bar.update(task, completed=done))
             if output:
                 sweeps.write(plan, rows, output)

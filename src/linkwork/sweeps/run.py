@@ -1,6 +1,10 @@
 """Running a sweep: every design of a grid or a random sample solved over its motion (the whole
-motion, or given inputs), its metrics computed; designs are spread over worker processes in
-chunks, and finished chunks are kept in a side file so that an interrupted sweep resumes.
+motion, or given inputs), its metrics computed; designs are spread in chunks over worker
+processes here or over the workers of an existing Dask cluster (`scheduler`), and finished
+chunks are kept in a side file so that an interrupted sweep resumes.
+
+Workers receive the mechanism file's text, not its path, so that a cluster's machines need
+only linkwork installed (profiles read from CSV files must be beside the file on them too).
 """
 
 from __future__ import annotations
@@ -17,7 +21,7 @@ from typing import Callable
 import numpy as np
 
 from ..errors import InputError, LinkworkError
-from ..io.files import load
+from ..io.files import load, load_text, resolve
 from ..kinematics import solve, whole_motion
 from ..model import Mechanism
 from . import designs as D
@@ -36,6 +40,8 @@ class SweepPlan:
     metrics: list[Metric]
     inputs: np.ndarray | None = None
     mechanism: Mechanism | None = field(default=None, repr=False)
+    text: str = field(default="", repr=False)
+    base_dir: str | None = None
 
     @property
     def columns(self) -> list[str]:
@@ -71,19 +77,22 @@ def plan(spec: str, vary: list[str], metrics: list[str], *, samples: int | None 
         raise InputError(f"the sweep has {len(rows)} designs; at most 10 000 000")
     if len(mech.drivers) != 1 and inputs is not None:
         raise InputError("--inputs takes one driver's values; this mechanism has several drivers")
-    return SweepPlan(spec, params, rows, [parse_metric(mech, m) for m in metrics], inputs, mech)
+    base = None if spec.startswith("library:") else str(Path(spec).resolve().parent)
+    return SweepPlan(spec, params, rows, [parse_metric(mech, m) for m in metrics], inputs, mech,
+                     resolve(spec)[1], base)
 
 
 @lru_cache(maxsize=4)
-def _load(spec: str) -> Mechanism:
-    return load(spec)
+def _load(spec: str, text: str, base_dir: str | None) -> Mechanism:
+    return load_text(text, source=spec, base_dir=None if base_dir is None else Path(base_dir))
 
 
 def run_designs(spec: str, params: list[D.Parameter], rows: np.ndarray, metrics: list[Metric],
-                inputs: np.ndarray | None) -> list[list]:
-    """Rows of [metric values…, ok fraction, status] for the designs `rows` (one process)."""
+                inputs: np.ndarray | None, text: str = "", base_dir: str | None = None) -> list[list]:
+    """Rows of [metric values…, ok fraction, status] for the designs `rows` (one process) of
+    the mechanism `text` (read from `spec` if empty)."""
     import warnings
-    base = _load(spec)
+    base = _load(spec, text, base_dir) if text else load(spec)
     out = []
     for values in rows:
         try:
@@ -104,12 +113,17 @@ def _chunks(n: int, size: int) -> list[range]:
 
 
 def execute(p: SweepPlan, *, workers: int | None = None, chunk: int | None = None,
-            resume: Path | None = None, progress: Callable[[int, int], None] | None = None) -> list[list]:
+            resume: Path | None = None, progress: Callable[[int, int], None] | None = None,
+            scheduler=None) -> list[list]:
     """Every design's row (parameters, metrics, ok, status), in design order. `workers`
-    processes (default: all cores; 1 runs here); `resume` is a side file of finished chunks
-    (JSON Lines), read first and appended to, so that a sweep cut off resumes where it stopped."""
+    processes (default: all cores; 1 runs here), or the workers of the Dask cluster whose
+    scheduler is at `scheduler` (an address such as tcp://host:8786, or a `distributed.Client`);
+    `resume` is a side file of finished chunks (JSON Lines), read first and appended to, so
+    that a sweep cut off resumes where it stopped."""
     n = len(p.designs)
     workers = max(1, workers or os.cpu_count() or 1)
+    if scheduler is not None and chunk is None:
+        chunk = max(1, min(200, math.ceil(n / 64)))
     chunk = chunk or max(1, min(200, math.ceil(n / (4 * workers))))
     parts = _chunks(n, chunk)
     done: dict[int, list] = {}
@@ -143,8 +157,11 @@ def execute(p: SweepPlan, *, workers: int | None = None, chunk: int | None = Non
         if progress:
             progress(finished, n)
 
-    args = lambda i: (p.spec, p.params, p.designs[parts[i].start:parts[i].stop], p.metrics, p.inputs)
-    if workers == 1 or len(todo) <= 1:
+    args = lambda i: (p.spec, p.params, p.designs[parts[i].start:parts[i].stop], p.metrics, p.inputs,
+                      p.text, p.base_dir)
+    if scheduler is not None:
+        _on_cluster(scheduler, todo, args, record)
+    elif workers == 1 or len(todo) <= 1:
         for i in todo:
             record(i, run_designs(*args(i)))
     else:
@@ -157,6 +174,29 @@ def execute(p: SweepPlan, *, workers: int | None = None, chunk: int | None = Non
         for k, vals in zip(r, done[i]):
             rows.append([float(v) for v in p.designs[k]] + list(vals))
     return rows
+
+
+def _on_cluster(scheduler, todo: list[int], args, record) -> None:
+    """Run the chunks `todo` on a Dask cluster (dask.distributed), recording each as it ends."""
+    try:
+        from distributed import Client, as_completed as finished
+    except ImportError:  # pragma: no cover - distributed is a dependency
+        raise InputError("--scheduler needs dask.distributed (pip install distributed)") from None
+    own = not hasattr(scheduler, "submit")
+    if own:
+        try:
+            client = Client(scheduler, timeout="5s", set_as_default=False)
+        except (OSError, TimeoutError, ValueError) as exc:
+            raise InputError(f"cannot reach the Dask scheduler at {scheduler}: {exc}") from None
+    else:
+        client = scheduler
+    try:
+        futures = {client.submit(run_designs, *args(i), pure=False): i for i in todo}
+        for f in finished(list(futures), loop=client.loop):
+            record(futures[f], f.result())
+    finally:
+        if own:
+            client.close()
 
 
 def to_frame(p: SweepPlan, rows: list[list]):
