@@ -266,6 +266,13 @@ def positions(cf: CamFollower, state, guess: np.ndarray | None, tol: float
 def _write_pose(cf: CamFollower, state, q: Jet, fi: int) -> None:
     """The follower's pose coefficients (orders 0 … q.order) from the jet of q."""
     K = q.order
+    if cf.base == state.mech.frame and cf.hinge is None:  # the frame's pose is zero
+        a = cf.axis * cf.sense
+        state.Q[: K + 1, :, fi, 0] = q.c * a[0]
+        state.Q[: K + 1, :, fi, 1] = q.c * a[1]
+        state.Q[: K + 1, :, fi, 2] = 0.0
+        state.forget_trig([fi])
+        return
     b = state.Q[: K + 1, :, state.li(cf.base)]
     bx, by, bth = Jet(b[..., 0]), Jet(b[..., 1]), Jet(b[..., 2])
     bc, bs = bth.cos_sin()
