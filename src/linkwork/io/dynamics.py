@@ -68,12 +68,12 @@ def build_dynamics(mech: Mechanism, spec: schema.MechanismFile, text: str, sourc
             fail(loc, f"joint '{name}', which is not in [joints]{_did_you_mean(name, mech.joint_index)}")
         return name
 
-    def table(t: schema.LoadTableSpec, k: int, loc: tuple, to_si: float = 1.0) -> LoadTable:
+    def table(t: schema.LoadTableSpec, k: int, loc: tuple) -> LoadTable:
         vals = []
         for i, v in enumerate(t.values):
             if (k == 1) != (not isinstance(v, list)):
                 fail(loc + ("values", i), "a torque's table has numbers, a force's [x, y] pairs")
-            vals.append(tuple(np.atleast_1d(np.asarray(v, dtype=float)) * to_si))
+            vals.append(tuple(np.atleast_1d(np.asarray(v, dtype=float))))
         scale = np.pi / 180 if (t.of == "input" and deg and _revolute_input(mech)) else 1.0
         return LoadTable(t.of, tuple(scale * a for a in t.at), tuple(vals), t.periodic)
 
