@@ -22,10 +22,12 @@ from __future__ import annotations
 import math
 import re
 from functools import lru_cache
-
-import pint
+from typing import TYPE_CHECKING
 
 from .errors import InputError
+
+if TYPE_CHECKING:
+    import pint
 
 #: the largest size of any number linkwork accepts from a user (file or command line): larger
 #: ones are typing mistakes, and squares of them would overflow the solver's arithmetic
@@ -38,7 +40,19 @@ MAX_LENGTH = 200
 
 @lru_cache(maxsize=1)
 def registry() -> pint.UnitRegistry:
-    return pint.UnitRegistry()
+    """pint's registry, made on first use (a bare number needs none). Its parsed definitions
+    are cached in the user's cache folder, which makes it ten times faster to build; where
+    that folder cannot be written, it is built from the definitions."""
+    import pint
+
+    try:
+        return pint.UnitRegistry(cache_folder=":auto:")
+    except OSError:
+        return pint.UnitRegistry()
+
+
+#: a bare decimal number: read without the unit machinery
+_PLAIN_NUMBER = re.compile(r"\s*[+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?\s*")
 
 
 _TOKEN = re.compile(r"\s*(?:(?P<number>(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?)"
@@ -188,12 +202,16 @@ def parse_quantity(text: str | float | int, *, default_unit: str, kind: str) -> 
     """
     if not isinstance(text, str):
         return check_number(text, kind)
+    if _PLAIN_NUMBER.fullmatch(text) and len(text) <= MAX_LENGTH:
+        return _finite(float(text), kind, text.strip())
     q = read_quantity(text, kind)
     if str(q.units) == "dimensionless":
         return float(q.magnitude)
+    from pint.errors import PintError
+
     try:
         value = float(q.to(default_unit).magnitude)
-    except pint.errors.PintError:  # other dimensions, offset units (degC) in a product
+    except PintError:  # other dimensions, offset units (degC) in a product
         raise InputError(
             f"{kind} '{text}' has unit '{q.units}', which cannot be converted to '{default_unit}'"
         ) from None
@@ -202,6 +220,8 @@ def parse_quantity(text: str | float | int, *, default_unit: str, kind: str) -> 
 
 def unit_dimension(text: str, what: str = "quantity") -> str | None:
     """'time', 'angle', 'length' or None for a quantity string without a unit."""
+    if _PLAIN_NUMBER.fullmatch(text) and len(text) <= MAX_LENGTH:
+        return None
     ureg = registry()
     q = read_quantity(text, what)
     if str(q.units) == "dimensionless":

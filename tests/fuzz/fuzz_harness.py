@@ -73,11 +73,21 @@ def warm_up() -> None:
     from linkwork.cli import app  # noqa: F401
     from linkwork.structure import structure_report
 
-    for name in ("crank-rocker", "slider-crank-offset", "jansen-linkage"):
+    from linkwork.kinematics import kernels
+
+    # (the parallelogram: change points, its dyad's signs an array rather than one number)
+    for name in ("crank-rocker", "slider-crank-offset", "jansen-linkage", "parallelogram"):
         mech = linkwork.load(f"library:{name}")
         sol = linkwork.solve(mech, _inputs(mech, random.Random(0)))
         check_ok_samples(sol)
         structure_report(mech, limits=False)
+        # batches above INTERPRETED_UP_TO run compiled (numba): compiled here, not in a case
+        # (the change-point scans take 2049–4097 samples, a path's grid more); an alarm in
+        # the middle of numba's compiler leaves its loops broken for the cases after
+        u0 = mech.driver_input_at_design(mech.drivers[0])
+        many = u0 + np.linspace(-np.pi, np.pi, kernels.INTERPRETED_UP_TO + 1)
+        linkwork.solve(mech, many, order=2)
+        linkwork.solve(mech, many, order=3)
 
 
 # ----------------------------------------------------------------------------- mutations
@@ -275,12 +285,12 @@ def run_cli_case(args: list[str], seconds: float = 30.0) -> Outcome:
     from typer.testing import CliRunner
 
     from linkwork.cli import app
-    from linkwork.cli import common
+    from linkwork.cli import inputs
 
     runner = CliRunner()
     cwd = os.getcwd()
-    max_samples = common.MAX_SAMPLES
-    common.MAX_SAMPLES = 20_000  # the fuzz keeps each case short; the limit itself is tested elsewhere
+    max_samples = inputs.MAX_SAMPLES
+    inputs.MAX_SAMPLES = 20_000  # the fuzz keeps each case short; the limit itself is tested elsewhere
     try:
         with tempfile.TemporaryDirectory() as d:
             os.chdir(d)
@@ -292,7 +302,7 @@ def run_cli_case(args: list[str], seconds: float = 30.0) -> Outcome:
             finally:
                 os.chdir(cwd)
     finally:
-        common.MAX_SAMPLES = max_samples
+        inputs.MAX_SAMPLES = max_samples
     if r.exception is not None and not isinstance(r.exception, SystemExit):
         return Outcome("crash", _cause(r.exception), f"{' '.join(args)} -> {type(r.exception).__name__}: {r.exception}"[:300])
     if r.exit_code == 0:

@@ -13,12 +13,11 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Optional
 
-import numpy as np
 import typer
 
 from ..errors import InputError
 from ..units import MAX_MAGNITUDE
-from .common import input_values, load_mechanism, positive_option, user_errors
+from .common import load_mechanism, positive_option, user_errors
 
 #: the finest PNG resolution drawn (an A4 page at 2400 dpi is already 20 000 pixels wide)
 MAX_DPI = 2400.0
@@ -46,11 +45,15 @@ def register(app: typer.Typer) -> None:
         output: str = typer.Option(..., "-o", "--output", help="FILE.svg, FILE.png or FILE.pdf"),
     ) -> None:
         """Draw the mechanism at one position with layers and a construction, as the books do."""
+        import numpy as np
+
+        from ..constructions import construct
+        from ..drawing import scene_figure
+        from ..drawing.layers import Scene
+        from ..kinematics import solve
+        from .inputs import input_values
+
         with user_errors():
-            from ..constructions import construct
-            from ..drawing import scene_figure
-            from ..drawing.layers import Scene
-            from ..kinematics import solve
             positive_option(dpi, "--dpi", MAX_DPI)
             for value, option in ((length_scale, "--length-scale"), (velocity_scale, "--velocity-scale"),
                                   (acceleration_scale, "--acceleration-scale"), (animate, "--animate")):
@@ -117,8 +120,9 @@ def register(app: typer.Typer) -> None:
         output: str = typer.Option(..., "-o", "--output", help="FILE.png, FILE.pdf or FILE.svg"),
     ) -> None:
         """Plot positions, velocities, accelerations over the whole motion, or a v–s diagram."""
+        from ..drawing.plots import motion_plot, save, vs_plot
+
         with user_errors():
-            from ..drawing.plots import motion_plot, save, vs_plot
             mech = load_mechanism(mechanism)
             points, links = _list(point), _list(link)
             if vs:

@@ -1,26 +1,27 @@
 """`linkwork` commands of the core engine (analyze, library, schema) and the registry of the
 other layers' command modules: every module `linkwork.cli.*_cmd` with a `register(app)` adds
-its commands, so a layer brings its own commands without editing this file."""
+its commands, so a layer brings its own commands without editing this file.
+
+Why the imports sit inside the commands: a command pays only for the machinery it uses
+(`linkwork library` needs neither NumPy nor the solver). Registering every command module
+must therefore stay cheap: at module level a command module imports the standard library,
+Typer, Rich and `cli.common` only (tests/cli/test_startup.py checks it)."""
 
 from __future__ import annotations
 
 import importlib
-import json
 import pkgutil
 from enum import Enum
-from typing import Optional
+from typing import TYPE_CHECKING, Optional
 
-import numpy as np
 import typer
 from rich.console import Console
 from rich.table import Table
 
-from ..io.files import library_names, resolve
-from ..io.schema import MechanismFile
-from ..kinematics import Solution, Status, solve, whole_motion
-from ..errors import InputError
-from . import streams
-from .common import input_speeds, input_values, load_mechanism, show_input, user_errors, write_output
+from .common import user_errors, write_output
+
+if TYPE_CHECKING:
+    from ..kinematics import Solution
 
 app = typer.Typer(add_completion=False, no_args_is_help=True, pretty_exceptions_enable=False,
                   help="Kinematics of planar mechanisms: exact solutions, poles and curvature, "
@@ -36,6 +37,11 @@ class Format(str, Enum):
 
 
 def _table(sol: Solution) -> str:
+    import numpy as np
+
+    from ..kinematics import Status
+    from .inputs import show_input
+
     mech = sol.mechanism
     # markup off: names from the file ("[A]", "x [mm]") are text
     out = Console(record=True, width=160, file=open("/dev/null", "w"), markup=False)
@@ -66,28 +72,42 @@ def _table(sol: Solution) -> str:
                 t.add_row(ln, f"{np.degrees(m.angle[n]):.4f}", f"{m.omega[n]:.6g}", f"{m.alpha[n]:.6g}")
             out.print(t)
     else:
-        t = Table(title=f"{mech.name}: {len(sol)} samples (ω in rad/s, α in rad/s²)")
-        for d in mech.drivers:
-            t.add_column("input" if single else f"input {d.joint}", justify="right")
-        t.add_column("status")
+        head = [("input" if single else f"input {d.joint}") for d in mech.drivers] + ["status"]
         for ln in mech.moving_links:
-            t.add_column(f"ω {ln}", justify="right")
-            t.add_column(f"α {ln}", justify="right")
-        links = {ln: sol.link(ln) for ln in mech.moving_links}
+            head += [f"ω {ln}", f"α {ln}"]
+        links = [sol.link(ln) for ln in mech.moving_links]
+        rows = []
         for n in range(len(sol)):
             row = [show_input(mech, d, v) for d, v in zip(mech.drivers, sol.inputs[n])]
             row.append(str(Status(int(sol.status[n]))))
-            for m in links.values():
+            for m in links:
                 row += [f"{m.omega[n]:.5g}", f"{m.alpha[n]:.5g}"]
-            t.add_row(*row)
-        out.print(t)
+            rows.append(row)
+        out.print(_columns(f"{mech.name}: {len(sol)} samples (ω in rad/s, α in rad/s²)", head, rows),
+                  highlight=False, soft_wrap=True)
     _engagement_tables(out, sol)
     return out.export_text()
+
+
+def _columns(title: str, head: list[str], rows: list[list[str]]) -> str:
+    """A long table as plain right-aligned columns (one line per sample, never wrapped): Rich
+    lays out a table cell by cell, some seconds for a whole motion of a six-bar."""
+    from rich.cells import cell_len
+
+    widths = [max(cell_len(r[c]) for r in (head, *rows)) for c in range(len(head))]
+
+    def line(cells: list[str]) -> str:
+        return "  ".join(" " * (w - cell_len(x)) + x for x, w in zip(cells, widths))
+
+    top = line(head)
+    return "\n".join([title, top, "─" * cell_len(top), *map(line, rows)])
 
 
 def _engagement_tables(out: Console, sol: Solution) -> None:
     """Per Geneva or star-wheel pair: the phase boundaries the motion passes, with the wheel's
     one-sided velocities and accelerations (at the driver's constant speed)."""
+    import numpy as np
+
     from ..kinematics.intermittent import engagement
     from ..model import is_intermittent
 
@@ -120,6 +140,14 @@ def analyze(
     Without --at or --sweep, the whole motion: one turn of a crank, or back and forth between
     the limit positions of a rocker or slider.
     """
+    import numpy as np
+
+    from ..errors import InputError
+    from ..kinematics import solve, whole_motion
+    from . import streams
+    from .common import load_mechanism
+    from .inputs import input_speeds, input_values
+
     with user_errors():
         mech = load_mechanism(mechanism)
         w = input_speeds(mech, speed)
@@ -147,33 +175,65 @@ def analyze(
 
 
 @app.command()
-def library(name: Optional[str] = typer.Argument(None, help="print this mechanism's file")) -> None:
-    """List the shipped mechanisms, or print one of them (load it as library:NAME)."""
+def library(name: Optional[str] = typer.Argument(None, help="print this mechanism's file"),
+            search: Optional[str] = typer.Option(None, "--search", "-s",
+                                                 help="only mechanisms whose name or description contain these words"),
+            category: Optional[str] = typer.Option(None, "--category", "-c",
+                                                   help="only this group (four-bars, slider mechanisms, valve gears, "
+                                                        "straight-line linkages, governors, cams, gears, ...)"),
+            fmt: str = typer.Option("table", "--format", help="table or json")) -> None:
+    """List the shipped mechanisms by group, search them, or print one (load it as library:NAME)."""
+    import json
+
+    from ..errors import InputError
+    from ..io.library import library_entries, library_text, search_library
+
     with user_errors():
         if name:
-            write_output(resolve(f"library:{name}")[1], None)
+            write_output(library_text(name), None)
             return
+        if fmt not in ("table", "json"):
+            raise InputError(f"--format must be table or json, not '{fmt}'")
+        hits = search_library(search, category)
+        if category and not hits and not search_library(None, category):
+            groups = sorted({e["category"] for e in library_entries()})
+            raise InputError(f"the library has no group '{category}' (groups: {', '.join(groups)})")
+        if fmt == "json":
+            write_output(json.dumps(hits, indent=2, ensure_ascii=False) + "\n", None)
+            return
+        if not hits:
+            console.print(f"no library mechanism matches '{search}'" + (f" in '{category}'" if category else ""))
+            raise typer.Exit(1)
         t = Table(title="linkwork library (use as library:NAME)")
+        t.add_column("group")
         t.add_column("name")
         t.add_column("mechanism")
-        import tomllib
-        for n in library_names():
-            doc = tomllib.loads(resolve(f"library:{n}")[1])
-            t.add_row(n, doc.get("name", ""))
+        last = None
+        for e in hits:
+            t.add_row(e["category"] if e["category"] != last else "", e["name"], e["title"],
+                      end_section=False)
+            last = e["category"]
         console.print(t)
+        console.print(f"{len(hits)} mechanisms")
 
 
 @app.command()
 def schema() -> None:
     """Print the JSON schema of mechanism files."""
+    import json
+
+    from ..io.schema import MechanismFile
+
     write_output(json.dumps(MechanismFile.model_json_schema(), indent=2) + "\n", None)
 
 
-def _register_layers() -> None:
+#: the commands this module defines: they need no other command module loaded
+CORE_COMMANDS = frozenset({"analyze", "library", "schema"})
+
+
+def register_layers(target: typer.Typer) -> None:
+    """Add the commands of every `linkwork.cli.*_cmd` module (each has `register(app)`)."""
     from .. import cli as pkg
     for mod in pkgutil.iter_modules(pkg.__path__):
         if mod.name.endswith("_cmd"):
-            importlib.import_module(f"{pkg.__name__}.{mod.name}").register(app)
-
-
-_register_layers()
+            importlib.import_module(f"{pkg.__name__}.{mod.name}").register(target)

@@ -10,7 +10,6 @@ import difflib
 import json
 import re
 import tomllib
-from importlib import resources
 from pathlib import Path
 
 import numpy as np
@@ -22,28 +21,18 @@ from ..model import (CamContact, CircularSlot, ConstantSpeed, Gear, GenevaPair, 
                      TabulatedLaw)
 from ..units import check_length_unit, parse_quantity, unit_dimension
 from . import schema
+from .library import LIBRARY_PREFIX, library_names, library_text
 from .profiles import build_profile, clean_profile_loc, profile_error_message
 
-LIBRARY_PREFIX = "library:"
 #: mechanism files are a few kilobytes; anything this large is not one
 MAX_FILE_BYTES = 10_000_000
-
-
-def library_names() -> list[str]:
-    root = resources.files("linkwork") / "library"
-    return sorted(p.name[:-5] for p in root.iterdir() if p.name.endswith(".toml"))
 
 
 def resolve(spec: str | Path) -> tuple[str, str]:
     """(source label, TOML text) of a mechanism given as a path or as `library:NAME`."""
     spec = str(spec)
     if spec.startswith(LIBRARY_PREFIX):
-        name = spec[len(LIBRARY_PREFIX):]
-        if name not in library_names():
-            close = [n for n in library_names() if name.lower() in n or n in name.lower()]
-            hint = f"; did you mean {', '.join(close)}?" if close else "; `linkwork library` lists them"
-            raise UnknownMechanismError(f"the library has no mechanism '{name}'{hint}")
-        return spec, (resources.files("linkwork") / "library" / f"{name}.toml").read_text()
+        return spec, library_text(spec[len(LIBRARY_PREFIX):])
     path = Path(spec)
     if not path.is_file():
         raise UnknownMechanismError(
@@ -101,6 +90,13 @@ def _line_of(text: str, loc: tuple) -> int | None:
 def load_text(text: str, *, source: str = "<text>", base_dir: Path | None = None) -> Mechanism:
     """Validate mechanism-file `text` and build the `Mechanism`; `base_dir` is where profile
     CSV files are read from (the working directory if None)."""
+    return parse(text, source=source, base_dir=base_dir)[0]
+
+
+def parse(text: str, *, source: str = "<text>", base_dir: Path | None = None
+          ) -> tuple[Mechanism, schema.MechanismFile]:
+    """`load_text`, also returning the validated file (for the sections that are not the
+    mechanism's: [masses] and [loads], read by `io.dynamics`)."""
     try:
         raw = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
@@ -115,7 +111,7 @@ def load_text(text: str, *, source: str = "<text>", base_dir: Path | None = None
         raise _file_error(exc, text, source) from None
     check_references(spec, text, source)
     try:
-        return _build(spec, text, source, base_dir)
+        return _build(spec, text, source, base_dir), spec
     except MechanismFileError as exc:
         if exc.line is None and exc.key and exc.source == source:  # a profile's key: find its line
             loc = tuple(int(k) if k.isdigit() else k for k in re.findall(r"[^.\[\]]+", exc.key))

@@ -28,7 +28,6 @@ from types import MappingProxyType
 from typing import Mapping
 
 import numpy as np
-from scipy.spatial import cKDTree
 
 from ..geometry.profiles import curvature
 from ..model import CamContact, Mechanism, RollingContact, design_contact
@@ -187,6 +186,7 @@ def _outline(mech: Mechanism, name: str):
     u = np.linspace(lo, hi, 4096, endpoint=not prof.closed)
     pts = prof.derivatives(u, 0)[0]
     keep = np.all(np.isfinite(pts), axis=1)
+    from scipy.spatial import cKDTree  # SciPy loads when first needed
     return u[keep], pts[keep], cKDTree(pts[keep])
 
 

@@ -16,7 +16,6 @@ from dataclasses import dataclass, replace
 from types import MappingProxyType
 
 import numpy as np
-from scipy.optimize import brentq
 
 from ..errors import InputError, ModelError
 from ..geometry.profiles import curvature
@@ -143,6 +142,7 @@ def _crossing(sol: Solution, j, name: str, coord: int, b: float, x0: float, x1: 
     elif d1 == 0.0:
         x = x1
     else:
+        from scipy.optimize import brentq  # SciPy loads when first needed
         x = brentq(dist, x0, x1, xtol=1e-14 * max(1.0, abs(x0)), rtol=1e-15)
     before_side = -1 if d0 < 0 or (d0 == 0 and d1 > 0) else 1
 

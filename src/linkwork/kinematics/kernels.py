@@ -1,5 +1,5 @@
-"""Compiled per-sample loops of the closed-form hot paths: the RRR dyad, the revolute driver and
-the motion of a point carried by a link.
+"""Compiled per-sample loops of the closed-form hot paths: the RRR and RRP dyads, the revolute
+driver and the motion of a point carried by a link.
 
 Why compiled (numba): a dyad's positions, velocities and accelerations are some 150 arithmetic
 operations per sample. As NumPy array operations each of them is a Python call and a walk
@@ -8,6 +8,11 @@ nanoseconds per sample and dyad; these loops do the same arithmetic in registers
 has this one implementation; the generic path (constraints on jets and a linear solve,
 `groups.derivatives_generic`) stays the independent check of it
 (tests/kinematics/test_generic_vs_closed_form.py).
+
+A batch of a few thousand samples or fewer runs the same loops interpreted (`_loop`): numba's
+import and the loading of its cached machine code cost a second or more per process, more than
+the interpreted loops take for a command asking for a few positions or one turn
+(tests/kinematics/test_kernel_modes.py holds the two executions to each other).
 
 Array conventions (as in `groups.State`): Q[k, link, (x, y, θ), n] holds the k-th Taylor
 coefficient q⁽ᵏ⁾/k! of every link pose, the sample axis last; T[link, (cos θ, sin θ), n].
@@ -19,14 +24,80 @@ overwritten with NaN by `solver.solve`.
 from __future__ import annotations
 
 import math
+import types
+from functools import lru_cache, wraps
 
-import numba as nb
 import numpy as np
 
-_jit = nb.njit(cache=True, nogil=True, error_model="numpy", fastmath={"contract", "arcp", "nsz"})
+#: batches of at most this many samples run the loops below as Python source (interpreted),
+#: larger ones compiled: loading numba and its compiled code costs a second or more per
+#: process, which a command asking for a few positions, one turn or the branch scan (2 049
+#: inputs) should not pay. The same source either way; the compiled loops may differ in the
+#: last bits (numba contracts a·b + c to one fused multiply-add).
+INTERPRETED_UP_TO = 4096
+
+_FLAGS = dict(cache=True, nogil=True, error_model="numpy", fastmath={"contract", "arcp", "nsz"})
+#: every loop of this module by name: (its Python function, the axis of its first argument
+#: that counts the samples, or None for the helpers the loops call)
+_LOOPS: dict[str, tuple[types.FunctionType, int | None]] = {}
 
 
-@_jit
+def _loop(samples_axis: int | None = None):
+    """Register a loop; an entry point (`samples_axis` given) picks the interpreted or compiled
+    version by its number of samples."""
+
+    def register(fn: types.FunctionType):
+        _LOOPS[fn.__name__] = (fn, samples_axis)
+        if samples_axis is None:
+            return fn
+
+        @wraps(fn)
+        def entry(*args):
+            if args[0].shape[samples_axis] <= INTERPRETED_UP_TO:
+                with np.errstate(all="ignore"):  # as the compiled loops: inf and NaN, quietly
+                    return _interpreted()[fn.__name__](*args)
+            return _compiled()[fn.__name__](*args)
+
+        return entry
+
+    return register
+
+
+def _bound(namespace: dict) -> dict:
+    """Every loop rebound to `namespace` as its globals, so that the loops call each other's
+    version of the same kind."""
+    for name, (fn, _) in _LOOPS.items():
+        namespace[name] = types.FunctionType(fn.__code__, namespace, name, fn.__defaults__)
+    return namespace
+
+
+#: `math` for the interpreted loops: NumPy's scalar functions, which give NaN and ±inf where
+#: Python's raise, as the compiled loops do (error_model="numpy")
+_NUMPY_MATH = types.SimpleNamespace(sqrt=np.sqrt, cos=np.cos, sin=np.sin, pi=math.pi,
+                                    inf=math.inf, nan=math.nan)
+
+
+@lru_cache(maxsize=1)
+def _interpreted() -> dict:
+    return _bound({**globals(), "math": _NUMPY_MATH})
+
+
+@lru_cache(maxsize=1)
+def _compiled() -> dict:
+    import numba as nb
+    from platformdirs import user_cache_dir
+
+    # numba caches compiled loops beside their source by default, which fails where the package
+    # is installed read-only; a per-user cache folder works everywhere (NUMBA_CACHE_DIR wins)
+    if not nb.config.CACHE_DIR:
+        nb.config.CACHE_DIR = user_cache_dir("linkwork", appauthor=False)
+    ns = _bound(dict(globals()))
+    for name in _LOOPS:
+        ns[name] = nb.njit(**_FLAGS)(ns[name])
+    return ns
+
+
+@_loop(2)
 def rrr_positions(Q0, T, iA, A, iC, C, i1, i2, diff, L1sq, tol, branch, k1, k2, r, ok):
     """Circle–circle intersection: the hinge B of links i1 (through A) and i2 (through C) at
     |AB| = L1 and |CB| = L2 on the side branch[n] = ±1 of AC (diff = L1² − L2²). The
@@ -66,7 +137,7 @@ def rrr_positions(Q0, T, iA, A, iC, C, i1, i2, diff, L1sq, tol, branch, k1, k2, 
         r[0, n], r[1, n], r[2, n], r[3, n] = r1x, r1y, r2x, r2y
 
 
-@_jit
+@_loop()
 def _point_rates(Q, T, i, s0, s1, n):
     """Velocity and acceleration (vx, vy, ax, ay) of design point s on link i at sample n."""
     c, sn = T[i, 0, n], T[i, 1, n]
@@ -77,7 +148,7 @@ def _point_rates(Q, T, i, s0, s1, n):
             2.0 * Q[2, i, 0, n] - al * ry - ww * rx, 2.0 * Q[2, i, 1, n] + al * rx - ww * ry)
 
 
-@_jit
+@_loop()
 def _set_rates(Q, T, i, s0, s1, n, vx, vy, ax, ay, om, al):
     """Rates of link i from the motion (v, a) of its design point s and its ω and α:
     v_origin = v − ω ⊥r, a_origin = a − α ⊥r + ω² r, r = R(θ)s, ⊥(x, y) = (−y, x)."""
@@ -92,7 +163,7 @@ def _set_rates(Q, T, i, s0, s1, n, vx, vy, ax, ay, om, al):
     Q[2, i, 2, n] = 0.5 * al
 
 
-@_jit
+@_loop(3)
 def rrr_rates(Q, T, iA, A, iC, C, i1, i2, BA, BC, mid, hd2, unreliable, cond, L, omega, m, E,
               eps):
     """Velocities and accelerations of the RRR dyad by Cramer's rule on the hinge closure
@@ -133,7 +204,90 @@ def rrr_rates(Q, T, iA, A, iC, C, i1, i2, BA, BC, mid, hd2, unreliable, cond, L,
         _group_error_2(k, m, E, n, eps, max(a0, b0), max(a1, b1), max(a2, b2))
 
 
-@_jit
+@_loop(2)
+def rrp_positions(Q0, T, iA, A, ig, P, e0, rsq, tol, branch, ir, ib, k, r, ok):
+    """Circle–line intersection: the block's point P (design coordinates in the guide link ig
+    and in the block ib) on its track, the line through P's design place along the guide's
+    axis e0 (fixed in ig), at |AP| = √rsq from the rod's pivot A (on link iA), on the side
+    branch[n] = ±1 of the rod's foot on the track. The rod ir turns as the vector A→P, its
+    cos θ and sin θ taken from that vector as in `rrr_positions` (k = (cos φ, sin φ) for the
+    rod drawn at angle φ); the vector goes to r[0:2] for the caller's vectorised arctan2. The
+    block keeps the guide's angle. A squared half chord below zero by rounding only (above tol)
+    counts as zero."""
+    for n in range(Q0.shape[2]):
+        cA, sA, cg, sg = T[iA, 0, n], T[iA, 1, n], T[ig, 0, n], T[ig, 1, n]
+        ax = Q0[iA, 0, n] + cA * A[0] - sA * A[1]
+        ay = Q0[iA, 1, n] + sA * A[0] + cA * A[1]
+        qx = Q0[ig, 0, n] + cg * P[0] - sg * P[1]
+        qy = Q0[ig, 1, n] + sg * P[0] + cg * P[1]
+        ex, ey = cg * e0[0] - sg * e0[1], sg * e0[0] + cg * e0[1]
+        wx, wy = qx - ax, qy - ay
+        b = ex * wx + ey * wy
+        disc = b * b - (wx * wx + wy * wy - rsq)
+        if disc < 0.0 and disc > tol:
+            disc = 0.0
+        lam = branch[n] * math.sqrt(disc) - b  # NaN where the rod's circle misses the track
+        px, py = qx + lam * ex, qy + lam * ey
+        if not (px - px == 0.0 and py - py == 0.0):  # NaN or ∞
+            ok[n] = False
+        rx, ry = px - ax, py - ay
+        nr = 1.0 / math.sqrt(rx * rx + ry * ry)
+        c, sn = (rx * k[0] + ry * k[1]) * nr, (ry * k[0] - rx * k[1]) * nr
+        T[ir, 0, n], T[ir, 1, n], T[ib, 0, n], T[ib, 1, n] = c, sn, cg, sg
+        Q0[ir, 0, n] = ax - (c * A[0] - sn * A[1])
+        Q0[ir, 1, n] = ay - (sn * A[0] + c * A[1])
+        Q0[ib, 0, n] = px - (cg * P[0] - sg * P[1])
+        Q0[ib, 1, n] = py - (sg * P[0] + cg * P[1])
+        Q0[ib, 2, n] = Q0[ig, 2, n]
+        r[0, n], r[1, n] = rx, ry
+
+
+@_loop(3)
+def rrp_rates(Q, T, iA, A, ig, P, e0, AP, length, ir, ib, unreliable, cond, L, omega, m, E,
+              eps):
+    """Velocities and accelerations of the RRP dyad: the rod's ω and α, and with them the motion
+    of P, from the closure vA + ω ⊥r = v_c + λ̇ e (r = P − A = R(θ_rod)·AP, e the track's
+    direction, λ P's place along it from its design place, v_c the velocity of the guide's point
+    under P) and its derivative, aA + α ⊥r − ω² r = a_c + λ̈ e + 2 λ̇ ω_g ⊥e, by Cramer's rule on
+    the 2×2 system [⊥r, −e]. The block turns with the guide (ω_g, α_g). Condition number: that
+    of the system with both columns of the rod's length (σ_max²/|det|, as in `rrr_rates`),
+    (|r| + |r × e|)/|r·e|: infinite where the rod stands square to the track (the dyad's
+    limit position). Error bounds carried on as in `rrr_rates`."""
+    for n in range(Q.shape[3]):
+        vAx, vAy, aAx, aAy = _point_rates(Q, T, iA, A[0], A[1], n)
+        c, sn, cg, sg = T[ir, 0, n], T[ir, 1, n], T[ig, 0, n], T[ig, 1, n]
+        rx, ry = c * AP[0] - sn * AP[1], sn * AP[0] + c * AP[1]
+        ex, ey = cg * e0[0] - sg * e0[1], sg * e0[0] + cg * e0[1]
+        # P's place along the track (the block and the guide have the same angle)
+        lam = (Q[0, ib, 0, n] - Q[0, ig, 0, n]) * ex + (Q[0, ib, 1, n] - Q[0, ig, 1, n]) * ey
+        vcx, vcy, acx, acy = _point_rates(Q, T, ig, P[0] + lam * e0[0], P[1] + lam * e0[1], n)
+        inv = 1.0 / (rx * ex + ry * ey)
+        wx, wy = vcx - vAx, vcy - vAy
+        om = (ex * wy - ey * wx) * inv
+        slide = -(rx * wx + ry * wy) * inv  # λ̇
+        og = Q[1, ig, 2, n]
+        cor, oo = 2.0 * slide * og, om * om
+        w2x = acx - cor * ey - aAx + oo * rx
+        w2y = acy + cor * ex - aAy + oo * ry
+        al = (ex * w2y - ey * w2x) * inv
+        k = (length + abs(rx * ey - ry * ex)) * abs(inv)
+        if not k < math.inf:  # NaN and ∞: at the limit position (or unassembled)
+            k = math.inf
+        if k > cond[n]:
+            cond[n] = k
+        if k >= unreliable:
+            om = al = math.nan
+        _set_rates(Q, T, ir, A[0], A[1], n, vAx, vAy, aAx, aAy, om, al)
+        _set_rates(Q, T, ib, P[0], P[1], n, vAx - om * ry, vAy + om * rx,
+                   aAx - al * ry - om * om * rx, aAy + al * rx - om * om * ry, og,
+                   2.0 * Q[2, ig, 2, n])
+        inv = 1.0 / omega[n]
+        a0, a1, a2 = _sizes_2(Q, ir, n, L, inv)
+        b0, b1, b2 = _sizes_2(Q, ib, n, L, inv)
+        _group_error_2(k, m, E, n, eps, max(a0, b0), max(a1, b1), max(a2, b2))
+
+
+@_loop(2)
 def driver_positions(Q0, T, b, i, H, u, u0):
     """Revolute driver: link i turns about the hinge H of its base link b by the input u,
     θ = θ_b + u − u0 (u0 the input at the design position)."""
@@ -149,7 +303,7 @@ def driver_positions(Q0, T, b, i, H, u, u0):
         Q0[i, 2, n] = th
 
 
-@_jit
+@_loop(3)
 def driver_rates(Q, T, b, i, H, u1, u2, kappa, L, omega, m, E, eps):
     """Revolute driver: ω = ω_b + u̇, α = α_b + ü (u1 = u̇, u2 = ü/2 as Taylor coefficients);
     the driven link turns about the hinge H, whose motion is that of H on the base. Its
@@ -164,7 +318,7 @@ def driver_rates(Q, T, b, i, H, u1, u2, kappa, L, omega, m, E, eps):
         _group_error_2(kappa, m, E, n, eps, a0, a1, a2)
 
 
-@_jit
+@_loop(1)
 def point_motion(C, c, s, sx, sy, out):
     """Time derivatives out[k, (x, y), n] (k = 0 … K) of the point s = (sx[n], sy[n]) fixed in
     a link with pose Taylor coefficients C[k, n, (x, y, θ)] (q⁽ᵏ⁾/k!) and cos θ, sin θ = c, s:
@@ -188,7 +342,7 @@ def point_motion(C, c, s, sx, sy, out):
                 out[3, 1, n] = 6.0 * C[3, n, 1] + jt * rx - wa * ry
 
 
-@_jit
+@_loop(3)
 def propagate_errors(Q, links, L, omega, kappa, rho, m, E, eps):
     """First-order forward error of one group's pose coefficients, added to the running bounds
     E[k, n]: the largest error of the k-th Taylor coefficients so far, in the natural units
@@ -227,13 +381,13 @@ def propagate_errors(Q, links, L, omega, kappa, rho, m, E, eps):
         _group_error(kappa[n], rho[n] if rho.size else 0.0, m, E, n, eps, e)
 
 
-@_jit
+@_loop()
 def _size(Q, k, i, n, L):
     """Size of link i's k-th pose coefficient at sample n: lengths over L, angles as they are."""
     return max(max(abs(Q[k, i, 0, n]), abs(Q[k, i, 1, n])) / L, abs(Q[k, i, 2, n]))
 
 
-@_jit
+@_loop()
 def _group_error_2(k_, m, E, n, eps, m0, m1, m2):
     """`_group_error` unrolled for order 2 with a closed form (no residual), the sizes m0, m1,
     m2 at hand: the compiled kernels' pass (scalars in registers, no work array)."""
@@ -255,14 +409,14 @@ def _group_error_2(k_, m, E, n, eps, m0, m1, m2):
     E[0, n], E[1, n], E[2, n] = max(E0, e0), max(E1, e1), max(E2, e2)
 
 
-@_jit
+@_loop()
 def _sizes_2(Q, i, n, L, inv):
     """(angle over π, first, second coefficient sizes in units of Ω, Ω²) of link i."""
     return (abs(Q[0, i, 2, n]) * (1.0 / math.pi), _size(Q, 1, i, n, L) * inv,
             _size(Q, 2, i, n, L) * inv * inv)
 
 
-@_jit
+@_loop()
 def _group_error(k_, r, m, E, n, eps, e):
     """The recurrence of `propagate_errors` at sample n (κ = k_, residual r; e: work array)."""
     K = E.shape[0] - 1
@@ -284,7 +438,7 @@ def _group_error(k_, r, m, E, n, eps, e):
             E[k, n] = e[k]
 
 
-@_jit
+@_loop(2)
 def rate_scales(C, per, out):
     """Ω per sample: the largest |c_k/per|^(1/k) over the drivers' Taylor coefficients
     C[driver, k, n] (k ≥ 1; per: 1, or L for a slide); 1 where every rate is zero."""
@@ -304,7 +458,7 @@ def rate_scales(C, per, out):
         out[n] = top if top > 0.0 else 1.0
 
 
-@_jit
+@_loop(1)
 def relative_errors(E, m, eps, weights, out):
     """out[n]: the largest E[k, n] (k ≤ out's orders: positions, velocities, accelerations)
     over the larger of 1 and m[k, n], times weights[k], plus eps (the rounding of the stored

@@ -35,6 +35,9 @@ from ..errors import InputError
 from ..geometry.profiles import curvature, offset_cusps, sign_changes
 from ..model.disc_cams import DiscCam
 from ..model.motion_programs import TWO_PI, CamDesignError, Join
+from ._file import number as _n
+from ._file import point as _pt
+from ._file import toml_string as _toml_str
 
 __all__ = ["CamReport", "analyse", "follower_diagrams", "pressure_angle", "radius_of_curvature",
            "cusps", "corners", "smallest_base_radius", "with_base_radius", "mechanism_text"]
@@ -302,20 +305,6 @@ def smallest_base_radius(cam: DiscCam, max_pressure_angle: float | None = None,
 
 
 # ---------------------------------------------------------------------------- the file
-def _n(x: float) -> str:
-    """A number as the file writes it: 15 significant digits (so 120° comes back as 120)."""
-    v = float(f"{float(x):.15g}")
-    return repr(int(v)) if v.is_integer() and abs(v) < 1e15 else repr(v)
-
-
-def _pt(p) -> str:
-    """[x, y], a coordinate below 1e-12 of the other written as 0 (rounding of cos 90°)."""
-    x, y = (float(v) for v in p)
-    scale = max(abs(x), abs(y))
-    x, y = (0.0 if abs(v) <= 1e-12 * scale else v for v in (x, y))
-    return f"[{_n(x)}, {_n(y)}]"
-
-
 def mechanism_text(cam: DiscCam, *, name: str = "Designed disc cam", speed: str = "1 rad/s",
                    length_unit: str = "mm", description: str | None = None) -> str:
     """The mechanism file of the cam: frame, cam (turning about O, the driver) and follower with
@@ -395,7 +384,3 @@ def mechanism_text(cam: DiscCam, *, name: str = "Designed disc cam", speed: str 
         f"speed = {_toml_str(speed)}",
         "",
     ])
-
-
-def _toml_str(s: str) -> str:
-    return '"' + str(s).replace("\\", "\\\\").replace('"', '\\"') + '"'

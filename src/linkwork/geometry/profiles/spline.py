@@ -15,7 +15,6 @@ knot) is available where a book's table was drawn that way.
 from __future__ import annotations
 
 import numpy as np
-from scipy.interpolate import make_interp_spline
 
 from .base import BaseProfile, ProfileError
 
@@ -63,6 +62,7 @@ class SplineProfile(BaseProfile):
         self.closed = bool(closed)
         self.degree = degree
         self.domain = (0.0, float(u[-1]))
+        from scipy.interpolate import make_interp_spline  # SciPy loads when first needed
         spline = make_interp_spline(u, pts, k=degree, bc_type="periodic" if closed else None)
         self._splines = [spline] + [spline.derivative(k) for k in range(1, degree + 1)]
         t = spline.t

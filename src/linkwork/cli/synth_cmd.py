@@ -1,0 +1,388 @@
+"""`linkwork synth`: linkages designed from what they must do.
+
+    linkwork synth poses --pose 0,0,0 --pose 1,0.4,20 --pose 1.8,1.2,45 --pose 2.2,2.1,70 \\
+        --pose 2.3,3,95 -o guide.toml --report guide.json
+    linkwork synth function --function "log10(x)" --x 1:2 --input-range 30:120 \\
+        --output-range 60:150 --points 3 -o log.toml
+
+`poses` guides a plane (a coupler) through prescribed positions x, y, angle (degrees): three
+positions with two chosen pivots (--centre for a fixed pivot, --circle for a moving pivot
+drawn in the first position), four with two fixed pivots on the centre-point curve (or
+--slider for the curve's point at infinity), five from the Burmester points (every four-bar
+they make, best first). `function` designs a four-bar (or --slider: a slider-crank) whose output
+follows y = f(x) through precision points by Freudenstein's equation. `dwell` adds Alt's dwell
+dyad to a four-bar at a coupler point (Pöschl §37); `substitute` replaces a crank of a four-bar
+by Pröll's (Rosenauer §29), keeping the coupler's motion to second order.
+
+Every file written is loaded again and solved by the engine at the positions' (or precision
+points') inputs; the deviation is reported and must stay within 1e-9, else the command stops
+with an error.
+"""
+
+from __future__ import annotations
+
+import ast
+import json
+import math
+from pathlib import Path
+from typing import Optional
+
+import numpy as np
+import typer
+from rich.console import Console
+from rich.table import Table
+
+from ..errors import InputError
+from ..outputs import write_output_file
+from .cam_cmd import _number, _pair
+from .common import user_errors
+
+TOLERANCE = 1e-9
+
+
+def _pose(text: str, what: str) -> tuple[float, float, float]:
+    parts = text.replace(";", ",").split(",")
+    if len(parts) != 3:
+        raise InputError(f"{what} {text}: write X,Y,ANGLE (angle in degrees)")
+    x, y, a = (_number(p, f"{what} {text}") for p in parts)
+    return x, y, math.radians(a)
+
+
+def _poses(pose: list[str], poses_file: Optional[str]):
+    from ..synthesis import Positions
+
+    rows = [_pose(p, "--pose") for p in pose or []]
+    if poses_file:
+        try:
+            text = Path(poses_file).read_text()
+        except OSError as exc:
+            raise InputError(f"--poses {poses_file}: {exc.strerror or exc}") from None
+        for n, line in enumerate(text.splitlines(), start=1):
+            line = line.split("#")[0].strip()
+            if not line or line[0].isalpha():  # a header
+                continue
+            rows.append(_pose(line, f"--poses {poses_file} line {n}:"))
+    if len(rows) < 3:
+        raise InputError(f"give at least three positions (--pose X,Y,ANGLE or --poses FILE), got {len(rows)}")
+    if len(rows) > 5:
+        raise InputError(f"{len(rows)} positions: a four-bar guides a plane exactly through at most five")
+    return Positions.from_poses(np.array(rows))
+
+
+def _paths(output: str, n: int) -> list[Path]:
+    out = Path(output)
+    if n == 1:
+        return [out]
+    return [out.with_name(f"{out.stem}-{k}{out.suffix or '.toml'}") for k in range(1, n + 1)]
+
+
+def _engine_pose_error(path: Path, lk) -> float:
+    """Load the written file, solve it at the positions' input angles and measure the coupler
+    points P and Q against the positions (relative to their size)."""
+    from ..io import load
+    from ..kinematics import solve
+
+    mech = load(path)
+    pos, ref = lk.positions, lk.ref
+    sol = solve(mech, lk.input_angles(), order=1)
+    worst = 0.0
+    for name in ("P", "Q"):
+        want = pos.homologous(mech.points[name], ref)
+        got = sol.point(name).position
+        worst = max(worst, float(np.nanmax(np.hypot(*(got - want).T))) / pos.size)
+    return worst if np.isfinite(worst) else math.inf
+
+
+def _linkage_table(found, errors) -> Table:
+    t = Table(title="synthesized linkages", show_lines=False)
+    for col in ("#", "kind", "Grashof type", "order", "circuit", "branch", "min μ", "engine error"):
+        t.add_column(col)
+    for k, (lk, err) in enumerate(zip(found, errors), start=1):
+        c = lk.check
+        t.add_row(str(k), lk.kind, c.name.split(" (")[0], "defect" if c.order_defect else "ok",
+                  "defect" if c.circuit_defect else "ok", "defect" if c.branch_defect else "ok",
+                  f"{math.degrees(c.min_transmission):.2f}°", "—" if err is None else f"{err:.1e}")
+    return t
+
+
+def _summary(title: str, rows: list[tuple[str, str]]) -> Table:
+    t = Table(title=title, show_header=False)
+    t.add_column("quantity")
+    t.add_column("value", justify="right")
+    for r in rows:
+        t.add_row(*r)
+    return t
+
+
+def _xy_text(p) -> str:
+    return f"{p[0]:.9g}, {p[1]:.9g}"
+
+
+def _point_json(p):
+    return {"at_infinity": list(map(float, p.direction.xy))} if p.is_infinite else list(map(float, p.xy))
+
+
+def _dyads(pos, centres, circles, slider: bool):
+    from ..synthesis import centre_point_curve, dyad
+
+    ds = [dyad(pos, _pair(c, "--centre")) for c in centres or []]
+    ds += [dyad(pos, circle=_pair(c, "--circle")) for c in circles or []]
+    if slider:
+        if len(pos) == 4:
+            ds.append(centre_point_curve(pos).slider())
+        else:
+            raise InputError("--slider (the centre-point curve's point at infinity) needs four positions")
+    return ds
+
+
+_FUNCTIONS = {name: getattr(np, name) for name in (
+    "sin", "cos", "tan", "arcsin", "arccos", "arctan", "sinh", "cosh", "tanh", "exp", "log", "log10",
+    "log2", "sqrt", "abs")}
+_CONSTANTS = {"pi": math.pi, "e": math.e}
+
+
+def _function(text: str):
+    """y = f(x) from an expression in x with + − * / **, numbers, pi, e and NumPy's elementary
+    functions; anything else is refused before it is evaluated."""
+    try:
+        tree = ast.parse(text, mode="eval")
+    except SyntaxError:
+        raise InputError(f"--function '{text}': not an expression in x") from None
+    allowed = (ast.Expression, ast.BinOp, ast.UnaryOp, ast.Call, ast.Name, ast.Constant, ast.Load,
+               ast.Add, ast.Sub, ast.Mult, ast.Div, ast.Pow, ast.USub, ast.UAdd)
+    for node in ast.walk(tree):
+        if not isinstance(node, allowed):
+            raise InputError(f"--function '{text}': '{ast.unparse(node) if isinstance(node, ast.expr) else type(node).__name__}' "
+                             "is not allowed (use x, numbers, + − * / **, pi, e and "
+                             + ", ".join(_FUNCTIONS) + ")")
+        if isinstance(node, ast.Constant) and not isinstance(node.value, (int, float)):
+            raise InputError(f"--function '{text}': only numbers are allowed as constants")
+        if isinstance(node, ast.Call) and not (isinstance(node.func, ast.Name) and node.func.id in _FUNCTIONS
+                                               and not node.keywords):
+            raise InputError(f"--function '{text}': unknown function in '{ast.unparse(node)}'")
+        if isinstance(node, ast.Name) and node.id not in _FUNCTIONS and node.id not in _CONSTANTS and node.id != "x":
+            raise InputError(f"--function '{text}': unknown name '{node.id}' (the variable is x)")
+    code = compile(tree, "<function>", "eval")
+
+    def f(x):
+        with np.errstate(all="ignore"):
+            return np.asarray(eval(code, {"__builtins__": {}}, {**_FUNCTIONS, **_CONSTANTS, "x": x}),  # noqa: S307
+                              dtype=float) * np.ones_like(x)
+    return f
+
+
+def _range(text: str, what: str, degrees: bool) -> tuple[float, float]:
+    parts = text.split(":")
+    if len(parts) != 2:
+        raise InputError(f"{what} {text}: write START:END")
+    a, b = (_number(p, f"{what} {text}") for p in parts)
+    return (math.radians(a), math.radians(b)) if degrees else (a, b)
+
+
+def register(app: typer.Typer) -> None:
+    synth = typer.Typer(no_args_is_help=True, help="Synthesis: linkages designed from positions or a function.")
+    app.add_typer(synth, name="synth")
+    register_curvature_designs(synth)
+
+    @synth.command("poses")
+    def poses_command(
+        pose: Optional[list[str]] = typer.Option(None, "--pose", help="X,Y,ANGLE: a position of the moving plane (its origin and the angle of its x-axis, degrees); repeat, 3 to 5 times"),
+        poses_file: Optional[str] = typer.Option(None, "--poses", help="a CSV file of positions x,y,angle (degrees), one a line"),
+        centre: Optional[list[str]] = typer.Option(None, "--centre", help="X,Y: a fixed pivot (centre point) to use; three positions: any point, four: a point of the centre-point curve"),
+        circle: Optional[list[str]] = typer.Option(None, "--circle", help="X,Y: a moving pivot (circle point) drawn in the first position (three positions)"),
+        slider: bool = typer.Option(False, "--slider", help="four positions: a slider whose pin's homologous points lie on a line (the centre-point curve's point at infinity)"),
+        unit: str = typer.Option("mm", "--unit", help="length unit of the files"),
+        name: str = typer.Option("Synthesized linkage", "--name", help="the mechanisms' name"),
+        all_: bool = typer.Option(False, "--all", help="five positions: write every linkage, also those with defects"),
+        min_transmission: float = typer.Option(30.0, "--min-transmission", help="DEG: a linkage is usable from this least transmission angle on"),
+        output: str = typer.Option(..., "-o", "--output", help="the mechanism file to write (several: NAME-1.toml, NAME-2.toml, …)"),
+        report: Optional[str] = typer.Option(None, "--report", help="FILE.json: poles, Burmester points, linkages and their checks"),
+    ) -> None:
+        """Guide a plane through 3–5 prescribed positions with a four-bar or slider-crank."""
+        with user_errors():
+            from ..synthesis import Linkage, burmester_points, linkages
+            from ..units import check_length_unit
+
+            check_length_unit(unit)
+            pos = _poses(pose, poses_file)
+            n = len(pos)
+            doc: dict = {"positions": [[float(p[0]), float(p[1]), math.degrees(p[2])] for p in pos.poses],
+                         "poles": {f"P{i + 1}{j + 1}": {"point": _point_json(p),
+                                                         "rotation_deg": math.degrees(pos.rotation(i, j))}
+                                   for (i, j), p in pos.poles().items()}}
+            if n == 5:
+                if centre or circle or slider:
+                    raise InputError("five positions: the pivots are the Burmester points (drop --centre, "
+                                     "--circle, --slider)")
+                bp = burmester_points(pos)
+                doc["burmester"] = {"real": [{"centre": _point_json(d.centre), "circle": _point_json(d.circle)}
+                                             for d in bp.dyads], "complex": bp.complex_count}
+                if len(bp.dyads) < 2:
+                    raise InputError(bp.message)
+                found = linkages(bp.dyads, name)
+                usable = [lk for lk in found if lk.check.usable(math.radians(min_transmission))]
+                chosen = found if all_ else usable
+                if not chosen:
+                    Console().print(_linkage_table(found, [None] * len(found)))
+                    raise InputError(f"{bp.message}, but none is usable (no defect, least transmission angle "
+                                     f"≥ {min_transmission:g}°); --all writes them anyway")
+            else:
+                if n == 4:  # the curves to choose the pivots from, sampled for drawing
+                    from ..synthesis import centre_point_curve, circle_point_curve, curve_samples
+
+                    for key, curve in (("centre_point_curve", centre_point_curve(pos)),
+                                       ("circle_point_curve", circle_point_curve(pos))):
+                        pts = curve_samples(curve, samples=360)
+                        doc[key] = {"coefficients": curve.coefficients.tolist(),
+                                    "points": [None if not np.isfinite(p).all() else p.tolist() for p in pts]}
+                ds = _dyads(pos, centre, circle, slider)
+                if len(ds) != 2:
+                    raise InputError(f"{n} positions: give two pivots (--centre X,Y or --circle X,Y"
+                                     + (", or --slider" if n == 4 else "") + f"), got {len(ds)}")
+                if ds[0].is_slider:
+                    ds.reverse()
+                chosen = [Linkage(ds[0], ds[1], name)]
+            paths = _paths(output, len(chosen))
+            errors = []
+            for k, (lk, path) in enumerate(zip(chosen, paths), start=1):
+                label = name if len(chosen) == 1 else f"{name} {k}"
+                write_output_file(path, lk.mechanism_text(name=label, length_unit=unit))
+                errors.append(_engine_pose_error(path, lk))
+            doc["linkages"] = [{"file": str(p), "lengths": lk.lengths, "input_pivot": _point_json(lk.input.centre),
+                                "output_pivot": _point_json(lk.output.centre), **lk.check.as_dict(),
+                                "engine_error": e} for lk, p, e in zip(chosen, paths, errors)]
+            Console().print(_linkage_table(chosen, errors))
+            for lk, p in zip(chosen, paths):
+                for note in lk.check.notes:
+                    Console().print(f"{p.name}: {note}", highlight=False)
+            if report:
+                write_output_file(report, json.dumps(doc, indent=2, default=float) + "\n")
+            Console().print("wrote " + ", ".join(str(p) for p in paths) + (f" and {report}" if report else ""))
+            bad = [str(p) for p, e, lk in zip(paths, errors, chosen) if e > TOLERANCE and not lk.check.circuit_defect]
+            if bad:
+                raise InputError("the engine does not reproduce the positions with " + ", ".join(bad)
+                                 + f" (beyond {TOLERANCE:g}): not a usable design")
+
+    @synth.command("function")
+    def function_command(
+        function: str = typer.Option(..., "--function", help="y = f(x), e.g. 'log10(x)', 'x**2', 'sin(x)'"),
+        x: str = typer.Option(..., "--x", help="START:END: the range of x"),
+        input_: str = typer.Option(..., "--input-range", help="START:END: the input crank's angles (degrees) at the ends of the range"),
+        output_: str = typer.Option(..., "--output-range", help="START:END: the rocker's angles (degrees), or with --slider the slider's positions (length unit), at the ends"),
+        points: int = typer.Option(3, "--points", help="number of Chebyshev-spaced precision points (three: exact; more: least squares)"),
+        at: Optional[str] = typer.Option(None, "--at", help="X1,X2,…: precision points instead of Chebyshev's"),
+        slider: bool = typer.Option(False, "--slider", help="a slider-crank (the output a slider on the x-axis's parallel)"),
+        frame: float = typer.Option(1.0, "--frame", help="four-bar: the frame length"),
+        samples: int = typer.Option(201, "--samples", help="samples of the structural error"),
+        unit: str = typer.Option("mm", "--unit", help="length unit of the file"),
+        name: str = typer.Option("Function generator", "--name", help="the mechanism's name"),
+        out: str = typer.Option(..., "-o", "--output", help="the mechanism file to write"),
+        report: Optional[str] = typer.Option(None, "--report", help="FILE.json or FILE.csv: the structural error over x"),
+    ) -> None:
+        """A four-bar or slider-crank whose output follows y = f(x): Freudenstein's equation."""
+        with user_errors():
+            from ..io import load
+            from ..synthesis.function import FunctionTask, function_generator
+            from ..units import check_length_unit
+
+            check_length_unit(unit)
+            if report is not None and Path(report).suffix.lower() not in (".json", ".csv"):
+                raise InputError(f"--report {report}: write .json or .csv")
+            kind = "slider-crank" if slider else "four-bar"
+            task = FunctionTask(_function(function), _range(x, "--x", False), _range(input_, "--input-range", True),
+                                _range(output_, "--output-range", not slider))
+            precision = points if at is None else [_number(v, f"--at {at}") for v in at.split(",")]
+            gen = function_generator(task, precision, kind, frame=frame, name=name)
+            path = Path(out)
+            write_output_file(path, gen.mechanism_text(length_unit=unit))
+            xs, err = gen.structural_error(samples)
+            # the file as written, solved at the precision points
+            load(path)
+            at_points = gen.generated(gen.precision) - task.output(gen.precision)
+            scale = 1.0 if not slider else max(abs(v) for v in gen.lengths.values())
+            exact = len(gen.precision) == 3
+            t = _summary(f"{kind} function generator", [])
+            for k, v in gen.lengths.items():  # signed: a negative crank's pin is opposite its angle
+                t.add_row(k + (" (signed)" if k in ("input", "output", "offset") else ""), f"{v:.9g} {unit}")
+            t.add_row("precision points x", ", ".join(f"{v:.6g}" for v in gen.precision))
+            t.add_row("Freudenstein K", ", ".join(f"{v:.9g}" for v in gen.K))
+            conv = (lambda v: f"{v:.3g} {unit}") if slider else (lambda v: f"{math.degrees(v):.4g}°")
+            worst = float(np.nanmax(np.abs(err))) if np.isfinite(err).any() else math.nan
+            t.add_row("largest structural error", conv(worst) + f" (in y: {float(task.output_to_y(worst)):.3g})")
+            t.add_row("error at the precision points", conv(float(np.nanmax(np.abs(at_points)))))
+            unreachable = int(np.sum(~np.isfinite(err)))
+            if unreachable:
+                t.add_row("samples out of reach", f"{unreachable} of {samples}")
+            Console().print(t)
+            if report:
+                if report.lower().endswith(".csv"):
+                    lines = ["x,y,error,error_y"] + [
+                        f"{float(a)!r},{float(task.y(a))!r},{float(e)!r},{float(task.output_to_y(e))!r}"
+                        for a, e in zip(xs, err)]
+                    write_output_file(report, "\n".join(lines) + "\n")
+                else:
+                    write_output_file(report, json.dumps({
+                        "kind": kind, "lengths": gen.lengths, "K": gen.K.tolist(),
+                        "precision_points": gen.precision.tolist(), "residual": gen.residual,
+                        "x": xs.tolist(), "error": [None if not np.isfinite(e) else float(e) for e in err]},
+                        indent=2) + "\n")
+            Console().print(f"wrote {path}" + (f" and {report}" if report else ""))
+            if exact and not (np.abs(at_points) <= TOLERANCE * scale).all():
+                raise InputError(f"the engine does not meet the precision points with {path} "
+                                 f"(off by {np.nanmax(np.abs(at_points)):.3g}): the points lie on different "
+                                 "assemblies or out of reach")
+
+
+def _angle_option(text: str, what: str) -> float:
+    return math.radians(_number(text, what))
+
+
+def register_curvature_designs(synth: typer.Typer) -> None:
+    @synth.command("dwell")
+    def dwell_command(
+        mechanism: str = typer.Argument(..., help="a four-bar: a mechanism file, or library:NAME"),
+        at: str = typer.Option(..., "--at", help="DEG: the input angle of the dwell"),
+        point: str = typer.Option(..., "--point", help="the coupler point: its name, or X,Y design coordinates"),
+        pivot: Optional[str] = typer.Option(None, "--pivot", help="X,Y: the output rocker's fixed pivot (default: the rocker at right angles to the dwell link)"),
+        output: str = typer.Option(..., "-o", "--output", help="the six-bar's mechanism file"),
+    ) -> None:
+        """Alt's dwell linkage: a dyad on a coupler point's centre of curvature."""
+        with user_errors():
+            from ..io import load
+            from ..kinematics import solve
+            from ..synthesis.second_order import alt_dwell
+
+            mech = load(mechanism)
+            pt = point if "," not in point else _pair(point, "--point")
+            d = alt_dwell(mech, _angle_option(at, "--at"), pt,
+                          pivot=None if pivot is None else _pair(pivot, "--pivot"))
+            write_output_file(output, d.text)
+            sol = solve(load(output), [d.input], order=3)
+            out = sol.link(d.output_link)
+            Console().print(_summary("Alt's dwell linkage", [
+                ("centre of curvature K", _xy_text(d.centre)), ("dwell link (radius of curvature)", f"{d.radius:.9g}"),
+                ("output pivot E", _xy_text(d.pivot)),
+                ("output ω, α, jerk at the dwell", f"{out.omega[0]:.2e}, {out.alpha[0]:.2e}, {out.jerk[0]:.2e}")]))
+            Console().print(f"wrote {output}")
+
+    @synth.command("substitute")
+    def substitute_command(
+        mechanism: str = typer.Argument(..., help="a four-bar: a mechanism file, or library:NAME"),
+        at: str = typer.Option(..., "--at", help="DEG: the input angle at which the motion is kept"),
+        pivot: str = typer.Option(..., "--pivot", help="X,Y: the new fixed pivot"),
+        replace: str = typer.Option("input", "--replace", help="input (the driven crank) or output (the rocker)"),
+        output: str = typer.Option(..., "-o", "--output", help="the new four-bar's mechanism file"),
+    ) -> None:
+        """Pröll's substitution: a crank from a new pivot with the same pole and inflection circle."""
+        with user_errors():
+            from ..io import load
+            from ..synthesis.second_order import proell_substitution
+
+            mech = load(mechanism)
+            sub = proell_substitution(mech, _angle_option(at, "--at"), _pair(pivot, "--pivot"), replace=replace)
+            write_output_file(output, sub.text)
+            load(output)
+            Console().print(_summary("Pröll's substitution", [
+                ("pole P", _xy_text(sub.pole)), ("inflection pole W", _xy_text(sub.inflection_pole)),
+                ("new fixed pivot C3", _xy_text(sub.pivot)), ("its conjugate A3 (coupler)", _xy_text(sub.moving_pivot))]))
+            Console().print(f"wrote {output}")
