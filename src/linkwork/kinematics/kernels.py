@@ -97,6 +97,13 @@ def _compiled() -> dict:
     return ns
 
 
+@_loop()
+def _world(Q0, T, i, s0, s1, n):
+    """World position of design point s on link i at sample n (its pose and cos θ, sin θ)."""
+    c, sn = T[i, 0, n], T[i, 1, n]
+    return Q0[i, 0, n] + c * s0 - sn * s1, Q0[i, 1, n] + sn * s0 + c * s1
+
+
 @_loop(2)
 def rrr_positions(Q0, T, iA, A, iC, C, i1, i2, diff, L1sq, tol, branch, k1, k2, r, ok):
     """Circle–circle intersection: the hinge B of links i1 (through A) and i2 (through C) at
@@ -109,11 +116,8 @@ def rrr_positions(Q0, T, iA, A, iC, C, i1, i2, diff, L1sq, tol, branch, k1, k2, 
     r[0:2], r[2:4], whose angles the caller takes with NumPy's vectorised arctan2 (a scalar
     atan2 here would cost more than the rest)."""
     for n in range(Q0.shape[2]):
-        cA, sA, cC, sC = T[iA, 0, n], T[iA, 1, n], T[iC, 0, n], T[iC, 1, n]
-        ax = Q0[iA, 0, n] + cA * A[0] - sA * A[1]
-        ay = Q0[iA, 1, n] + sA * A[0] + cA * A[1]
-        cx = Q0[iC, 0, n] + cC * C[0] - sC * C[1]
-        cy = Q0[iC, 1, n] + sC * C[0] + cC * C[1]
+        ax, ay = _world(Q0, T, iA, A[0], A[1], n)
+        cx, cy = _world(Q0, T, iC, C[0], C[1], n)
         dx, dy = cx - ax, cy - ay
         D2 = dx * dx + dy * dy
         inv = 1.0 / math.sqrt(D2)
@@ -215,11 +219,9 @@ def rrp_positions(Q0, T, iA, A, ig, P, e0, rsq, tol, branch, ir, ib, k, r, ok):
     block keeps the guide's angle. A squared half chord below zero by rounding only (above tol)
     counts as zero."""
     for n in range(Q0.shape[2]):
-        cA, sA, cg, sg = T[iA, 0, n], T[iA, 1, n], T[ig, 0, n], T[ig, 1, n]
-        ax = Q0[iA, 0, n] + cA * A[0] - sA * A[1]
-        ay = Q0[iA, 1, n] + sA * A[0] + cA * A[1]
-        qx = Q0[ig, 0, n] + cg * P[0] - sg * P[1]
-        qy = Q0[ig, 1, n] + sg * P[0] + cg * P[1]
+        cg, sg = T[ig, 0, n], T[ig, 1, n]
+        ax, ay = _world(Q0, T, iA, A[0], A[1], n)
+        qx, qy = _world(Q0, T, ig, P[0], P[1], n)
         ex, ey = cg * e0[0] - sg * e0[1], sg * e0[0] + cg * e0[1]
         wx, wy = qx - ax, qy - ay
         b = ex * wx + ey * wy
