@@ -145,3 +145,21 @@ def test_dwell_and_substitute_commands(tmp_path):
     r = run("synth", "substitute", "library:crank-rocker", "--at", "60", "--pivot", "5,-8", "--replace", "frame",
             "-o", sub)
     assert r.exit_code == 2 and "replace" in r.output
+
+
+def test_path_command_meets_points_of_a_coupler_curve(tmp_path):
+    import linkwork
+    from linkwork.kinematics import solve
+    from four_bar_by_hand import B_LEN, four_bar
+
+    A, B = four_bar(np.radians([0, 40, 80, 130, 180, 230]))
+    e = (B - A) / B_LEN
+    T = A + e + 1.2 * np.column_stack([-e[:, 1], e[:, 0]])
+    out = tmp_path / "path.toml"
+    r = run("synth", "path", *[a for x, y in T for a in ("--point", f"{x!r},{y!r}")], "-o", out)
+    assert r.exit_code == 0, r.output
+    mech = linkwork.load(out)
+    # the file is drawn at the first target: the coupler point P is there
+    assert np.allclose(mech.points["P"], T[0], atol=1e-9)
+    r = run("synth", "path", "--point", "0,0", "--point", "1,1", "-o", out)
+    assert r.exit_code == 2 and "at least three" in r.output

@@ -12,7 +12,8 @@ drawn in the first position), four with two fixed pivots on the centre-point cur
 they make, best first). `function` designs a four-bar (or --slider: a slider-crank) whose output
 follows y = f(x) through precision points by Freudenstein's equation. `dwell` adds Alt's dwell
 dyad to a four-bar at a coupler point (Pöschl §37); `substitute` replaces a crank of a four-bar
-by Pröll's (Rosenauer §29), keeping the coupler's motion to second order.
+by Pröll's (Rosenauer §29), keeping the coupler's motion to second order. `path` finds a
+four-bar whose coupler point passes through target points (least squares from several starts).
 
 Every file written is loaded again and solved by the engine at the positions' (or precision
 points') inputs; the deviation is reported and must stay within 1e-9, else the command stops
@@ -363,6 +364,42 @@ def register_curvature_designs(synth: typer.Typer) -> None:
                 ("centre of curvature K", _xy_text(d.centre)), ("dwell link (radius of curvature)", f"{d.radius:.9g}"),
                 ("output pivot E", _xy_text(d.pivot)),
                 ("output ω, α, jerk at the dwell", f"{out.omega[0]:.2e}, {out.alpha[0]:.2e}, {out.jerk[0]:.2e}")]))
+            Console().print(f"wrote {output}")
+
+    @synth.command("path")
+    def path_command(
+        point: Optional[list[str]] = typer.Option(None, "--point", help="X,Y: a target point of the coupler curve; repeat (at least 3), in order"),
+        timing: Optional[str] = typer.Option(None, "--timing", help="DEG,DEG,…: the crank angle at each target (prescribed timing), relative to the first"),
+        starts: int = typer.Option(24, "--starts", help="starting points of the search"),
+        unit: str = typer.Option("mm", "--unit", help="length unit of the file"),
+        name: str = typer.Option("Path generator", "--name", help="the mechanism's name"),
+        output: str = typer.Option(..., "-o", "--output", help="the four-bar's mechanism file"),
+    ) -> None:
+        """A four-bar whose coupler point passes through target points (least squares)."""
+        with user_errors():
+            from ..io import load
+            from ..kinematics import solve
+            from ..synthesis.path import path_generator
+            from ..units import check_length_unit
+
+            check_length_unit(unit)
+            targets = np.array([_pair(p, "--point") for p in point or []])
+            if len(targets) < 3:
+                raise InputError(f"give at least three target points (--point X,Y), got {len(targets)}")
+            tm = None if timing is None else np.radians([_number(v, f"--timing {timing}") for v in timing.split(",")])
+            if starts < 1:
+                raise InputError(f"--starts {starts}: give at least 1")
+            gen = path_generator(targets, timing=tm, starts=starts, name=name)
+            write_output_file(output, gen.linkage.mechanism_text(length_unit=unit))
+            sol = solve(load(output), gen.linkage.input_angles(), order=1)
+            engine = float(np.nanmax(np.hypot(*(sol.point("P").position - targets).T)))
+            c = gen.linkage.check
+            Console().print(_summary("path generator (four-bar)", [
+                *((k, f"{v:.9g} {unit}") for k, v in gen.linkage.lengths.items()),
+                ("fixed pivots A0, B0", f"{_xy_text(gen.linkage.input.centre.xy)}; {_xy_text(gen.linkage.output.centre.xy)}"),
+                ("Grashof type", c.name), ("defects", ", ".join(n.split(" (")[0] for n in c.notes) or "none"),
+                ("least transmission angle", f"{math.degrees(c.min_transmission):.2f}°"),
+                ("largest distance from the targets (engine)", f"{engine:.3g} {unit}")]))
             Console().print(f"wrote {output}")
 
     @synth.command("substitute")
