@@ -156,7 +156,7 @@ def test_path_command_meets_points_of_a_coupler_curve(tmp_path):
     e = (B - A) / B_LEN
     T = A + e + 1.2 * np.column_stack([-e[:, 1], e[:, 0]])
     out = tmp_path / "path.toml"
-    r = run("synth", "path", *[a for x, y in T for a in ("--point", f"{x!r},{y!r}")], "-o", out)
+    r = run("synth", "path", *[a for x, y in T.tolist() for a in ("--point", f"{x!r},{y!r}")], "-o", out)
     assert r.exit_code == 0, r.output
     mech = linkwork.load(out)
     # the file is drawn at the first target: the coupler point P is there
