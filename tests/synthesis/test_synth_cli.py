@@ -163,3 +163,15 @@ def test_path_command_meets_points_of_a_coupler_curve(tmp_path):
     assert np.allclose(mech.points["P"], T[0], atol=1e-9)
     r = run("synth", "path", "--point", "0,0", "--point", "1,1", "-o", out)
     assert r.exit_code == 2 and "at least three" in r.output
+
+
+def test_cognates_command(tmp_path):
+    import linkwork
+
+    out = tmp_path / "cg.toml"
+    r = run("synth", "cognates", "library:crank-rocker", "--point", "C", "-o", out)
+    assert r.exit_code == 0, r.output
+    orig = linkwork.load("library:crank-rocker")
+    for k in (1, 2):
+        m = linkwork.load(tmp_path / f"cg-{k}.toml")
+        assert np.allclose(m.points["C"], orig.points["C"])  # drawn where the original has C

@@ -13,7 +13,8 @@ they make, best first). `function` designs a four-bar (or --slider: a slider-cra
 follows y = f(x) through precision points by Freudenstein's equation. `dwell` adds Alt's dwell
 dyad to a four-bar at a coupler point (Pöschl §37); `substitute` replaces a crank of a four-bar
 by Pröll's (Rosenauer §29), keeping the coupler's motion to second order. `path` finds a
-four-bar whose coupler point passes through target points (least squares from several starts).
+four-bar whose coupler point passes through target points (least squares from several starts);
+`cognates` writes the Roberts–Chebyshev cognates of a four-bar's coupler point.
 
 Every file written is loaded again and solved by the engine at the positions' (or precision
 points') inputs; the deviation is reported and must stay within 1e-9, else the command stops
@@ -401,6 +402,26 @@ def register_curvature_designs(synth: typer.Typer) -> None:
                 ("least transmission angle", f"{math.degrees(c.min_transmission):.2f}°"),
                 ("largest distance from the targets (engine)", f"{engine:.3g} {unit}")]))
             Console().print(f"wrote {output}")
+
+    @synth.command("cognates")
+    def cognates_command(
+        mechanism: str = typer.Argument(..., help="a four-bar: a mechanism file, or library:NAME"),
+        point: str = typer.Option(..., "--point", help="the coupler point: its name, or X,Y design coordinates"),
+        output: str = typer.Option(..., "-o", "--output", help="NAME.toml: the cognates go to NAME-1.toml and NAME-2.toml"),
+    ) -> None:
+        """The Roberts–Chebyshev cognates: two more four-bars tracing the same coupler curve."""
+        with user_errors():
+            from ..io import load
+            from ..synthesis.cognates import cognates
+
+            mech = load(mechanism)
+            cg = cognates(mech, point if "," not in point else _pair(point, "--point"))
+            paths = _paths(output, 2)
+            for path, text in zip(paths, (cg.first, cg.second)):
+                write_output_file(path, text)
+                load(path)
+            Console().print(f"third fixed pivot: {_xy_text(cg.third_pivot)}")
+            Console().print("wrote " + ", ".join(str(p) for p in paths))
 
     @synth.command("substitute")
     def substitute_command(
