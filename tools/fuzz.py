@@ -74,6 +74,8 @@ def main() -> int:
     examples: dict[tuple[str, str], tuple[int, str, str]] = {}
     findings = []
     t0 = time.monotonic()
+    # findings also stream to REPORT.jsonl as they come, so that a long run cut short keeps them
+    stream = open(a.report.with_suffix(".jsonl"), "w") if a.report else None
     ctx = mp.get_context("fork")
     with ctx.Pool(a.workers, initializer=_init, initargs=(a.seed, a.cli_share, a.timeout)) as pool, \
             Progress(TextColumn("fuzz"), BarColumn(), MofNCompleteColumn(), TextColumn("{task.fields[found]}"),
@@ -85,9 +87,14 @@ def main() -> int:
             if kind not in ("result", "user-error"):
                 examples.setdefault((kind, cause), (i, case, detail))
                 findings.append({"case": i, "kind": kind, "cause": cause, "detail": detail, "input": case})
+                if stream:
+                    stream.write(json.dumps(findings[-1]) + "\n")
+                    stream.flush()
             bad = sum(v for k, v in kinds.items() if k not in ("result", "user-error"))
             bar.update(task, advance=1, found=f"{bad} findings")
     elapsed = time.monotonic() - t0
+    if stream:
+        stream.close()
     t = Table(title=f"linkwork fuzz: {a.cases} cases, seed {a.seed}, {elapsed:.0f} s on {a.workers} workers")
     t.add_column("outcome")
     t.add_column("cases", justify="right")

@@ -190,7 +190,7 @@ def test_bobillier_centre_at_pole_message():
 
 def test_unsupported_group_is_a_clear_error():
     mech = linkwork.load("library:ellipsograph")
-    with pytest.raises(linkwork.LinkworkError, match="does not handle the group"):
+    with pytest.raises(linkwork.LinkworkError, match="group block_a, block_b, rod: not handled: driver A"):
         construct("velocity-plan", mech, [0.1])
 
 

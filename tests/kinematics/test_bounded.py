@@ -43,3 +43,21 @@ def test_far_inputs_are_reduced_by_the_period():
     w2 = sol.link("gear_2").angle
     np.testing.assert_allclose((w2[0] - w2[1]) / (w1[0] - w1[1]), -2.0, rtol=1e-9)
     assert sol.errors[0] > sol.errors[1]  # the far input's rounding is in its bound
+
+
+def test_a_crawling_march_stops_long_before_its_budget(monkeypatch):
+    """The same nearly parallel guides: the march's pace over its last `CRAWL_WINDOW` attempts
+    cannot reach the input within the budget, so it stops then, not after all `MAX_ATTEMPTS`
+    (each attempt of a higher pair costs milliseconds: the budget alone took tens of seconds)."""
+    from linkwork.kinematics import continuation
+
+    attempts = []
+    settle = continuation._Lane.settle
+    monkeypatch.setattr(continuation._Lane, "settle",
+                        lambda self, *a: (attempts.append(1), settle(self, *a))[1])
+    _, text = resolve("library:ellipsograph")
+    mech = linkwork.load_text(text.replace("axis = [0, 1]", "axis = [1, 1e-9]"))
+    u0 = mech.driver_input_at_design(mech.drivers[0])
+    with pytest.raises(SolveError, match="would take more than 2000 continuation steps"):
+        linkwork.solve(mech, [u0 + np.radians(10.0)])
+    assert len(attempts) < continuation.MAX_ATTEMPTS / 4

@@ -19,6 +19,7 @@ from scipy.optimize import brentq
 
 import linkwork
 from linkwork import Status
+from library_solutions import mech, motion
 from linkwork.io.files import library_names
 from linkwork.kinematics.motion import input_limits
 from linkwork.model import (CamContact, CircularSlot, Gear, GenevaPair, Prismatic, Revolute,
@@ -32,25 +33,22 @@ NEW = ["double-crank", "double-rocker", "parallelogram", "antiparallelogram", "s
 
 
 @lru_cache(maxsize=None)
-def mech(name: str):
-    return linkwork.load(f"library:{name}")
-
-
-@lru_cache(maxsize=None)
-def motion(name: str):
-    return linkwork.whole_motion(mech(name))
-
-
-@lru_cache(maxsize=None)
 def limits(name: str):
     return input_limits(mech(name))
+
+
+def _speed(d) -> float:
+    """A driver's constant speed, or the largest speed of its time law over its duration."""
+    if hasattr(d.law, "speed"):
+        return abs(d.law.speed)
+    return float(np.abs(d.law.derivatives(np.linspace(0, d.law.duration, 201))[1]).max())
 
 
 def _scales(m):
     """(length, velocity, acceleration) scales: L, L·|ω|, L·ω² (a slider input: its speed)."""
     L = m.length_scale
-    d = m.drivers[0]
-    w = abs(d.law.speed)
+    d = max(m.drivers, key=_speed)
+    w = _speed(d)
     if m.joint(d.joint).kind == "prismatic":
         return L, w, w * w / L
     return L, L * w, L * w * w
@@ -67,7 +65,7 @@ def test_loads_with_name_description_units_and_driver(name):
     assert m.name.strip()
     assert m.description.strip() and "\n" not in m.description
     assert m.length_unit
-    assert len(m.drivers) == 1
+    assert len(m.drivers) >= 1
     assert m.frame in m.link_names
 
 
@@ -217,7 +215,8 @@ def test_whole_motion_is_continuous(name):
     would be one): every point moves at most what its velocity and acceleration allow."""
     m, sol = mech(name), motion(name)
     L = m.length_scale
-    dt = np.abs(np.diff(sol.input)) / abs(m.drivers[0].law.speed)
+    dt = (np.diff(sol.time) if sol.time is not None
+          else np.abs(np.diff(sol.input)) / abs(m.drivers[0].law.speed))
     ok = (sol.status[:-1] == Status.OK) & (sol.status[1:] == Status.OK)
     for p in m.points:
         pm = sol.point(p)
@@ -285,7 +284,12 @@ EXPECTED_CLASS = {
     "parallelogram": "change-point",
     "antiparallelogram": "change-point",
 }
-LOOPED = [n for n in NAMES if _four_bar_loops(mech(n))]
+# The Galloway kite (Rosenauer §100) is left out: where its crank lies on the frame the dyad's
+# outer hinges meet and the chain may go on as a kite of the other sense or fold; the whole motion
+# turns back there (a limit), which tests/library/test_seed_machines.py checks on its own.
+# Mechanisms with several drivers follow their time laws, not the limits of one input.
+LOOPED = [n for n in NAMES if _four_bar_loops(mech(n)) and n != "galloway-kite"
+          and len(mech(n).drivers) == 1]
 
 
 def test_four_bar_files_are_recognised():

@@ -30,6 +30,7 @@ from typer.testing import CliRunner
 
 from linkwork.cli.atlas_cmd import register
 from linkwork.topology import atlas
+from linkwork.topology.atlas_svg import svg_filename
 from linkwork.topology.atlas import (
     Chain,
     canonical_form,
@@ -354,3 +355,67 @@ def test_cli_rejects_bad_link_counts_with_one_message(cli, bad):
     assert r.exit_code == 2
     assert "Traceback" not in r.output
     assert "--links" in r.output
+
+
+# --- SVG output safety (issue 10): every sketch whole or not at all, errors one line -----------
+
+
+def _full_disk_after(monkeypatch, n_ok: int) -> None:
+    """Make the n_ok+1-th file the atomic writer opens fail half-way with ENOSPC."""
+    import builtins
+    import errno
+    import os
+
+    import linkwork.outputs
+
+    opened = []
+
+    class Half:
+        def __init__(self, fh):
+            self.fh = fh
+
+        def write(self, text):
+            self.fh.write(text[: len(text) // 2])
+            raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))
+
+        def __enter__(self):
+            return self
+
+        def __exit__(self, *exc):
+            self.fh.close()
+
+    def fake_open(path, mode="r", **kw):
+        fh = builtins.open(path, mode, **kw)
+        opened.append(path)
+        return fh if len(opened) <= n_ok else Half(fh)
+
+    monkeypatch.setattr(linkwork.outputs, "open", fake_open, raising=False)
+
+
+def test_svg_full_disk_keeps_the_previous_sketch_and_leaves_no_part(tmp_path, monkeypatch):
+    from linkwork.errors import OutputError
+
+    chains = enumerate_chains(6)
+    names = [svg_filename(c) for c in chains]
+    (tmp_path / names[1]).write_text("previous\n")
+    _full_disk_after(monkeypatch, 1)
+    with pytest.raises(OutputError, match="No space left on device") as exc:
+        write_atlas_svg(chains, tmp_path)
+    assert names[1] in str(exc.value)
+    assert (tmp_path / names[1]).read_text() == "previous\n"
+    assert ET.parse(tmp_path / names[0]).getroot().tag == SVG + "svg"  # the first one is whole
+    assert [p.name for p in tmp_path.iterdir() if ".part" in p.name] == []
+
+
+def test_cli_svg_errors_are_one_line(cli, tmp_path, monkeypatch):
+    blocker = tmp_path / "afile"
+    blocker.write_text("x")
+    r = cli("atlas", "--links", "4", "--svg", str(blocker / "sub"))
+    assert r.exit_code == 2 and (r.exception is None or isinstance(r.exception, SystemExit))
+    assert "Traceback" not in r.output
+    assert f"cannot write SVG files to '{blocker / 'sub'}'" in r.output
+    _full_disk_after(monkeypatch, 0)
+    r = cli("atlas", "--links", "4", "--svg", str(tmp_path / "svg"))
+    assert r.exit_code == 2, r.output
+    assert "No space left on device" in r.output and "Traceback" not in r.output
+    assert [p.name for p in (tmp_path / "svg").iterdir()] == []

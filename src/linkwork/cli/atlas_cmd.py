@@ -16,7 +16,7 @@ import typer
 from rich.console import Console
 from rich.table import Table
 
-from .common import print_message
+from .common import user_errors
 from linkwork.topology.atlas import SUPPORTED_LINK_COUNTS, TYPE_NAMES, Chain, enumerate_chains, write_atlas_svg
 
 
@@ -105,11 +105,8 @@ def atlas(
     else:
         Console().print(_table(links, chains))
     if svg is not None:
-        try:
+        with user_errors():  # an OutputError naming the file or directory, one line
             written = write_atlas_svg(chains, svg, progress=True)
-        except OSError as exc:
-            print_message("error", f"cannot write SVG files to {svg}: {exc.strerror or exc}")
-            raise typer.Exit(2) from None
         err.print(f"wrote {len(written)} SVG files to {svg}", highlight=False)
 
 

@@ -16,9 +16,10 @@ from rich.table import Table
 
 from ..errors import InputError
 from ..geometry import Circle, Point
-from ..instant import (agreement, centrodes, curvature_centre, inflection_circle, instant,
-                       kennedy_poles, pole_line_count, pole_lines, pole_schedule, poles,
-                       return_circle, bresse_circle)
+from ..instant.export import (circle_doc as _circle_doc, curvature_document, curvature_report,
+                              point_doc as _point_doc, poles_document)
+from ..instant import (agreement, kennedy_poles, pole_line_count, pole_schedule,
+                       poles)
 from ..kinematics import Solution, Status, solve
 from ..model import Mechanism
 from .common import load_mechanism, user_errors, write_output
@@ -31,21 +32,6 @@ class Format(str, Enum):
 
 
 # ---------------------------------------------------------------------------- helpers
-def _num(x) -> float | None:
-    x = float(x) + 0.0  # no negative zeros in the output
-    return x if math.isfinite(x) else None
-
-
-def _point_doc(p: Point, n: int) -> dict | None:
-    h = np.asarray(p.coords[n])
-    if not np.isfinite(h).all():
-        return None
-    if h[2] == 0:
-        d = h[:2] / np.hypot(*h[:2])
-        return {"at_infinity": True, "direction": [_num(d[0]), _num(d[1])]}
-    return {"x": _num(h[0]), "y": _num(h[1])}
-
-
 def _point_text(p: Point, n: int) -> str:
     doc = _point_doc(p, n)
     if doc is None:
@@ -54,17 +40,6 @@ def _point_text(p: Point, n: int) -> str:
         dx, dy = doc["direction"]
         return f"at infinity, direction {math.degrees(math.atan2(dy, dx)) % 180:.3f}°"
     return f"({doc['x'] + 0.0:.6g}, {doc['y'] + 0.0:.6g})"
-
-
-def _circle_doc(c: Circle, n: int) -> dict | None:
-    r = float(c.radius[n])
-    if math.isnan(r):
-        return None
-    if math.isinf(r):
-        a, nrm = c.anchor.xy[n], c.normal.xy[n]
-        return {"line": True, "through": {"x": _num(a[0]), "y": _num(a[1])},
-                "direction": [_num(-nrm[1]), _num(nrm[0])]}
-    return {"centre": _point_doc(c.centre, n), "radius": _num(r)}
 
 
 def _circle_text(c: Circle, n: int) -> str:
@@ -99,12 +74,6 @@ def _input_text(mech: Mechanism, sol: Solution, n: int) -> str:
     return ", ".join(f"{d.joint} {one(d, v)}" for d, v in zip(mech.drivers, sol.inputs[n]))
 
 
-def _input_doc(sol: Solution, n: int):
-    if sol.time is not None:
-        return {"time": _num(sol.time[n])}
-    return {"input": [_num(v) for v in sol.inputs[n]]}
-
-
 def _render(tables: list) -> str:
     con = Console(record=True, width=150, file=open("/dev/null", "w"), markup=False)
     for t in tables:
@@ -118,35 +87,14 @@ def _poles_command(mechanism: str, at: Optional[list[str]], schedule: bool, fmt:
     with user_errors():
         mech = load_mechanism(mechanism)
         sol = _solve(mech, at, 1)
+        if fmt is Format.json:
+            write_output(json.dumps(poles_document(sol, schedule), indent=1) + "\n", output)
+            return
         P = poles(sol)
         sch = pole_schedule(mech)
         K = kennedy_poles(sol, sch)
         agree = agreement(P, K, mech.length_scale)
-        lines = pole_lines(P, mech.length_scale)
         n = len(mech.links)
-        if fmt is Format.json:
-            doc = {
-                "mechanism": mech.name,
-                "links": {str(i + 1): ln for i, ln in enumerate(P.links)},
-                "pole_count": len(P), "pole_line_count": pole_line_count(n),
-                "unreachable_by_three_pole_theorem": [P.label(*p) for p in sch.unreachable],
-                "samples": [],
-            }
-            if schedule:
-                doc["schedule"] = sch.lines()
-            for k in range(len(sol)):
-                rows = []
-                for pair in P:
-                    rows.append({"label": P.label(*pair), "links": list(pair),
-                                 "pole": _point_doc(P[pair], k),
-                                 "three_pole_theorem": _point_doc(K[pair], k),
-                                 "discrepancy": _num(agree[pair][k])})
-                res = [pl.residual[k] for pl in lines]
-                doc["samples"].append({**_input_doc(sol, k), "status": str(Status(int(sol.status[k]))),
-                                       "poles": rows,
-                                       "pole_lines_max_residual": _num(np.nanmax(res)) if res else None})
-            write_output(json.dumps(doc, indent=1) + "\n", output)
-            return
         tables = []
         for k in range(len(sol)):
             t = Table(title=f"{mech.name}: poles at {_input_text(mech, sol, k)} "
@@ -186,43 +134,15 @@ def _curvature_command(mechanism: str, link: str, relative_to: Optional[str], po
     with user_errors():
         mech = load_mechanism(mechanism)
         sol = _solve(mech, at, 3)
-        ins = instant(sol, link, relative_to)
-        circles = {"inflection_circle": inflection_circle(sol, link, relative_to),
-                   "return_circle": return_circle(sol, link, relative_to),
-                   "bresse_circle": bresse_circle(sol, link, relative_to)}
-        cen = centrodes(sol, link, relative_to)
         asked = [(p, _design_point(mech, p)) for p in points]
-        paths = [(p, curvature_centre(sol, link, s, relative_to)) for p, s in asked]
+        if fmt is Format.json:
+            write_output(json.dumps(curvature_document(sol, link, relative_to, asked), indent=1) + "\n", output)
+            return
+        rep = curvature_report(sol, link, relative_to, asked)
+        ins, circles, cen, paths = rep.instant, rep.circles, rep.centrodes, rep.paths
         rel = ins.relative_to
         u = ins.pole_velocity.xy
         b = ins.pole_acceleration.xy
-        if fmt is Format.json:
-            doc = {"mechanism": mech.name, "link": link, "relative_to": rel,
-                   "unit": mech.length_unit, "samples": []}
-            for k in range(len(sol)):
-                s = {**_input_doc(sol, k), "status": str(Status(int(sol.status[k]))),
-                     "omega": _num(ins.omega[k]), "alpha": _num(ins.alpha[k]),
-                     "pole": _point_doc(ins.pole, k),
-                     "pole_velocity": [_num(u[k, 0]), _num(u[k, 1])],
-                     "pole_velocity_magnitude": _num(np.hypot(*u[k])),
-                     "pole_acceleration": [_num(b[k, 0]), _num(b[k, 1])],
-                     "pole_tangent": [_num(x) for x in ins.pole_tangent.xy[k]],
-                     "pole_normal": [_num(x) for x in ins.pole_normal.xy[k]],
-                     "inflection_pole": _point_doc(ins.inflection_pole, k),
-                     "diameter": _num(ins.diameter[k]),
-                     "diameter_is_infinite": bool(np.isinf(ins.diameter[k])),
-                     "tangential_pole": _point_doc(ins.tangential_pole, k),
-                     "acceleration_pole": _point_doc(ins.acceleration_pole, k),
-                     **{name: _circle_doc(c, k) for name, c in circles.items()},
-                     "fixed_centrode_radius": _num(cen.fixed_radius[k]),
-                     "moving_centrode_radius": _num(cen.moving_radius[k]),
-                     "curvature_centres": {
-                         name: {"position": _point_doc(Point.from_xy(pc.position), k),
-                                "centre": _point_doc(pc.centre, k),
-                                "radius": _num(pc.radius[k])} for name, pc in paths}}
-                doc["samples"].append(s)
-            write_output(json.dumps(doc, indent=1) + "\n", output)
-            return
         tables = []
         for k in range(len(sol)):
             t = Table(title=f"{mech.name}: {link} relative to {rel} at {_input_text(mech, sol, k)} "

@@ -72,23 +72,35 @@ def _table(sol: Solution) -> str:
                 t.add_row(ln, f"{np.degrees(m.angle[n]):.4f}", f"{m.omega[n]:.6g}", f"{m.alpha[n]:.6g}")
             out.print(t)
     else:
-        t = Table(title=f"{mech.name}: {len(sol)} samples (ω in rad/s, α in rad/s²)")
-        for d in mech.drivers:
-            t.add_column("input" if single else f"input {d.joint}", justify="right")
-        t.add_column("status")
+        head = [("input" if single else f"input {d.joint}") for d in mech.drivers] + ["status"]
         for ln in mech.moving_links:
-            t.add_column(f"ω {ln}", justify="right")
-            t.add_column(f"α {ln}", justify="right")
-        links = {ln: sol.link(ln) for ln in mech.moving_links}
+            head += [f"ω {ln}", f"α {ln}"]
+        links = [sol.link(ln) for ln in mech.moving_links]
+        rows = []
         for n in range(len(sol)):
             row = [show_input(mech, d, v) for d, v in zip(mech.drivers, sol.inputs[n])]
             row.append(str(Status(int(sol.status[n]))))
-            for m in links.values():
+            for m in links:
                 row += [f"{m.omega[n]:.5g}", f"{m.alpha[n]:.5g}"]
-            t.add_row(*row)
-        out.print(t)
+            rows.append(row)
+        out.print(_columns(f"{mech.name}: {len(sol)} samples (ω in rad/s, α in rad/s²)", head, rows),
+                  highlight=False, soft_wrap=True)
     _engagement_tables(out, sol)
     return out.export_text()
+
+
+def _columns(title: str, head: list[str], rows: list[list[str]]) -> str:
+    """A long table as plain right-aligned columns (one line per sample, never wrapped): Rich
+    lays out a table cell by cell, some seconds for a whole motion of a six-bar."""
+    from rich.cells import cell_len
+
+    widths = [max(cell_len(r[c]) for r in (head, *rows)) for c in range(len(head))]
+
+    def line(cells: list[str]) -> str:
+        return "  ".join(" " * (w - cell_len(x)) + x for x, w in zip(cells, widths))
+
+    top = line(head)
+    return "\n".join([title, top, "─" * cell_len(top), *map(line, rows)])
 
 
 def _engagement_tables(out: Console, sol: Solution) -> None:
@@ -163,23 +175,46 @@ def analyze(
 
 
 @app.command()
-def library(name: Optional[str] = typer.Argument(None, help="print this mechanism's file")) -> None:
-    """List the shipped mechanisms, or print one of them (load it as library:NAME)."""
-    import tomllib
+def library(name: Optional[str] = typer.Argument(None, help="print this mechanism's file"),
+            search: Optional[str] = typer.Option(None, "--search", "-s",
+                                                 help="only mechanisms whose name or description contain these words"),
+            category: Optional[str] = typer.Option(None, "--category", "-c",
+                                                   help="only this group (four-bars, slider mechanisms, valve gears, "
+                                                        "straight-line linkages, governors, cams, gears, ...)"),
+            fmt: str = typer.Option("table", "--format", help="table or json")) -> None:
+    """List the shipped mechanisms by group, search them, or print one (load it as library:NAME)."""
+    import json
 
-    from ..io.library import library_names, library_text
+    from ..errors import InputError
+    from ..io.library import library_entries, library_text, search_library
 
     with user_errors():
         if name:
             write_output(library_text(name), None)
             return
+        if fmt not in ("table", "json"):
+            raise InputError(f"--format must be table or json, not '{fmt}'")
+        hits = search_library(search, category)
+        if category and not hits and not search_library(None, category):
+            groups = sorted({e["category"] for e in library_entries()})
+            raise InputError(f"the library has no group '{category}' (groups: {', '.join(groups)})")
+        if fmt == "json":
+            write_output(json.dumps(hits, indent=2, ensure_ascii=False) + "\n", None)
+            return
+        if not hits:
+            console.print(f"no library mechanism matches '{search}'" + (f" in '{category}'" if category else ""))
+            raise typer.Exit(1)
         t = Table(title="linkwork library (use as library:NAME)")
+        t.add_column("group")
         t.add_column("name")
         t.add_column("mechanism")
-        for n in library_names():
-            doc = tomllib.loads(library_text(n))
-            t.add_row(n, doc.get("name", ""))
+        last = None
+        for e in hits:
+            t.add_row(e["category"] if e["category"] != last else "", e["name"], e["title"],
+                      end_section=False)
+            last = e["category"]
         console.print(t)
+        console.print(f"{len(hits)} mechanisms")
 
 
 @app.command()

@@ -1,6 +1,8 @@
 """Long outputs of `analyze`: their size estimated before anything is solved or written, and the
 samples solved and written chunk by chunk under one progress bar (so that a million samples
-take memory for one chunk, not for the whole text).
+take memory for one chunk, not for the whole text). Each chunk goes on from where the one
+before left the path of the inputs (`solve(..., resume=)`: the branches and the continuation
+of several drivers), so the chunks give what one solve of all samples gives.
 
 Formats: `csv` (one row per sample), `jsonl` (JSON Lines: one sample object per line, the
 file's length unit, radians and seconds), `json` (one document; its samples are written one
@@ -21,7 +23,7 @@ from rich.progress import BarColumn, Progress, TextColumn, TimeRemainingColumn
 
 from ..errors import OutputError
 from ..kinematics import Solution, solve
-from ..kinematics.export import iter_samples
+from ..kinematics.export import csv_lines, iter_samples
 
 #: samples solved at a time (and then written before the next chunk is solved)
 CHUNK = 50_000
@@ -43,12 +45,6 @@ def _human(n: float) -> str:
     return f"{n:.3g} TB"  # pragma: no cover
 
 
-def _csv_text(sol: Solution, header: bool) -> Iterator[str]:
-    df = sol.to_pandas()
-    for i in range(0, len(df), PIECE):
-        yield df.iloc[i:i + PIECE].to_csv(index=False, header=header and i == 0)
-
-
 def _lines(sol: Solution, sep: str, first: bool) -> Iterator[str]:
     """Samples as compact JSON, one per line; `sep` before each but the very first."""
     lines: list[str] = []
@@ -66,7 +62,7 @@ def render(sol: Solution, fmt: str, first: bool = True) -> Iterator[str]:
     """The text of `sol` in `fmt` (csv, jsonl, json) in pieces; `first`: whether this is the
     first chunk of the output (CSV header, JSON document head)."""
     if fmt == "csv":
-        yield from _csv_text(sol, first)
+        yield from csv_lines(sol, first, PIECE)
     elif fmt == "jsonl":
         yield from _lines(sol, "", True)
     else:
@@ -137,14 +133,16 @@ def stream(mech, kind: str, values: np.ndarray, speeds: np.ndarray | None, fmt: 
     n = len(values)
     task = bar.add_task("solving and writing", total=2 * n) if bar is not None else None
 
-    def one(v: np.ndarray) -> Solution:
+    def one(v: np.ndarray, resume) -> Solution:
         if kind == "time":
-            return solve(mech, times=v)
+            return solve(mech, times=v, resume=resume)
         vel = None if speeds is None else np.broadcast_to(speeds, v.shape).copy()
-        return solve(mech, v, velocities=vel)
+        return solve(mech, v, velocities=vel, resume=resume)
 
+    end = None  # each chunk goes on where the one before left the path (several drivers)
     for i in range(0, n, CHUNK):
-        sol = one(values[i:i + CHUNK])
+        sol = one(values[i:i + CHUNK], end)
+        end = sol.path_end
         if bar is not None:
             bar.advance(task, len(sol))
         if i == 0 and fmt == "json":

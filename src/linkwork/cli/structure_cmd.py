@@ -142,6 +142,30 @@ def _loops_table(rep: StructureReport) -> Table:
     return t
 
 
+def _construction_table(mech) -> Table:
+    """Rosenauer 1937 paper 2: can the velocity plan be drawn directly (no similar point rows)?"""
+    from ..topology.constructibility import Chain, plan_velocities, wittenbauer_rule
+
+    chain = Chain.from_mechanism(mech)
+    script = plan_velocities(chain)
+    t = Table(title="velocity plan by ruler (Wittenbauer's and Rosenauer's rules)", show_header=False)
+    t.add_column("quantity")
+    t.add_column("value")
+    t.add_row("Wittenbauer's rule", escape(wittenbauer_rule(chain).text()))
+    t.add_row("Rosenauer's rule", escape(script.verdict()))
+    if script.order:
+        t.add_row("links in the order they become known", ", ".join(script.order))
+    return t
+
+
+def _construction_doc(mech) -> dict:
+    from ..topology.constructibility import Chain, plan_velocities, wittenbauer_rule
+
+    chain = Chain.from_mechanism(mech)
+    return {"wittenbauer": wittenbauer_rule(chain).as_dict(),
+            "rosenauer": plan_velocities(chain).as_dict()}
+
+
 def _text(rep: StructureReport) -> str:
     con = Console(record=True, width=150, file=open("/dev/null", "w"))
     con.print(_counts_table(rep))
@@ -150,6 +174,8 @@ def _text(rep: StructureReport) -> str:
         con.print(_groups_table(rep))
     else:
         con.print(f"No solution order: {escape(rep.structure_error or '')}")
+    if rep.groups is not None:
+        con.print(_construction_table(rep.mechanism))
     if rep.loops:
         con.print(_loops_table(rep))
     if rep.input_limits is not None:
@@ -165,7 +191,10 @@ def _structure_command(mechanism: str, fmt: Format, output: Optional[str]) -> No
         mech = load_mechanism(mechanism)
         rep = structure_report(mech)
         if fmt is Format.json:
-            write_output(json.dumps(rep.as_dict(), indent=1, ensure_ascii=False) + "\n", output)
+            doc = rep.as_dict()
+            if rep.groups is not None:
+                doc["velocity_construction"] = _construction_doc(mech)
+            write_output(json.dumps(doc, indent=1, ensure_ascii=False) + "\n", output)
         else:
             write_output(_text(rep), output)
 

@@ -41,20 +41,8 @@ from ..geometry import Point
 from ..kinematics import Solution
 from ..kinematics.solver import plan as group_plan
 from ..model import Mechanism, Revolute
+from ..topology.constructibility import lower, upper  # the books' labels: B → b, O4 → o_4
 from ._common import cross, dot, norm, perp, rotate
-
-
-def lower(name: str) -> str:
-    """Image label of point ``name``: ``B`` → ``b``, ``O4`` → ``o_4``."""
-    import re
-    m = re.match(r"^([A-Za-z]+)(\d+)$", name)
-    return f"{m.group(1).lower()}_{m.group(2)}" if m else name.lower()
-
-
-def upper(name: str) -> str:
-    import re
-    m = re.match(r"^([A-Za-z]+)(\d+)$", name)
-    return f"{m.group(1)}_{m.group(2)}" if m else name
 
 
 def _meet(l1: np.ndarray, l2: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -260,14 +248,18 @@ class VelocityConstruction(_SlidingGroups):
 
     # ------------------------------------------------------------------ groups
     def run(self) -> None:
+        solved = {self.mech.frame}
+        self.scripts = []
         for gs in group_plan(self.mech):
             fn = getattr(self, "_g_" + gs.kind.replace("-", "_"), None)
-            if fn is None:
-                raise InputError(f"the {'velocity plan' if self.mode == 'plan' else 'rotated-velocity'} "
-                                 f"construction does not handle the group {', '.join(gs.group.links)} "
-                                 f"({gs.kind}); it handles the driver, RRR, RRP, RPR, rod-in-slot "
-                                 "and slotted-lever groups")
-            fn(gs)
+            if fn is not None:
+                fn(gs)
+            else:
+                # triads and larger groups, gears: Rosenauer's auxiliary points (`_direct`)
+                from ._direct import draw_group
+                self.scripts.append(draw_group(self, gs.group.links, gs.group.joints, solved,
+                                               gs.group.drivers))
+            solved.update(gs.group.links)
         # every remaining point of every link
         for link in self.mech.links:
             if link.name == self.mech.frame:
@@ -474,8 +466,17 @@ class AccelerationConstruction(_SlidingGroups):
         return img
 
     def run(self) -> None:
+        solved = {self.mech.frame}
         for gs in group_plan(self.mech):
-            getattr(self, "_g_" + gs.kind.replace("-", "_"))(gs)
+            fn = getattr(self, "_g_" + gs.kind.replace("-", "_"), None)
+            if fn is not None:
+                fn(gs)
+            else:
+                # the groups the velocity plan drew with auxiliary points: the same script on
+                # the plan of relative normal accelerations (`_direct`)
+                from ._direct import draw_group_acceleration
+                draw_group_acceleration(self, gs.group.links, gs.group.joints, solved, gs.group.drivers)
+            solved.update(gs.group.links)
         for link in self.mech.links:
             if link.name == self.mech.frame:
                 continue

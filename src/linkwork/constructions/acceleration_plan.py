@@ -17,7 +17,7 @@ import numpy as np
 
 from .construction import Builder, Construction, Role, pt
 from ..model import Mechanism
-from ._common import as_solution, singular_positions, norm
+from ._common import as_solution, material_point, singular_positions, norm
 from ._plan import AccelerationConstruction, VelocityConstruction
 from .velocity_plan import compare_velocities, draw_images
 
@@ -57,6 +57,13 @@ def acceleration_plan(mech: Mechanism, inputs) -> Construction:
         img = ac.image(mech.point_owner[p], p, draw=False)
         b.compare(f"a_{p}", f"a_{p}", f"acceleration of {p}", img, sol.point(p).acceleration, ascale,
                   f"{mech.length_unit}/s\u00b2")
+    # auxiliary and coincident points: the acceleration of the link's material point there
+    for link, entries in ac.known.items():
+        for X, img, name in entries:
+            if name in mech.points or link == mech.frame:
+                continue
+            b.compare(f"a_{name}@{link}", f"a_{name}", f"acceleration of {name} as a point of {link}",
+                      img, material_point(sol, link, X).acceleration, ascale, f"{mech.length_unit}/s\u00b2")
     wscale = np.max([np.maximum(abs(sol.link(ln).alpha), sol.link(ln).omega ** 2)
                      for ln in mech.moving_links], axis=0)
     for ln in mech.moving_links:

@@ -13,7 +13,7 @@ import numpy as np
 
 from .construction import Builder, Construction, Role, pt
 from ..model import Mechanism
-from ._common import as_solution, singular_positions, norm
+from ._common import as_solution, material_point, singular_positions, norm
 from ._plan import VelocityConstruction
 
 SOURCE = "Rosenauer §40–42, Pöschl §47 (velocity plan, velocity image)"
@@ -31,6 +31,15 @@ def compare_velocities(b: Builder, vc: VelocityConstruction, sol, mech: Mechanis
     for ln in mech.moving_links:
         b.compare(f"omega_{ln}", f"\u03c9_{ln}", f"angular velocity of {ln}", vc.measured_omega(ln),
                   sol.link(ln).omega, wscale, "rad/s")
+    # auxiliary points (Rosenauer's Q, R, …), pitch points and coincident points: the velocity
+    # of the link's material point there
+    for link, entries in vc.known.items():
+        for X, img, name in entries:
+            if name in mech.points or link == mech.frame:
+                continue
+            b.compare(f"v_{name}@{link}", f"v_{name}", f"velocity of {name} as a point of {link}",
+                      vc.velocity(X, img), material_point(sol, link, X).velocity, vscale,
+                      f"{mech.length_unit}/s")
     for jname, v in vc.sliding.items():
         b.compare(f"vrel_{jname}", f"v_rel {jname}", f"sliding velocity in {jname}", v,
                   sol.joint(jname)["velocity"], vscale, f"{mech.length_unit}/s")

@@ -166,6 +166,9 @@ class Figure:
         self._ids: set[str] = set()
         self.used_scales: set[str] = {s.quantity for s in self.spaces.values()}
         self.clip: dict[str, tuple[np.ndarray, np.ndarray]] = {}  # space -> world box shown
+        # space -> world box the panel is fitted to, whatever is drawn (frames of an animation
+        # keep one layout)
+        self.view: dict[str, tuple[np.ndarray, np.ndarray]] = {}
         self.scales_declared = True  # vectors on the mechanism are at self.scales
 
     # ------------------------------------------------------------------ adding
@@ -262,9 +265,12 @@ class Figure:
             if name in self.clip:
                 clo, chi = self.clip[name]
                 pts = pts[np.all((pts >= clo) & (pts <= chi), axis=1)]
-            if len(pts) == 0:
+            if name in self.view:
+                lo, hi = (np.asarray(v, float) for v in self.view[name])
+            elif len(pts) == 0:
                 continue
-            lo, hi = pts.min(0), pts.max(0)
+            else:
+                lo, hi = pts.min(0), pts.max(0)
             size = (hi - lo) / scale.per_mm
             boxes[name] = (lo, hi, size, scale)
         x = MARGIN
@@ -280,6 +286,14 @@ class Figure:
             height = max(height, h)
         width = max(x - GAP - MARGIN + 22.0, 120.0)  # room for labels right of the last panel
         return panels, width, top + height + MARGIN
+
+    def transforms(self) -> dict[str, dict]:
+        """How each panel maps its world coordinates to the SVG's (mm of paper, y down):
+        x_svg = origin[0] + (x − lo[0])/per_mm, y_svg = origin[1] + (hi[1] − y)/per_mm."""
+        panels, _, _ = self._layout()
+        return {n: {"origin": [float(p["ox"]), float(p["oy"])], "lo": [float(v) for v in p["lo"]],
+                    "hi": [float(v) for v in p["hi"]], "per_mm": float(p["scale"].per_mm)}
+                for n, p in panels.items()}
 
     @staticmethod
     def _tf(panel: dict):

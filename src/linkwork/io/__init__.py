@@ -6,10 +6,12 @@ from __future__ import annotations
 
 import importlib
 
-__all__ = ["dump_schema", "load", "load_text", "resolve"]
+_MODULES = {"dump_schema": ".files", "load": ".files", "load_text": ".files", "resolve": ".files",
+            "dynamics_from_text": ".dynamics", "load_dynamics": ".dynamics"}
+__all__ = sorted(_MODULES)
 
 
 def __getattr__(name: str):
-    if name in __all__:
-        return getattr(importlib.import_module(".files", __name__), name)
+    if name in _MODULES:
+        return getattr(importlib.import_module(_MODULES[name], __name__), name)
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

@@ -90,6 +90,13 @@ def _line_of(text: str, loc: tuple) -> int | None:
 def load_text(text: str, *, source: str = "<text>", base_dir: Path | None = None) -> Mechanism:
     """Validate mechanism-file `text` and build the `Mechanism`; `base_dir` is where profile
     CSV files are read from (the working directory if None)."""
+    return parse(text, source=source, base_dir=base_dir)[0]
+
+
+def parse(text: str, *, source: str = "<text>", base_dir: Path | None = None
+          ) -> tuple[Mechanism, schema.MechanismFile]:
+    """`load_text`, also returning the validated file (for the sections that are not the
+    mechanism's: [masses] and [loads], read by `io.dynamics`)."""
     try:
         raw = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
@@ -104,7 +111,7 @@ def load_text(text: str, *, source: str = "<text>", base_dir: Path | None = None
         raise _file_error(exc, text, source) from None
     check_references(spec, text, source)
     try:
-        return _build(spec, text, source, base_dir)
+        return _build(spec, text, source, base_dir), spec
     except MechanismFileError as exc:
         if exc.line is None and exc.key and exc.source == source:  # a profile's key: find its line
             loc = tuple(int(k) if k.isdigit() else k for k in re.findall(r"[^.\[\]]+", exc.key))

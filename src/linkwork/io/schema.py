@@ -8,7 +8,8 @@ from __future__ import annotations
 
 from typing import Annotated, Literal, Union
 
-from pydantic import BaseModel, ConfigDict, Field, Strict, field_validator, model_validator
+from pydantic import (BaseModel, ConfigDict, Discriminator, Field, Strict, Tag, field_validator,
+                      model_validator)
 
 from .profiles import ProfileSpec
 from .values import Number, PositiveNumber
@@ -147,9 +148,102 @@ class DriverSpec(_Strict):
         return self
 
 
+# ---------------------------------------------------------------- mass data and loads (forces)
+#: a quantity: a bare number in the key's SI unit, or a string with its unit ("0.5 kg", "2 N/mm")
+Quantity = Union[Number, str]
+#: a point of the drawing by name, or design coordinates [x, y] in the length unit
+PointRef = Union[str, Coordinates]
+
+
+class LinkMassSpec(_Strict):
+    mass: Quantity = Field(description="mass of the link; a bare number is kg")
+    center: PointRef = Field(description="centre of mass: a named point or design coordinates [x, y]")
+    inertia: Quantity = Field(0.0, description="moment of inertia about the centre of mass; a bare "
+                                               "number is kg*m^2")
+
+
+class LoadTableSpec(_Strict):
+    of: Literal["input", "time"] = Field(description="tabulated against the first driver's input "
+                                         "(the file's angle unit, or the length unit) or time (s)")
+    at: list[Number] = Field(min_length=2, description="increasing abscissae")
+    values: list[Union[Number, Coordinates]] = Field(min_length=2, description="one value per abscissa "
+                                                     "(a number for a torque, [x, y] for a force)")
+    periodic: Annotated[bool, Strict()] = Field(False, description="wrap the abscissa over the table's span")
+
+    @model_validator(mode="after")
+    def _shape(self) -> "LoadTableSpec":
+        if len(self.at) != len(self.values):
+            raise ValueError(f"the table has {len(self.at)} abscissae but {len(self.values)} values")
+        if any(b <= a for a, b in zip(self.at, self.at[1:])):
+            raise ValueError("the abscissae `at` must increase")
+        return self
+
+
+def _table_or_value(v) -> str:
+    # tags the key-path cleaner drops (`files._clean`), so errors name the key itself
+    return "table" if isinstance(v, dict) else "list[value]"
+
+
+ForceValue = Annotated[Union[Annotated[LoadTableSpec, Tag("table")], Annotated[Coordinates, Tag("list[value]")]],
+                       Discriminator(_table_or_value)]
+TorqueValue = Annotated[Union[Annotated[LoadTableSpec, Tag("table")], Annotated[Quantity, Tag("list[value]")]],
+                        Discriminator(_table_or_value)]
+
+
+class ForceSpec(_Strict):
+    link: str
+    point: PointRef = Field(description="point of application (a material point of the link)")
+    force: ForceValue = Field(description="[Fx, Fy] in N, or a table")
+    axes: Literal["frame", "link"] = Field("frame", description="components fixed in the frame "
+                                           "or turning with the link")
+
+
+class TorqueSpec(_Strict):
+    link: str
+    torque: TorqueValue = Field(description="counter-clockwise; a bare number is N*m")
+
+
+class SpringSpec(_Strict):
+    links: Annotated[list[str], Field(min_length=2, max_length=2)]
+    points: Annotated[list[PointRef], Field(min_length=2, max_length=2)] = Field(
+        description="the spring's ends, on the first and on the second link")
+    stiffness: Quantity = Field(0.0, description="a bare number is N/m")
+    free_length: Quantity | None = Field(None, description="default: the length in the drawing; a "
+                                                           "bare number is in the length unit")
+    preload: Quantity = Field(0.0, description="tension added (N)")
+    damping: Quantity = Field(0.0, description="viscous damping along the spring; a bare number is N*s/m")
+
+
+class TorsionSpringSpec(_Strict):
+    joint: str = Field(description="a revolute pair")
+    stiffness: Quantity = Field(0.0, description="a bare number is N*m/rad")
+    free_angle: Quantity = Field(0.0, description="relative angle at rest, from the drawing (file's angle unit)")
+    damping: Quantity = Field(0.0, description="rotary damping; a bare number is N*m*s/rad")
+
+
+class FrictionSpec(_Strict):
+    joint: str = Field(description="a revolute, prismatic, slot, circular-slot or cam pair")
+    coefficient: PositiveNumber = Field(description="Coulomb friction coefficient")
+    radius: Quantity = Field(0.0, description="journal radius of a revolute pair (friction torque "
+                                              "coefficient*radius*|R|); a bare number is in the length unit")
+
+
+class LoadsSpec(_Strict):
+    gravity: Union[Coordinates, Annotated[bool, Strict()]] = Field(
+        False, description="acceleration of gravity [gx, gy] in m/s^2, or true for 9.80665 m/s^2 along -y")
+    forces: list[ForceSpec] = Field(default_factory=list)
+    torques: list[TorqueSpec] = Field(default_factory=list)
+    springs: list[SpringSpec] = Field(default_factory=list, description="linear springs and dampers")
+    torsion_springs: list[TorsionSpringSpec] = Field(default_factory=list)
+    friction: list[FrictionSpec] = Field(default_factory=list, description="Coulomb friction in pairs "
+                                         "(zero where a pair does not move; an option of the force analysis)")
+
+
 class MechanismFile(_Strict):
     name: str
     description: str = ""
+    category: str = Field("", description="the library's group for this mechanism (four-bars, "
+                          "slider mechanisms, valve gears, straight-line linkages, governors, ...)")
     units: Units = Units()
     frame: str = "frame"
     points: dict[str, Coordinates]
@@ -159,6 +253,9 @@ class MechanismFile(_Strict):
     joints: dict[str, JointSpec]
     driver: DriverSpec | None = None
     drivers: list[DriverSpec] | None = None
+    masses: dict[str, LinkMassSpec] = Field(
+        default_factory=dict, description="mass data per moving link (needed for forces only)")
+    loads: LoadsSpec | None = Field(None, description="loads for force analysis")
 
     @field_validator("points")
     @classmethod

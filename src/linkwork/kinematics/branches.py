@@ -65,6 +65,35 @@ class Schedule:
                           - np.floor((self.u0 - c) / self.period)).astype(np.int64)
         return np.where(flips % 2 == 0, self.sign, -self.sign)
 
+    def at(self, u: np.ndarray, lam: np.ndarray | None = None) -> np.ndarray:
+        """The signs at inputs u (N, 1) (λ along a path is not needed: one driver)."""
+        return self.signs(u[:, 0])
+
+
+@dataclass(frozen=True)
+class PathSchedule:
+    """Several drivers: the change points of one two-assembly group as distances λ along the
+    path of the inputs (`continuation.InputPath`: from the design input through the samples in
+    their order), and its sign before the first of them."""
+
+    sign: float
+    change_points: tuple[float, ...]
+
+    def signs(self, lam: np.ndarray) -> np.ndarray:
+        """The group's sign at λ: flipped once per change point passed."""
+        flips = np.searchsorted(np.asarray(self.change_points, dtype=float), lam, side="right")
+        return np.where(flips % 2 == 0, self.sign, -self.sign)
+
+    def at(self, u: np.ndarray, lam: np.ndarray) -> np.ndarray:
+        return self.signs(lam)
+
+
+def _poses(mech: Mechanism, N: int) -> np.ndarray:
+    """Zero poses Q[0, n, row, (x, y, θ)] laid out as `solve` lays them out (the sample axis
+    last in memory), so that the compiled kernels run the loops compiled for the solve rather
+    than compiling another version (seconds) for another layout."""
+    return np.zeros((1, len(rows(mech)), 3, N)).transpose(0, 3, 1, 2)
+
 
 def _positions(mech: Mechanism, solvers: tuple[GroupSolver, ...], upto: GroupSolver,
                u: np.ndarray, branches: dict) -> State:
@@ -75,7 +104,7 @@ def _positions(mech: Mechanism, solvers: tuple[GroupSolver, ...], upto: GroupSol
     from .continuation import continuation_guesses
 
     N = u.shape[0]
-    Q = np.zeros((1, N, len(rows(mech)), 3))
+    Q = _poses(mech, N)
     state = State(mech, Q, input_coefficients(mech, u[:, None], None, None, None, 0),
                   branches={g: s.signs(u) for g, s in branches.items()})
     upstream = solvers[:solvers.index(upto) + 1]
@@ -126,20 +155,109 @@ def branch_schedule(mech: Mechanism) -> dict:
         points: list[float] = []
         # where h² touches zero (a change point), and for a dyad where its outer hinges meet
         for fn in (h2, gap) if s.kind == "RRR" else (h2,):
-            g = fn(grid)
-            inner = np.arange(1, n)
-            touch = inner[(g[inner] <= g[inner - 1]) & (g[inner] <= g[inner + 1])
-                          & (g[inner] < TOUCH) & (g[inner - 1] > 0) & (g[inner + 1] > 0)]
-            if len(touch):
-                from scipy.optimize import minimize_scalar  # rarely needed; slow to import
-            for i in touch:
-                r = minimize_scalar(lambda x: float(fn(np.array([x]))[0]), method="bounded",
-                                    bounds=(grid[i - 1], grid[i + 1]),
-                                    options=dict(xatol=1e-13 * max(1.0, abs(grid[i]))))
-                if r.fun < CHANGE and not any(abs(r.x - p) < span / n for p in points):
-                    points.append(float(r.x))
+            _touches(fn, grid, 0, points, span / n)
         if points:
             found[s.group] = Schedule(s.design_sign, tuple(sorted(points)), period, u0)
             if revolute and len(points) % 2 == 1:
                 period *= 2  # downstream groups see the chain repeat after two turns
     return found
+
+
+def _touches(fn, grid: np.ndarray, first: int, points: list, merge: float) -> None:
+    """Append to `points` where `fn` (a discriminant or pivot gap along a parameter) touches
+    zero: each local minimum of its values on `grid` (at index `first` or later) below
+    `TOUCH`, refined by Brent's method between its neighbours and kept when below `CHANGE`
+    (and not within `merge` of one found already)."""
+    g = fn(grid)
+    inner = np.arange(max(1, first), grid.size - 1)
+    touch = inner[(g[inner] <= g[inner - 1]) & (g[inner] <= g[inner + 1])
+                  & (g[inner] < TOUCH) & (g[inner - 1] > 0) & (g[inner + 1] > 0)]
+    if len(touch):
+        from scipy.optimize import minimize_scalar  # rarely needed; slow to import
+    for i in touch:
+        r = minimize_scalar(lambda x: float(fn(np.array([x]))[0]), method="bounded",
+                            bounds=(grid[i - 1], grid[i + 1]),
+                            options=dict(xatol=1e-13 * max(1.0, abs(grid[i]))))
+        if r.fun < CHANGE and not any(abs(r.x - p) < merge for p in points):
+            points.append(float(r.x))
+
+
+def path_schedule(mech: Mechanism, solvers: tuple[GroupSolver, ...], values: np.ndarray,
+                  start=None) -> tuple[dict, np.ndarray, object]:
+    """Several drivers: the change points of every two-assembly group along the path of the
+    inputs `values` (N, drivers) — from the design input (or from `start`, a
+    `continuation.PathEnd`: an earlier solve's end) through the samples in their order — and
+    the λ of each sample along it (NaN after a non-finite sample): group → `PathSchedule`,
+    the samples' λ and the path (`continuation.InputPath`).
+
+    The path is scanned on a grid (`SCAN` points per turn, every sample on it) and each
+    touching minimum of the discriminant h² (and, of a dyad, of the gap of its outer hinges)
+    refined, as for one driver. A path of several drivers touches a group's change points
+    only where it runs along them — the five-bar whose second crank stands still while the
+    first carries the dyad through its change position, or cranks coupled so that they do —
+    and flips the group's assembly there as the real motion does. A path that crosses them
+    leaves the group unreachable on the far side. Groups below a Newton-solved one keep the
+    sign they start with (their scan would need a continuation of its own)."""
+    from .continuation import InputPath, input_weights
+
+    w = input_weights(mech)
+    if start is None:
+        head = np.array([mech.driver_input_at_design(d) for d in mech.drivers])[None] * w
+        lam0, first_new = 0.0, 0
+    elif start.previous is None:
+        head, lam0, first_new = start.vertex[None], start.lam, 0
+    else:
+        head, lam0 = np.vstack([start.previous, start.vertex]), start.previous_lam
+    path = InputPath(np.vstack([head, values * w]), start=lam0)
+    lam_samples = np.full(values.shape[0], np.nan)
+    on = path.vertex_of[len(head):]  # the samples on the path (before a non-finite one)
+    lam_samples[:on.size] = path.knots[on]
+    found: dict = {}
+    if not any(s.kind in BRANCHING for s in solvers):
+        return found, lam_samples, path
+    grid, _ = path.grid(2 * np.pi / SCAN)
+    if start is not None and start.previous is not None:
+        first_new = int(np.flatnonzero(grid >= path.knots[1])[0])  # the earlier solve's end
+
+    def inputs(lam: np.ndarray) -> np.ndarray:
+        """Inputs at λ on the path (its vertices exactly at their knots)."""
+        last = len(path.vertices) - 1
+        j = np.clip(np.searchsorted(path.knots, lam, side="right") - 1, 0, max(last - 1, 0))
+        out = path.points(lam, j)
+        k = np.minimum(np.searchsorted(path.knots, lam), last)
+        at = path.knots[k] == lam
+        out[at] = path.vertices[k[at]]
+        return out / w
+
+    generic_above = False
+    for s in solvers:
+        generic_above |= s.kind == "generic"
+        if s.kind not in BRANCHING:
+            continue
+        before = start.schedules.get(s.group) if start is not None else None
+        sign = s.design_sign if before is None else float(before.signs(np.array([lam0]))[0])
+        points = [] if before is None else [c for c in before.change_points if c > lam0]
+        if not generic_above and len(path.vertices) > 1:
+            upstream = solvers[:solvers.index(s) + 1]
+
+            def state(lam: np.ndarray) -> State:
+                u = inputs(lam)
+                st = State(mech, _poses(mech, lam.size),
+                           input_coefficients(mech, u, None, None, None, 0),
+                           branches={g: sc.signs(lam) for g, sc in found.items()})
+                ok = np.ones(lam.size, dtype=bool)
+                for t in upstream:
+                    ok &= t.positions(st)
+                if not ok.all():
+                    st.Q[:, ~ok] = np.nan
+                    st.forget_trig()
+                return st
+
+            merge = 2 * np.pi / SCAN
+            new: list = []
+            for fn in ((lambda x: s.discriminant(state(x))),
+                       (lambda x: s.pivot_gap(state(x))))[:2 if s.kind == "RRR" else 1]:
+                _touches(fn, grid, first_new, new, merge)
+            points += [c for c in new if not any(abs(c - p) < merge for p in points)]
+        found[s.group] = PathSchedule(sign, tuple(sorted(points)))
+    return found, lam_samples, path

@@ -32,6 +32,7 @@ the samples in their order, subdividing adaptively between them.
 from __future__ import annotations
 
 from collections import OrderedDict
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -51,7 +52,10 @@ CORRECTOR_ITERATIONS = 12
 STEP_TOL = 1e-6                      # a Newton step this small (in L) ends the corrector
 FOLD_APPROACH = 0.9                  # fraction of the distance to a limit position ahead
 CACHE_SIZE = 32
-MAX_ATTEMPTS = 2000                  # steps (accepted or not) per lane and march: bounded cost
+MAX_ATTEMPTS = 2000                  # steps (accepted or not) per lane and march, plus 4 per
+                                     # sample of several drivers: bounded cost
+CRAWL_WINDOW = 100                   # attempts over which a lane's progress is measured
+SCAN_PER_SEGMENT = 2048              # grid points per turn of a path scanned for change points
 PERIOD_TURNS = 4                     # turns of a revolute input searched for the motion's period
 
 # (mechanism, its group solvers) -> {+1: lane upwards, -1: lane downwards}. Both are compared
@@ -59,12 +63,55 @@ PERIOD_TURNS = 4                     # turns of a revolute input searched for th
 _marches: OrderedDict = OrderedDict()
 
 
+@dataclass(frozen=True)
+class PathEnd:
+    """Where a solve of several drivers left the path of its inputs, for a later solve to go on
+    from (`solve(..., resume=)`, the chunks of a streamed output) as if both had been one:
+    the last sample's input (in the march's metric, `input_weights`) and its λ along the path,
+    the vertex before it and its λ (the last segment, where a change point at the end may only
+    show from the next samples), the two-assembly groups' `branches.PathSchedule` and, when
+    there are Newton-solved groups, the march's tail (`LaneTail`)."""
+
+    vertex: np.ndarray
+    lam: float
+    previous: np.ndarray | None
+    previous_lam: float
+    schedules: dict
+    tail: "LaneTail | None"
+
+
+@dataclass(frozen=True)
+class LaneTail:
+    """The last two accepted points of a march (λ, poses, tangents), the direction it arrived
+    at the last one along, the generic groups' Jacobians there, and its step control."""
+
+    lam: tuple
+    P: tuple
+    T: tuple
+    arrive: np.ndarray
+    jacobians: dict
+    h: float
+    halved: bool
+
+
+def input_weights(mech: Mechanism) -> np.ndarray:
+    """λ, the distance marched in input space, counts a slide of 1 % of L like a turn of
+    CONTINUATION_STEP, so that one largest step serves revolute and prismatic inputs (and
+    mixtures of them, with several drivers): the factor of each driver's input."""
+    return np.array([CONTINUATION_STEP / (0.01 * mech.length_scale)
+                     if mech.joint(d.joint).kind == "prismatic" else 1.0 for d in mech.drivers])
+
+
 def continuation_guesses(mech: Mechanism, solvers, values: np.ndarray,
-                         schedule: dict | None = None) -> dict:
+                         schedule: dict | None = None, *, start: PathEnd | None = None,
+                         ends: dict | None = None) -> dict:
     """Newton starting poses (N, k, 3) of every generic group at the samples `values`
     (N, drivers), by continuation from the design position; NaN where the march does not reach
     (the branch of the design cannot be assembled there). `schedule`: the closed-form groups'
-    change points (`branches.branch_schedule`, found from these solvers when not given)."""
+    change points (`branches.branch_schedule`, or for several drivers
+    `branches.path_schedule`; found from these solvers when not given). Several drivers: the
+    march goes on from `start` (an earlier solve's end) instead of the design position, and
+    its tail is put in ends["tail"] when `ends` is given."""
     gen = _Generic(mech, solvers, schedule)
     design = np.array([mech.driver_input_at_design(d) for d in mech.drivers])
     if values.shape[1] == 1:
@@ -77,8 +124,11 @@ def continuation_guesses(mech: Mechanism, solvers, values: np.ndarray,
             found = _period(mech, solvers, gen, lanes)
             if found is not None:  # inputs far out: the same poses some periods nearer
                 period, advance = found
-                near = np.where(finite, np.mod(lam + period / 2, period) - period / 2, lam)
-                turns = np.where(finite, np.round((lam - near) / period), 0.0)
+                # only the samples beyond half a period: the others keep their own λ, so
+                # that a sample's answer does not depend on the others in its batch
+                far = finite & (np.abs(lam) > period / 2)
+                near = np.where(far, np.mod(lam + period / 2, period) - period / 2, lam)
+                turns = np.where(far, np.round((lam - near) / period), 0.0)
                 lam = near
         reach = {+1: lam[finite].max(initial=0.0), -1: -lam[finite].min(initial=0.0)}
         _march(mech, solvers, gen, list(lanes.values()), reach)
@@ -92,8 +142,14 @@ def continuation_guesses(mech: Mechanism, solvers, values: np.ndarray,
             g[..., 2] += turns[:, None] * advance[:, 2]
         return gen.split(g)
     # several drivers: march through the samples in their order
-    lane = _Lane(gen, np.vstack([design[None], values]) * gen.weights)
+    if start is None:
+        lane = _Lane(gen, np.vstack([design[None] * gen.weights, values * gen.weights]))
+    else:
+        lane = _Lane(gen, np.vstack([start.vertex[None], values * gen.weights]), start=start.lam)
+        lane.resume(mech, solvers, gen, start.tail)
     _march(mech, solvers, gen, [lane], {lane.sense: lane.knots[-1]})
+    if ends is not None:
+        ends["tail"] = lane.tail()
     return gen.split(lane.at_vertices()[1:])
 
 
@@ -186,12 +242,7 @@ class _Generic:
         # a turn of an angle, a lap of a closed profile for a contact parameter
         self.laps = np.array([_laps(mech, ln) for s in self.solvers for ln in s.group.links]
                              ).reshape(-1, 3)
-        # λ, the distance marched in input space, counts a slide of 1 % of L like a turn of
-        # CONTINUATION_STEP, so that one largest step serves revolute and prismatic inputs
-        # (and mixtures of them, with several drivers)
-        self.weights = np.array([CONTINUATION_STEP / (0.01 * self.L)
-                                 if mech.joint(d.joint).kind == "prismatic" else 1.0
-                                 for d in mech.drivers])
+        self.weights = input_weights(mech)
 
     def norm(self, q: np.ndarray) -> np.ndarray:
         """Max-norm of pose arrays (..., G, 3) in lengths: angles times L."""
@@ -203,14 +254,14 @@ class _Generic:
         return {s.group: g[:, self.slices[s.group]] for s in self.solvers}
 
 
-class _Lane:
-    """One march along a polyline of inputs from the design position (its first vertex),
-    parametrised by the distance λ travelled in input space. Keeps every accepted point: λ,
-    the generic poses and their tangents d/dλ."""
+class InputPath:
+    """A polyline of inputs (in the march's metric: `_Generic.weights`) parametrised by the
+    distance λ travelled along it from its first vertex, whose λ is `start` (a path continued
+    from an earlier solve keeps counting: its knots are the same numbers as those of the path
+    solved in one piece). Repeated vertices count once; vertices after a non-finite one are not
+    on it (nothing can be followed past that)."""
 
-    def __init__(self, gen: _Generic, vertices: np.ndarray, *, sense: int = 1,
-                 ray: bool = False) -> None:
-        # samples after a non-finite one are not marched to (the march cannot pass it)
+    def __init__(self, vertices: np.ndarray, *, ray: bool = False, start: float = 0.0) -> None:
         bad = np.flatnonzero(~np.isfinite(vertices).all(axis=1))
         n = vertices.shape[0] if bad.size == 0 else int(bad[0])
         self.n_given = vertices.shape[0]
@@ -221,23 +272,14 @@ class _Lane:
         d = np.diff(v, axis=0)
         length = np.sqrt((d * d).sum(axis=1))
         self.vertices = v
-        self.size = gen.size  # generic links: the poses' rows, also when nothing was marched
         # a lone vertex: no direction to go, the tangent is taken along the first input
         self.dirs = d / length[:, None] if d.shape[0] else np.eye(1, v.shape[1])
         if ray:  # one driver: a ray from the design value, marched as far as asked
             length = np.full(1, np.inf)
-        self.knots = np.concatenate([[0.0], np.cumsum(length)])
-        self.sense = sense
-        self.h = CONTINUATION_STEP
-        self.halved = False
-        self.stopped = n == 0
-        self.started = False
-        self.lam: list[float] = []
-        self.P: list[np.ndarray] = []
-        self.T: list[np.ndarray] = []
-        self._arrays = None
+        # summed one after the other (as np.cumsum does), from the start's λ
+        self.knots = np.cumsum(np.concatenate([[start], length]))
+        self.empty = n == 0
 
-    # ------------------------------------------------------------------ stepping
     def point(self, lam: float) -> np.ndarray:
         """Input at λ (a vertex exactly, at its knot)."""
         j = np.searchsorted(self.knots, lam)
@@ -246,12 +288,85 @@ class _Lane:
         seg = j - 1
         return self.vertices[seg] + (lam - self.knots[seg]) * self.dirs[seg]
 
+    def points(self, lam: np.ndarray, seg: np.ndarray) -> np.ndarray:
+        """Inputs (M, drivers) at λ on the given segments (vertices exactly at their knots)."""
+        at = self.knots[seg] == lam
+        out = self.vertices[seg] + (lam - self.knots[seg])[:, None] * self.dirs[seg]
+        out[at] = self.vertices[seg[at]]
+        return out
+
     def direction(self, lam: float, arriving: bool) -> np.ndarray:
         """Unit direction (in λ) of the segment a step arrives at λ along, or leaves λ along
         (they differ at a sample of several drivers)."""
         seg = np.searchsorted(self.knots, lam, side="left" if arriving else "right") - 1
         return self.dirs[min(max(seg, 0), len(self.dirs) - 1)]
 
+    def grid(self, spacing: float) -> tuple[np.ndarray, np.ndarray]:
+        """λ of points along the path at most `spacing` apart, every vertex among them, and the
+        segment of each (the last vertex: the last segment). The same numbers for a segment
+        whichever path it is part of."""
+        nseg = len(self.vertices) - 1
+        if nseg <= 0:
+            return self.knots[:1].copy(), np.zeros(1, dtype=int)
+        length = np.diff(self.knots)
+        # a segment longer than a few turns is scanned more coarsely: bounded cost
+        n = np.clip(np.ceil(length / spacing), 1, 8 * SCAN_PER_SEGMENT).astype(int)
+        seg = np.repeat(np.arange(nseg), n)
+        k = np.arange(seg.size) - np.repeat(np.cumsum(n) - n, n)
+        lam = self.knots[seg] + length[seg] * (k / n[seg])
+        return np.append(lam, self.knots[-1]), np.append(seg, nseg - 1)
+
+
+class _Lane(InputPath):
+    """One march along a polyline of inputs from the design position (its first vertex),
+    parametrised by the distance λ travelled in input space. Keeps every accepted point: λ,
+    the generic poses and their tangents d/dλ."""
+
+    def __init__(self, gen: _Generic, vertices: np.ndarray, *, sense: int = 1,
+                 ray: bool = False, start: float = 0.0) -> None:
+        super().__init__(vertices, ray=ray, start=start)
+        self.size = gen.size  # generic links: the poses' rows, also when nothing was marched
+        self.sense = sense
+        self.h = CONTINUATION_STEP
+        self.halved = False
+        self.stopped = self.empty
+        self.started = False
+        self.lam: list[float] = []
+        self.P: list[np.ndarray] = []
+        self.T: list[np.ndarray] = []
+        self._arrays = None
+        self.last = None  # (arriving direction, {group: Jacobian}) of the last accepted point
+
+    # ------------------------------------------------------------------ going on
+    def tail(self) -> LaneTail | None:
+        """What a later march needs to go on from this one's last point (None: it stopped
+        before its last vertex, or never started)."""
+        if self.stopped or not self.lam or self.lam[-1] != self.knots[-1] or self.last is None:
+            return None
+        return LaneTail(tuple(self.lam[-2:]), tuple(self.P[-2:]), tuple(self.T[-2:]),
+                        self.last[0], self.last[1], self.h, self.halved)
+
+    def resume(self, mech: Mechanism, solvers, gen: _Generic, tail: LaneTail | None) -> None:
+        """Go on from an earlier march's `tail` at this path's first vertex: its points and
+        step control taken over, the tangent at the last point recomputed along the direction
+        this path leaves it in, as the march in one piece computes it (`_attempt` with the
+        poses and Jacobians it had there)."""
+        if tail is None:
+            self.stopped = True  # the earlier march did not get there
+            return
+        self.started = True
+        self.lam, self.P, self.T = list(tail.lam), list(tail.P), list(tail.T)
+        self.h, self.halved = tail.h, tail.halved
+        lam = np.array([self.knots[0]])
+        leave = self.direction(self.knots[0], False)[None] / gen.weights
+        schedule = gen.schedule or {}
+        ok, _, _, t_leave, _ = _attempt(mech, solvers, gen, schedule, self.vertices[:1] / gen.weights,
+                                        lam, tail.arrive[None], leave, None,
+                                        fixed=(self.P[-1][None], tail.jacobians))
+        self.T[-1] = t_leave[0].copy()
+        self.last = (tail.arrive, tail.jacobians)
+
+    # ------------------------------------------------------------------ stepping
     def proposal(self, gen: _Generic) -> tuple[float, float, np.ndarray]:
         """(step, λ, predicted poses) of the next attempt."""
         if not self.started:
@@ -370,8 +485,13 @@ def _march(mech: Mechanism, solvers: tuple, gen: _Generic, lanes: list[_Lane], r
     unit input rate along the lane: the tangent for the next prediction."""
     from .branches import branch_schedule  # imports the solver, which imports this module
 
-    n_links = len(row_index(mech))  # links and contact rows
-    budget = {id(ln): MAX_ATTEMPTS for ln in lanes}
+    # (a path through many samples: a few more attempts for each)
+    allowed = {id(ln): MAX_ATTEMPTS + 4 * max(0, len(ln.knots) - 2) for ln in lanes}
+    budget = dict(allowed)
+    # λ reached after each attempt, per lane: a lane that crawls at a pace that cannot reach its
+    # target within the budget is stopped early (each attempt of a higher pair costs
+    # milliseconds, so the budget alone would take seconds to run out)
+    trail: dict = {id(ln): [] for ln in lanes}
     # closed-form groups take the assembly the real motion takes across change points, as in
     # `solve` (a parallelogram under an over-closing crank stays a parallelogram)
     schedule = gen.schedule
@@ -383,46 +503,80 @@ def _march(mech: Mechanism, solvers: tuple, gen: _Generic, lanes: list[_Lane], r
             return
         for ln in todo:
             budget[id(ln)] -= 1
-            if budget[id(ln)] < 0:
+            if budget[id(ln)] < 0 or _crawls(trail[id(ln)], budget[id(ln)], reach[ln.sense]):
                 at = ln.point(ln.lam[-1]) / gen.weights if ln.lam else ln.vertices[0] / gen.weights
+                took = "took" if budget[id(ln)] < 0 else "would take more than"
                 raise SolveError(
-                    f"mechanism '{mech.name}': following the design's assembly branch took "
-                    f"{MAX_ATTEMPTS} continuation steps and got only to input "
+                    f"mechanism '{mech.name}': following the design's assembly branch {took} "
+                    f"{allowed[id(ln)]} continuation steps and got only to input "
                     f"{', '.join(f'{v:.6g}' for v in at)} (the poses change too fast to follow "
                     "there: nearly parallel guides, or a group close to a singular position all "
                     "along); ask for inputs nearer the design position or redraw the mechanism")
         props = [ln.proposal(gen) for ln in todo]
+        lams = np.array([p[1] for p in props])
         u = np.array([ln.point(p[1]) for ln, p in zip(todo, props)]) / gen.weights
         # input rates per unit λ: the tangents dq/dλ come out as velocities
         arrive = np.array([ln.direction(p[1], True) for ln, p in zip(todo, props)]) / gen.weights
         leave = np.array([ln.direction(p[1], False) for ln, p in zip(todo, props)]) / gen.weights
         pred = np.array([p[2] for p in props])
-        N = len(todo)
-        # second order, so that the driver and RRR dyads take their closed-form velocities;
-        # the sample axis last in memory, as `solve` lays out Q for the compiled kernels
-        state = State(mech, np.zeros((3, n_links, 3, N)).transpose(0, 3, 1, 2),
-                      input_coefficients(mech, u, arrive, None, None, 2),
-                      branches={g: sch.signs(u[:, 0]) for g, sch in schedule.items()})
-        ok = np.ones(N, dtype=bool)
-        jacobians = {}
-        with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
-            for s in solvers:
-                if s.kind == "generic":
-                    conv, jacobians[s.group] = _correct(state, s, pred[:, gen.slices[s.group]])
-                    ok &= conv
-                else:
-                    ok &= s.positions(state)
-            t_arrive = t_leave = np.full((N, gen.size, 3), np.nan)
-            if ok.any():  # (all failed: nothing to settle with them)
-                t_arrive = t_leave = _tangents(state, solvers, gen, jacobians, ok)
-                if not np.allclose(arrive, leave, rtol=1e-12, atol=0.0):  # a sample turns
-                    for i, d in enumerate(mech.drivers):
-                        state.inputs[d.joint][1] = leave[:, i]
-                    t_leave = _tangents(state, solvers, gen, jacobians, ok)
-        q = state.Q[0][:, gen.links]
+        ok, q, t_arrive, t_leave, jacobians = _attempt(mech, solvers, gen, schedule, u, lams,
+                                                       arrive, leave, pred)
         for k, (ln, (h, lam, p)) in enumerate(zip(todo, props)):
+            n = len(ln.lam)
             ln.settle(gen, h, lam, p, bool(ok[k]), q[k].copy(), t_arrive[k].copy(),
                       t_leave[k].copy())
+            if len(ln.lam) > n:  # accepted: what a later solve needs to go on from here
+                ln.last = (arrive[k], {g: J[k:k + 1].copy() for g, J in jacobians.items()})
+            trail[id(ln)].append(ln.lam[-1] if ln.lam else 0.0)
+
+
+def _attempt(mech: Mechanism, solvers, gen: _Generic, schedule: dict, u: np.ndarray,
+             lams: np.ndarray, arrive: np.ndarray, leave: np.ndarray, pred: np.ndarray,
+             fixed: tuple | None = None) -> tuple:
+    """One round of the march: all groups solved in order at the inputs u (N, drivers) at λ
+    `lams` — the generic ones by `_correct` from `pred`, or, with `fixed` = (poses, {group:
+    Jacobian}), set to known poses — then the tangents at unit input rate along the direction
+    arriving and leaving. (ok, generic poses, tangents arriving, leaving, Jacobians)."""
+    N = u.shape[0]
+    n_links = len(row_index(mech))  # links and contact rows
+    # second order, so that the driver and RRR dyads take their closed-form velocities;
+    # the sample axis last in memory, as `solve` lays out Q for the compiled kernels
+    state = State(mech, np.zeros((3, n_links, 3, N)).transpose(0, 3, 1, 2),
+                  input_coefficients(mech, u, arrive, None, None, 2),
+                  branches={g: sch.at(u, lams) for g, sch in schedule.items()})
+    ok = np.ones(N, dtype=bool)
+    jacobians = {}
+    with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+        for s in solvers:
+            if s.kind != "generic":
+                ok &= s.positions(state)
+            elif fixed is None:
+                conv, jacobians[s.group] = _correct(state, s, pred[:, gen.slices[s.group]])
+                ok &= conv
+            else:  # as `_correct` leaves a converged sample
+                idx = [state.li(ln) for ln in s.group.links]
+                state.Q[0][:, idx, :] = fixed[0][:, gen.slices[s.group]]
+                state.forget_trig(idx)
+                jacobians[s.group] = fixed[1][s.group]
+        t_arrive = t_leave = np.full((N, gen.size, 3), np.nan)
+        if ok.any():  # (all failed: nothing to settle with them)
+            t_arrive = t_leave = _tangents(state, solvers, gen, jacobians, ok)
+            if not np.allclose(arrive, leave, rtol=1e-12, atol=0.0):  # a sample turns
+                for i, d in enumerate(mech.drivers):
+                    state.inputs[d.joint][1] = leave[:, i]
+                t_leave = _tangents(state, solvers, gen, jacobians, ok)
+    return ok, state.Q[0][:, gen.links], t_arrive, t_leave, jacobians
+
+
+def _crawls(trail: list, left: int, target: float) -> bool:
+    """Whether a lane that has advanced along `trail` (λ after each attempt) would still be
+    short of `target` after its `left` attempts at the pace of its last `CRAWL_WINDOW` ones.
+    A narrow passage slows a lane only briefly (the step grows again, doubling every other
+    attempt, once it is through), so a window of that length measures a pace that lasts."""
+    if len(trail) < CRAWL_WINDOW:
+        return False
+    pace = (trail[-1] - trail[-CRAWL_WINDOW]) / CRAWL_WINDOW
+    return trail[-1] + pace * left < target
 
 
 def _tangents(state: State, solvers, gen: _Generic, jacobians: dict, ok: np.ndarray) -> np.ndarray:

@@ -15,9 +15,9 @@ import numpy as np
 from ..errors import InputError, StructureError
 from ..model import ConstantSpeed, Mechanism
 from ..topology import solution_order
-from .branches import branch_schedule
+from .branches import branch_schedule, path_schedule
 from .contact import interference, rows
-from .continuation import continuation_guesses
+from .continuation import PathEnd, continuation_guesses
 from .groups import GroupSolver, State, input_coefficients
 from .precision import POLISH_LIMIT, TOLERANCE, ErrorBudget, polish, polishable
 from .solution import Solution, Status
@@ -76,7 +76,7 @@ def _as_2d(a, n_drivers: int, name: str, rows: int | None = None) -> np.ndarray 
 
 
 def solve(mech: Mechanism, inputs=None, *, times=None, velocities=None, accelerations=None,
-          jerks=None, snaps=None, order: int = 2) -> Solution:
+          jerks=None, snaps=None, order: int = 2, resume: PathEnd | None = None) -> Solution:
     """Solve `mech` at the given input values (shape (N,) for one driver, (N, drivers) else) or
     at `times` (each driver's law evaluated at those times).
 
@@ -86,6 +86,13 @@ def solve(mech: Mechanism, inputs=None, *, times=None, velocities=None, accelera
     `order` = 3 also computes jerks, `order` = 4 the fourth derivatives (snaps) of the link
     poses, which curvature theory of higher order (Burmester points) needs; `jerks` and `snaps`
     give the inputs' third and fourth derivatives (default 0).
+
+    Several drivers: the inputs are followed as a path, from the design input through the
+    samples in their order — the Newton-solved groups by continuation, the two-assembly groups
+    across the change points the path touches (`branches.path_schedule`). The solution's
+    `path_end` is where it left off: `resume=` that in the next solve goes on from there
+    instead of from the design input, so that samples solved in chunks are solved as in one
+    piece. (One driver: every sample is solved on its own; `path_end` is None.)
     """
     if order not in (1, 2, 3, 4):
         raise InputError("order must be 1 (velocities), 2 (accelerations), 3 (jerks) or 4 "
@@ -115,8 +122,23 @@ def solve(mech: Mechanism, inputs=None, *, times=None, velocities=None, accelera
     Q = _pose_array(order, N, n_rows, frame)
     inputs = input_coefficients(mech, values, velocities, accelerations, jerks, order, snaps)
     generic = any(s.kind == "generic" for s in solvers)
-    branches = {g: sch.signs(values[:, 0]) for g, sch in branch_schedule(mech).items()}
-    guesses = continuation_guesses(mech, solvers, values) if generic else {}
+    path_end = None
+    if nd == 1:
+        branches = {g: sch.signs(values[:, 0]) for g, sch in branch_schedule(mech).items()}
+        guesses = continuation_guesses(mech, solvers, values) if generic else {}
+    else:  # a path through the samples
+        schedules, lam, path = path_schedule(mech, solvers, values, resume)
+        branches = {g: sch.signs(lam) for g, sch in schedules.items()}
+        ends: dict = {}
+        guesses = continuation_guesses(mech, solvers, values, schedules, start=resume,
+                                       ends=ends) if generic else {}
+        if np.isfinite(values).all() and len(path.vertices) > 0:
+            end = path.knots[len(path.vertices) - 1]
+            prev = len(path.vertices) >= 2
+            path_end = PathEnd(
+                path.vertices[-1], float(end), path.vertices[-2] if prev else None,
+                float(path.knots[len(path.vertices) - 2]) if prev else float(end),
+                schedules, ends.get("tail") if generic else None)
     assembled = np.ones(N, dtype=bool)
     condition = np.ones(N)
     errors = np.zeros(N)
@@ -170,5 +192,7 @@ def solve(mech: Mechanism, inputs=None, *, times=None, velocities=None, accelera
                       Status.UNREACHABLE).astype(np.int8)
     condition = np.where(assembled, condition, np.nan)
     errors = np.where(assembled, errors, np.nan)
-    return Solution(mech, values, t, Q, status, condition, trig=(T[:, 0].T, T[:, 1].T),
-                    errors=errors)
+    sol = Solution(mech, values, t, Q, status, condition, trig=(T[:, 0].T, T[:, 1].T),
+                   errors=errors)
+    sol.path_end = path_end
+    return sol

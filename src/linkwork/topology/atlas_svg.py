@@ -25,6 +25,9 @@ from xml.sax.saxutils import escape, quoteattr
 import networkx as nx
 import numpy as np
 
+from ..errors import OutputError
+from ..outputs import write_output_file
+
 if TYPE_CHECKING:
     from linkwork.topology.atlas import Chain
 
@@ -181,12 +184,20 @@ def svg_filename(chain: Chain) -> str:
 
 
 def write_atlas_svg(chains: Iterable[Chain], directory: str | Path, *, progress: bool = False) -> list[Path]:
-    """Write one SVG sketch per chain into ``directory`` (created if missing).
+    """Write one SVG sketch per chain into ``directory`` (created if missing), each file whole
+    or not at all (`outputs.write_output_file`: a full disk or a Ctrl-C leaves the previous
+    sketch, no partial one); a directory that cannot be made or written is one `OutputError`.
 
     Returns the written paths in the order of ``chains``.
     """
     target = Path(directory)
-    target.mkdir(parents=True, exist_ok=True)
+    if target.exists() and not target.is_dir():
+        raise OutputError(f"cannot write SVG files to '{directory}': it is not a directory")
+    try:
+        target.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise OutputError(f"cannot write SVG files to '{directory}': "
+                          f"{exc.strerror or exc}") from None
     chains = list(chains)
     written: list[Path] = []
     if progress and len(chains) > 50:
@@ -200,6 +211,6 @@ def write_atlas_svg(chains: Iterable[Chain], directory: str | Path, *, progress:
         iterable = chains
     for chain in iterable:
         path = target / svg_filename(chain)
-        path.write_text(chain_svg(chain), encoding="utf-8")
+        write_output_file(path, chain_svg(chain))
         written.append(path)
     return written

@@ -1,0 +1,435 @@
+"""Rosenauer's direct velocity construction carried out on the drawing, for the groups the
+dyad constructions of :mod:`._plan` do not handle (triads, the Heusinger six-link group, chains
+without four-bar loops, the Römer mechanism's gears and coupler).
+
+Owns :func:`draw_script`: the steps of a :class:`linkwork.topology.constructibility.VelocityScript`
+(the auxiliary points Q, R, … where two link lines meet, each image where two plan lines meet,
+points on a line of two images divided in the drawing's ratio, images copied along a sliding
+pair) performed at every sample with the drafting table of a :class:`._plan.VelocityConstruction`,
+in either of its modes: the polar plan (plan lines ⟂ the mechanism lines) or rotated velocities
+(tips on lines ∥ the mechanism lines, Rosenauer's own form). Each image is handed back to the
+velocity construction, which checks every point, auxiliary points included, against the engine.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..errors import InputError
+from ..model import Gear, Prismatic, Slot
+from ..topology.constructibility import Chain, MechLine, VelocityScript, plan_velocities
+from ._common import dot, perp
+from .construction import Role
+
+_SOURCE = "Rosenauer 1937, papers 1, 2, 7 (auxiliary points, projection theorem across a joint)"
+
+
+class ScriptDrawer:
+    """Performs a velocity script on the images of ``vc`` (a `VelocityConstruction`)."""
+
+    prefix = "v"
+
+    def __init__(self, vc, script: VelocityScript, solved: set[str]) -> None:
+        self.vc, self.s, self.solved = vc, script, solved
+        self.mech = vc.mech
+        self.pos = dict(vc.pos)
+        self.chain = Chain.from_mechanism(vc.mech)
+        self.aux = {a.name: a for a in script.aux}
+        for pair, g1, g2, t, c1, c2 in self.chain.meshes:
+            self.pos[t] = self._pitch_point(self.mech.joint(pair), c1, c2)
+        for pair, _, _, k in self.chain.contacts + self.chain.rolls:
+            self.pos[k] = np.asarray(vc.sol.joint(pair)["point"], float)
+
+    # ---------------------------------------------------------------- drawing geometry
+    def _pitch_point(self, gear: Gear, c1: str, c2: str) -> np.ndarray:
+        r1, r2 = gear.radii
+        k = r1 / (r1 + r2) if gear.gear_kind == "external" else r1 / (r1 - r2)
+        return self.pos[c1] + k * (self.pos[c2] - self.pos[c1])
+
+    def where(self, name: str) -> np.ndarray:
+        if name not in self.pos:
+            a = self.aux[name]
+            (p, u), (q, v) = (self.line(ln) for ln in a.lines)
+            from ._plan import _meet
+            x, par = _meet((p, u), (q, v))
+            self.vc.b.degenerate(par & ~self.vc.b.bad, f"the lines {a.lines[0].text()} and "
+                                 f"{a.lines[1].text()} are parallel: the auxiliary point {name} lies at infinity")
+            self.pos[name] = x
+        return self.pos[name]
+
+    def line(self, line: MechLine) -> tuple[np.ndarray, np.ndarray]:
+        """(point, direction) of a mechanism line at every sample."""
+        if line.kind == "join":
+            p, q = (self.where(n) for n in line.points)
+            return p, q - p
+        if line.kind == "normal":
+            j = self.mech.joint(line.pair)
+            if not isinstance(j, (Prismatic, Slot)):
+                raise InputError(f"pair {line.pair} has no guide")
+            return self.where(line.points[0]), perp(self.vc._axis(j.links[0], j.axis))
+        if line.kind == "contact":
+            return self.where(line.points[0]), np.asarray(self.vc.sol.joint(line.pair)["normal"], float)
+        raise InputError("a given velocity direction is not part of a mechanism's data")
+
+    # ---------------------------------------------------------------- images
+    def img(self, key: tuple[str, str]) -> np.ndarray:
+        keys = (key,) + tuple(self.s.shared.get(key, ()))
+        for k in keys:
+            if k in self.vc.images:
+                return self.vc.images[k]
+        # a point of a link solved before (or of the frame): its image from the link's own
+        for ln, p in keys:
+            if ln in self.solved:
+                return self.vc.image(ln, p, self.where(p), label=self.s.labels.get(key))
+        raise InputError(f"the direct construction reached the image of {key[1]} ({key[0]}) "
+                         "before it was drawn")
+
+    def keep(self, ln: str, p: str, image: np.ndarray) -> None:
+        for key in ((ln, p),) + tuple(self.s.shared.get((ln, p), ())):
+            if key not in self.vc.images:
+                self.vc.set_known(key[0], self.where(key[1]), image, key[1])
+
+    def plan_line(self, pl, key: str) -> tuple[np.ndarray, np.ndarray]:
+        p, d = self.line(pl.line)
+        through = self.img(pl.anchor)
+        direction = self.vc.M(perp(d))
+        self.vc._line(key, through, direction)
+        return through, direction
+
+    def partner_image(self, partner: str, point: str) -> np.ndarray:
+        return self.vc.image(partner, f"{point}@{partner}", self.where(point), draw=False)
+
+    def show(self, key: str, st, image: np.ndarray, lab: str, lines=()) -> None:
+        self.vc._point(key, image, lab, lines=lines)
+
+    def text(self, st) -> str:
+        return st.text
+
+    def _one(self, st) -> None:
+        """Draw one step of the script."""
+        from ._plan import _meet
+        vc = self.vc
+        key = f"{self.prefix}.direct.{st.link}.{st.point}"
+        lab = self.s.labels.get((st.link, st.point), st.point)
+        # images of earlier links that the step starts from are drawn first, in their own steps
+        for pl in st.lines:
+            self.img(pl.anchor)
+        for n in st.base:
+            self.img((st.link, n))
+        vc.b.step(self.text(st))
+        if st.aux is not None and not self.prefix.startswith("a"):  # drawn once, with the velocities
+            Q = self.where(st.point)
+            for i, ln in enumerate(st.aux.lines):
+                p, d = self.line(ln)
+                vc.b.segment(f"{key}.aux{i}", _pt(p), _pt(Q), kind="line")
+            vc.b.point(f"{key}.pos", _pt(Q), label=st.point)
+        if st.kind == "meet":
+            (p1, d1), (p2, d2) = (self.plan_line(pl, f"{key}.{i}") for i, pl in enumerate(st.lines))
+            image, par = _meet((p1, d1), (p2, d2))
+            vc.b.degenerate(par & ~vc.b.bad, f"step '{st.text}': the two lines are parallel here, "
+                            "the image is undetermined")
+            self.show(key, st, image, lab, (f"{key}.0", f"{key}.1"))
+        elif st.kind == "divide":
+            X, Y = (self.where(n) for n in st.base)
+            x, y = (self.img((st.link, n)) for n in st.base)
+            P = self.where(st.point)
+            t = dot(P - X, Y - X) / dot(Y - X, Y - X)
+            image = x + t[:, None] * (y - x)
+            self.show(key, st, image, lab)
+        elif st.kind == "copy":
+            (X,) = st.base
+            x = self.img((st.link, X))
+            image = x + (self.partner_image(st.partner, st.point) - self.partner_image(st.partner, X))
+            self.show(key, st, image, lab)
+        else:
+            raise InputError(f"the direct construction cannot perform a '{st.kind}' step here")
+        self.keep(st.link, st.point, image)
+
+    def run(self, links: set[str]) -> None:
+        vc = self.vc
+        for k, st in enumerate(self.s.steps):
+            if st.link not in links:
+                continue
+            self._one(st)
+        # the group's links take their hinges' images from the links solved before
+        for ln in links:
+            for p in self.chain.links[ln]:
+                if (ln, p) not in vc.images:
+                    try:
+                        self.keep(ln, p, self.img((ln, p)))
+                    except InputError:
+                        pass
+            if len(vc.known.get(ln, [])) == 1:
+                self._second_image(ln)
+
+    def _second_image(self, ln: str) -> None:
+        """A link known by one point that turns with a partner across a sliding pair (a block,
+        a translating follower): a second image for reading off ω, copied from the partner."""
+        vc = self.vc
+        (X, x, name), = vc.known[ln]
+        for pair, G, S, _ in self.chain.slides:
+            partner = G if S == ln else S if G == ln else None
+            if partner is None or not (partner == self.mech.frame or len(vc.known.get(partner, [])) >= 2):
+                continue
+            X2 = X + np.array([self.mech.length_scale, 0.0])
+            gx = vc.image(partner, f"{name}@{partner}", X, draw=False)
+            g2 = vc.image(partner, f"{name}+@{partner}", X2, draw=False)
+            vc.set_known(ln, X2, x + (g2 - gx), name + "+")
+            return
+
+
+def _pt(xy):
+    from .construction import pt
+    return pt(xy)
+
+
+#: the pairs the direct construction knows (a gear pair: external or internal wheels)
+KNOWN_PAIRS = ("revolute", "prismatic", "slot", "gear", "cam", "rolling")
+
+
+class TrialDrawer(ScriptDrawer):
+    """False position (*ähnliche Punktreihen*): the script of the whole chain drawn from a trial
+    rate of another crank (Rosenauer 1937 paper 7, remark on a binary driver), then every image
+    moved along its ray from o in the ratio of the given driver's true to trial velocity. The
+    velocities are proportional to the input rate, so the rows of trial images pass through o
+    and one trial fixes the ratio."""
+
+    prefix = "v.trial"
+
+    def __init__(self, vc, script: VelocityScript, solved: set[str]) -> None:
+        super().__init__(vc, script, solved)
+        self.T: dict[tuple[str, str], np.ndarray] = {}
+
+    def img(self, key: tuple[str, str]) -> np.ndarray:
+        for k in (key,) + tuple(self.s.shared.get(key, ())):
+            if k in self.T:
+                return self.T[k]
+            if k[0] == self.mech.frame:
+                return self.vc.base(self.where(k[1]))
+        raise InputError(f"the trial construction reached {key[1]} ({key[0]}) before it was drawn")
+
+    def keep(self, ln: str, p: str, image: np.ndarray) -> None:
+        for key in ((ln, p),) + tuple(self.s.shared.get((ln, p), ())):
+            self.T.setdefault(key, image)
+
+    def at(self, link: str, X: np.ndarray) -> np.ndarray:
+        """The trial image of the point of ``link`` at X (the link's image is similar to it)."""
+        if link == self.mech.frame:
+            return self.vc.base(X)
+        (X1, x1), (X2, x2) = [(self.where(p), v) for (ln, p), v in self.T.items() if ln == link][:2]
+        z = lambda a: a[:, 0] + 1j * a[:, 1]  # noqa: E731 (a similarity is complex-affine)
+        w = z(x1) + (z(x2) - z(x1)) / (z(X2) - z(X1)) * (z(X) - z(X1))
+        return np.stack([w.real, w.imag], axis=-1)
+
+    def partner_image(self, partner: str, point: str) -> np.ndarray:
+        return self.at(partner, self.where(point))
+
+    def show(self, key: str, st, image: np.ndarray, lab: str, lines=()) -> None:
+        self.vc.b.point(key, _pt(image), label=lab + "*", space=self.vc.space)
+        for k in lines:
+            self.vc.b.extend(k, _pt(image))
+
+    def run(self, links: set[str]) -> None:
+        vc = self.vc
+        t_link, t_pivot, t_ref = self.s.trial
+        d_link, d_pivot, d_ref = self.s.scale_by
+        true_ref = vc.image(d_link, d_ref)
+        # the trial rate: the trial crank's pin as fast as the given driver's (a readable drawing)
+        O, R = self.where(t_pivot), self.where(t_ref)
+        speed = np.linalg.norm(vc.velocity(self.where(d_ref), true_ref), axis=-1)
+        w = speed / np.linalg.norm(R - O, axis=-1)
+        for st in self.s.steps:
+            if st.kind == "driver":
+                vc.b.step(st.text)
+                image = vc.base(R) + vc.kv * vc.M(w[:, None] * perp(R - O))
+                self.keep(t_link, t_pivot, vc.base(O))
+                self.keep(t_link, t_ref, image)
+                self.show(f"{self.prefix}.{t_link}.{t_ref}", st, image, self.s.labels.get((t_link, t_ref), t_ref))
+            elif st.kind == "scale":
+                self._scale(st, links, true_ref, self.img((d_link, d_ref)))
+            else:
+                self._one(st)
+
+    def _scale(self, st, links: set[str], true_ref: np.ndarray, trial_ref: np.ndarray) -> None:
+        vc = self.vc
+        vc.b.step(st.text)
+        base = vc.base(self.where(st.point))
+        k = dot(true_ref - base, trial_ref - base) / dot(trial_ref - base, trial_ref - base)
+        keys = [(ln, p) for ln in links for p in self.chain.links[ln]] + list(self.T)
+        drawn: set[str] = set()
+        for ln, p in dict.fromkeys(keys):
+            if ln not in links or (ln, p) in vc.images:
+                continue
+            t = self.img((ln, p))
+            b = vc.base(self.where(p))
+            image = b + k[:, None] * (t - b)
+            lab = self.s.labels.get((ln, p), p)
+            if lab not in drawn and lab != "o":  # a hinge's image once; the frame's stay at o
+                drawn.add(lab)
+                key = f"{self.prefix}.scaled.{ln}.{p}"
+                vc._line(key + ".ray", b, t - b)
+                vc._point(key, image, lab, lines=(key + ".ray",))
+            vc.set_known(ln, self.where(p), image, p)
+
+
+def draw_group(vc, links: tuple[str, ...], joints: tuple[str, ...], solved: set[str],
+               drivers: tuple[str, ...] = ()) -> VelocityScript:
+    """Construct the images of the group ``links`` on the links ``solved`` before it by
+    Rosenauer's rule; raise `InputError` where it does not reach them (similar point rows
+    would be needed) or the group has pairs the rule does not know."""
+    chain = Chain.from_mechanism(vc.mech)
+    # the solver's own (virtual) links of a cam group are no links of the chain
+    links = tuple(ln for ln in links if ln in chain.links)
+    solved = {ln for ln in solved if ln in chain.links}
+    sub = chain.restricted(solved | set(links), solved)
+    script = plan_velocities(sub)
+    missing = [ln for ln in links if ln in script.unreached]
+    if missing and not script.unsupported:
+        # false position: the whole chain from a trial driver, scaled to the given one
+        full = plan_velocities(chain)
+        if full.trial is not None and full.complete:
+            TrialDrawer(vc, full, solved).run(set(links))
+            return full
+    bad = [f"{j.name} ({j.kind})" for j in (vc.mech.joint(n) for n in joints)
+           if j.kind not in KNOWN_PAIRS or getattr(j, "gear_kind", "external") == "rack"]
+    bad += [f"driver {d} (inside the group, between moving links)" for d in drivers]
+    if missing or bad:
+        why = (f"not handled: {', '.join(bad)}" if bad else
+               f"{script.verdict()}")
+        raise InputError(f"the direct velocity construction of the group {', '.join(links)}: {why}")
+    ScriptDrawer(vc, script, solved).run(set(links))
+    return script
+
+
+class AccelerationDrawer(ScriptDrawer):
+    """The same script performed on accelerations: Rosenauer's plan of relative normal
+    accelerations (1937, paper 4; digest 000 §2.5).
+
+    For every link L and point X the construction works with the end E_L(X) = x_n + a(X) of
+    the acceleration laid off at the point x_n = ω_L²·(X − O) of the plan of relative normal
+    accelerations (O a fixed point of the frame; within a link x_n − y_n = ω²·XY, the relative
+    normal accelerations). Then E_L(Y) − E_L(X) = α_L·J(Y − X) ⟂ XY: the ends obey the velocity
+    plan's rule, and the velocity script carries over line by line. Where a line crosses a pair
+    into the next link the end is *transferred*: a hinge's acceleration is common but its plan
+    points in the two links differ by (ω₂² − ω₁²)·(J − O) (Rosenauer's several images of one
+    joint); a sliding pair adds the Coriolis acceleration 2ω × v_rel (its sliding acceleration
+    lies along the plan line); gears on fixed centres add the normal accelerations of their
+    pitch points. The acceleration read off is a(X) = E_L(X) − ω_L²·(X − O)."""
+
+    prefix = "a"
+
+    def __init__(self, ac, script: VelocityScript, solved: set[str]) -> None:
+        super().__init__(ac, script, solved)
+        self.ac, self.vcv = ac, ac.vc
+        self.E: dict[tuple[str, str], np.ndarray] = {}
+        frame_pts = self.chain.links[self.mech.frame]
+        self.O = self.where(frame_pts[0]) if frame_pts else np.zeros((ac.n, 2))
+
+    def w2(self, link: str) -> np.ndarray:
+        return (self.vcv.measured_omega(link) ** 2)[:, None]
+
+    def normal(self, link: str, P: np.ndarray) -> np.ndarray:
+        """The point of the plan of relative normal accelerations: ω²·(P − O)."""
+        return self.w2(link) * (P - self.O)
+
+    def _v(self, link: str, name: str) -> np.ndarray:
+        vc = self.vcv
+        X = self.where(name)
+        return vc.velocity(X, vc.image(link, f"{name}@{link}" if (link, name) not in vc.images else name,
+                                       X, draw=False))
+
+    def _pair_jump(self, L: str, T: str, x: str) -> np.ndarray:
+        """a_T − a_L at the crossing x (a hinge point or a pair's name), less what lies along a
+        guide (the sliding acceleration, along the plan line)."""
+        pairs = {e[0]: e for e in self.chain.slides + self.chain.slots}
+        if x in pairs:
+            pair, G, S, X = pairs[x]
+            v_rel = self._v(S, X) - self._v(G, X)
+            cor = 2 * self.vcv.measured_omega(G)[:, None] * perp(v_rel)
+            return cor if T == S else -cor
+        for pair, g1, g2, t, c1, c2 in self.chain.meshes:
+            if x == t and {L, T} == {g1, g2}:
+                gear = self.mech.joint(pair)
+                if gear.carrier != self.mech.frame:
+                    raise InputError(f"the acceleration construction takes the gear pair {pair} on "
+                                     "fixed centres only")
+                Pt = self.where(t)
+                a1_minus_a2 = -self.w2(g1) * (Pt - self.where(c1)) + self.w2(g2) * (Pt - self.where(c2))
+                return -a1_minus_a2 if T == g2 else a1_minus_a2
+        return np.zeros_like(self.O)
+
+    def transfer(self, L: str, T: str, x: str) -> np.ndarray:
+        """E_T − E_L at the crossing x."""
+        pairs = {e[0]: e for e in self.chain.slides + self.chain.slots}
+        P = self.where(pairs[x][3] if x in pairs else x)
+        return (self.w2(T) - self.w2(L)) * (P - self.O) + self._pair_jump(L, T, x)
+
+    def img(self, key: tuple[str, str]) -> np.ndarray:
+        if key in self.E:
+            return self.E[key]
+        keys = (key,) + tuple(self.s.shared.get(key, ()))
+        for k in keys[1:]:
+            if k in self.E:
+                return self.E[k] + self.transfer(k[0], key[0], key[1])
+        for ln, p in keys:
+            if ln in self.solved:
+                X = self.where(p)
+                a = self.ac.image(ln, p, X)
+                self.E[(ln, p)] = a + self.normal(ln, X)
+                return self.E[(ln, p)] + (self.transfer(ln, key[0], p) if ln != key[0] else 0.0)
+        raise InputError(f"the direct construction reached the acceleration of {key[1]} ({key[0]}) "
+                         "before it was drawn")
+
+    def keep(self, ln: str, p: str, image: np.ndarray) -> None:
+        self.E.setdefault((ln, p), image)
+        if (ln, p) not in self.ac.images:
+            self.ac.set_known(ln, self.where(p), image - self.normal(ln, self.where(p)), p)
+
+    def plan_line(self, pl, key: str) -> tuple[np.ndarray, np.ndarray]:
+        p, d = self.line(pl.line)
+        through = self.img(pl.anchor)
+        for L, T, x in pl.via:
+            through = through + self.transfer(L, T, x)
+        direction = perp(d)
+        self.ac._line(key, through, direction)
+        return through, direction
+
+    def partner_image(self, partner: str, point: str) -> np.ndarray:
+        X = self.where(point)
+        return self.ac.image(partner, f"{point}@{partner}", X, draw=False) + self.normal(partner, X)
+
+    def show(self, key: str, st, image: np.ndarray, lab: str, lines=()) -> None:
+        b, ac = self.ac.b, self.ac
+        P = self.where(st.point)
+        acc = image - self.normal(st.link, P)
+        b.point(key + ".end", _pt(image), label=None, space="acceleration")
+        for k in lines:
+            b.extend(k, _pt(image))
+        b.arrow(key + ".n", _pt(image), _pt(acc), kind="acceleration", space="acceleration")
+        b.point(key, _pt(acc), Role.RESULT, ac.lbl(st.point), space="acceleration")
+
+    def text(self, st) -> str:
+        return ("Accelerations, the same lines through the ends of the accelerations laid off at the "
+                "plan of relative normal accelerations (ends transferred across each pair): "
+                + st.text + f"; then take away \u03c9\u00b2\u00b7{st.point}O")
+
+
+def draw_group_acceleration(ac, links: tuple[str, ...], joints: tuple[str, ...], solved: set[str],
+                            drivers: tuple[str, ...] = ()) -> VelocityScript:
+    """The accelerations of the group ``links`` by the plan of relative normal accelerations,
+    along the same script as the velocities (`draw_group`)."""
+    chain = Chain.from_mechanism(ac.mech)
+    links = tuple(ln for ln in links if ln in chain.links)
+    solved = {ln for ln in solved if ln in chain.links}
+    cams = [c[0] for c in chain.contacts + chain.rolls if {c[1], c[2]} & set(links)]
+    if cams:
+        raise InputError(f"the acceleration plan of the group {', '.join(links)}: the contact "
+                         f"{', '.join(cams)} needs the curvature of its profiles (its equivalent "
+                         "linkage), which this construction does not draw")
+    script = plan_velocities(chain.restricted(solved | set(links), solved))
+    if not script.complete:
+        raise InputError(f"the acceleration plan of the group {', '.join(links)}: its velocity plan "
+                         "needs false position (similar point rows), and the acceleration plan of such "
+                         "a group is not drawn (its normal accelerations do not scale with one trial)")
+    AccelerationDrawer(ac, script, solved).run(set(links))
+    return script

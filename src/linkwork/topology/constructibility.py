@@ -1,0 +1,777 @@
+"""Constructibility of velocity plans: Wittenbauer's rule, Rosenauer's rule and the auxiliary
+points that make a direct (trial-free) ruler construction possible.
+
+Source: Rosenauer 1937, paper 2 (digest `000-rosenauer-papers-1937.md` §4), papers 1 and 7
+(§3, §9). The polar velocity plan is drawn with two rules only:
+
+* two points X, Y of one link: y − x ⟂ XY (the projection theorem);
+* Rosenauer's extension: points X of one link and Y of another that lie on one line through
+  the joint J of the two links have equal velocity projections on that line (the line through
+  x ⟂ XJ carries the image of *every* point of the second link on the line XJ).
+
+So a point K with a known image, on a link L hinged at J to a link T, gives T a **line
+condition** (the plan image of each point of T on the mechanism line KJ lies on the line through
+k ⟂ KJ) — "crossing one joint". A sliding pair gives one along the normal of its guide, a given
+velocity direction one along the normal of that direction (the line through the pole). Two line
+conditions on T meet in an **auxiliary point** of T (Rosenauer's Q, R, D, E: the intersection of
+two link lines, regarded as a point of T) whose image is known at once; a known point and one more
+condition, or two points, determine the link (its velocity image is similar to it).
+
+`plan_velocities` propagates these rules through the chain (`Chain`, built from a `Mechanism` or
+written out for the free chains of the papers) and returns the numbered construction script as
+the books write it: ``q = (a ⟂ AQ) ∩ (b ⟂ BQ)``. The chain is *directly constructible* (Rosenauer's
+rule: nowhere more than two joints between known velocities, one from each side) exactly when the
+propagation reaches every link; where it stops the chain needs the classical similar point rows
+(*ähnliche Punktreihen*, false position) and the links it could not reach are named.
+`wittenbauer_rule` is the older test (Wittenbauer, *Graphische Dynamik* 1923 §176): from every
+joint to every other without crossing more than one third joint.
+
+The test is on the graph (links, pairs, the given data) and on the collinearities the design
+fixes (points of one link on a line); incidences that happen only at one position are not
+known to it, and the construction (`linkwork.constructions`) reports them as degenerate there.
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass, field
+from typing import Mapping
+
+import numpy as np
+
+from ..model import CamContact, Gear, Mechanism, Prismatic, Revolute, RollingContact, Slot
+
+#: the frame's image, the pole o of the velocity plan
+POLE = "o"
+#: Rosenauer's names for auxiliary points, in the order he uses them
+AUX_NAMES = ("Q", "R", "D", "E", "S", "U", "V", "W", "X", "Y", "Z")
+
+
+def lower(name: str) -> str:
+    """Image label of point ``name`` in the plan: ``B`` → ``b``, ``O4`` → ``o_4``."""
+    m = re.match(r"^([A-Za-z]+)(\d+)$", name)
+    return f"{m.group(1).lower()}_{m.group(2)}" if m else name.lower()
+
+
+def upper(name: str) -> str:
+    m = re.match(r"^([A-Za-z]+)(\d+)$", name)
+    return f"{m.group(1)}_{m.group(2)}" if m else name
+
+
+# ---------------------------------------------------------------------------- the chain
+@dataclass(frozen=True)
+class Chain:
+    """A chain with its given data, as the constructibility test sees it.
+
+    ``hinges``: (point, link, link); ``slides``: (pair, guide link, sliding link, point) — the
+    two links turn together; ``slots``: (pair, guide link, pin link, pin point); ``meshes``:
+    (pair, gear, gear, pitch point, centre, centre): the pitch point is the gears' relative
+    pole. ``known``: links whose velocity state is given (the frame); ``drivers``: (link,
+    pivot, reference) turned at a given rate about a pivot of a known link (reference None: a
+    block translated along its guide); ``given``: points with a given velocity; ``directions``:
+    points with a given velocity direction; ``collinear``: sets of points that stay on a line.
+    """
+
+    links: Mapping[str, tuple[str, ...]]
+    hinges: tuple[tuple[str, str, str], ...]
+    slides: tuple[tuple[str, str, str, str], ...] = ()
+    slots: tuple[tuple[str, str, str, str], ...] = ()
+    meshes: tuple[tuple[str, str, str, str, str, str], ...] = ()
+    known: tuple[str, ...] = ()
+    drivers: tuple[tuple[str, str, str | None], ...] = ()
+    given: tuple[str, ...] = ()
+    directions: tuple[str, ...] = ()
+    collinear: tuple[frozenset[str], ...] = ()
+    unsupported: tuple[str, ...] = ()  # pairs the test does not know (named in the report)
+    frame: str | None = None
+    #: cam contacts (pair, cam link, follower link, contact point): the velocities of the two
+    #: links project equally on the common normal at the contact
+    contacts: tuple[tuple[str, str, str, str], ...] = ()
+    #: rolling contacts (pair, link, link, contact point): the point of contact is the two
+    #: links' relative pole, for velocities a hinge
+    rolls: tuple[tuple[str, str, str, str], ...] = ()  # the link whose images are the pole o (None: a free chain)
+
+    def restricted(self, links, known) -> "Chain":
+        """The part of the chain on ``links`` with the links ``known`` given (a group of the
+        solution order on the links solved before it)."""
+        keep = set(links)
+        return Chain({ln: p for ln, p in self.links.items() if ln in keep},
+                     tuple(h for h in self.hinges if {h[1], h[2]} <= keep),
+                     tuple(s for s in self.slides if {s[1], s[2]} <= keep),
+                     tuple(s for s in self.slots if {s[1], s[2]} <= keep),
+                     tuple(m for m in self.meshes if {m[1], m[2]} <= keep),
+                     known=tuple(known), collinear=self.collinear, frame=self.frame,
+                     contacts=tuple(c for c in self.contacts if {c[1], c[2]} <= keep),
+                     rolls=tuple(c for c in self.rolls if {c[1], c[2]} <= keep))
+
+    @classmethod
+    def free(cls, links: Mapping[str, str | tuple[str, ...]], *, given: tuple[str, ...] = (),
+             directions: tuple[str, ...] = (), known: tuple[str, ...] = (),
+             drivers: tuple[tuple[str, str, str | None], ...] = ()) -> "Chain":
+        """A hinge chain from its links (``{"CDG": "CDG", "AC": "AC"}`` or point tuples): every
+        point shared by two links is a hinge between them."""
+        pts = {k: tuple(v) for k, v in links.items()}
+        hinges = []
+        names = list(pts)
+        for i, a in enumerate(names):
+            for b in names[i + 1:]:
+                for p in pts[a]:
+                    if p in pts[b]:
+                        hinges.append((p, a, b))
+        return cls(pts, tuple(hinges), known=known, drivers=drivers, given=given, directions=directions)
+
+    @classmethod
+    def from_mechanism(cls, mech: Mechanism) -> "Chain":
+        links = {ln.name: tuple(ln.points) for ln in mech.links}
+        hinges, slides, slots, meshes, unsupported, contacts, rolls = [], [], [], [], [], [], []
+        for j in mech.joints:
+            if isinstance(j, Revolute):
+                hinges.append((j.point, *j.links))
+            elif isinstance(j, Prismatic):
+                slides.append((j.name, j.links[0], j.links[1], j.point))
+            elif isinstance(j, Slot):
+                slots.append((j.name, j.links[0], j.links[1], j.point))
+            elif isinstance(j, CamContact):
+                contacts.append((j.name, *j.links, contact_point_name(mech, j)))
+            elif isinstance(j, RollingContact):
+                rolls.append((j.name, *j.links, contact_point_name(mech, j)))
+            elif isinstance(j, Gear) and j.gear_kind in ("external", "internal"):
+                c1, c2 = (mech.wheel_centre(j, w) for w in j.links)
+                meshes.append((j.name, *j.links, pitch_point_name(mech, j), c1, c2))
+            else:
+                unsupported.append(f"{j.name} ({j.kind})")
+        for name, g1, g2, t, c1, c2 in meshes:
+            links[g1] += (t,)
+            links[g2] += (t,)
+        for name, a, b, k in contacts + rolls:
+            links[a] += (k,)
+            links[b] += (k,)
+        collinear = design_collinear(mech, meshes)
+        for name, a, b, k in rolls:
+            # wheels on two pivots of one carrier touch on the line of their centres
+            carrier = getattr(mech.joint(name), "carrier", None)
+            centres = [j.point for j in mech.joints for w in (a, b)
+                       if carrier and isinstance(j, Revolute) and set(j.links) == {w, carrier}]
+            if len(centres) == 2:
+                collinear += (frozenset((k, *centres)),)
+        drivers = []
+        for d in mech.drivers:
+            j = mech.joint(d.joint)
+            if d.base != mech.frame:
+                unsupported.append(f"driver {d.joint} (acts between two moving links)")
+            elif isinstance(j, Revolute):
+                drivers.append((d.driven, j.point, d.reference))
+            elif isinstance(j, Prismatic):
+                drivers.append((d.driven, j.point, None))
+            else:
+                unsupported.append(f"driver {d.joint} ({j.kind})")
+        return cls(links, tuple(hinges), tuple(slides), tuple(slots), tuple(meshes),
+                   known=(mech.frame,), drivers=tuple(drivers),
+                   collinear=collinear, unsupported=tuple(unsupported),
+                   frame=mech.frame, contacts=tuple(contacts), rolls=tuple(rolls))
+
+
+def contact_point_name(mech: Mechanism, pair) -> str:
+    """The name of a cam contact's point of contact (the pair's name where it is free)."""
+    return pair.name if pair.name not in mech.points else f"{pair.name}_contact"
+
+
+def pitch_point_name(mech: Mechanism, gear: Gear) -> str:
+    """The name of a gear pair's pitch point (Rosenauer's T), unused by the mechanism's points."""
+    for name in ("T", f"T_{gear.name}"):
+        if name not in mech.points:
+            return name
+    return f"T_{gear.name}_pitch"
+
+
+def design_collinear(mech: Mechanism, meshes=()) -> tuple[frozenset[str], ...]:
+    """Points of one link that lie on a line in the drawing (they stay so), and the centres and
+    pitch point of each gear pair."""
+    out: list[frozenset[str]] = []
+    for ln in mech.links:
+        pts = list(dict.fromkeys(ln.points))
+        for i, a in enumerate(pts):
+            for b in pts[i + 1:]:
+                pa, pb = mech.points[a], mech.points[b]
+                d = pb - pa
+                if np.hypot(*d) == 0:
+                    continue
+                on = frozenset(p for p in pts if abs(d[0] * (mech.points[p] - pa)[1] - d[1] * (mech.points[p] - pa)[0])
+                               <= 1e-9 * mech.length_scale * np.hypot(*d))
+                if len(on) >= 3 and on not in out:
+                    out.append(on)
+    for _, _, _, t, c1, c2 in meshes:
+        out.append(frozenset((t, c1, c2)))
+    return tuple(out)
+
+
+# ---------------------------------------------------------------------------- the script
+@dataclass(frozen=True)
+class MechLine:
+    """A line on the mechanism drawing: through two points (``join``), or through ``points[0]``
+    normal to the guide of ``pair`` (``normal``) or to a given velocity direction
+    (``direction``)."""
+
+    kind: str
+    points: tuple[str, ...]
+    pair: str | None = None
+
+    def text(self) -> str:
+        if self.kind == "join":
+            return "".join(upper(p) for p in self.points)
+        if self.kind == "normal":
+            return f"the normal to {self.pair} at {upper(self.points[0])}"
+        if self.kind == "contact":
+            return f"the common normal of {self.pair} at {upper(self.points[0])}"
+        return f"the normal to v_{upper(self.points[0])} at {upper(self.points[0])}"
+
+
+@dataclass(frozen=True)
+class PlanLine:
+    """A line of the plan: through the image of ``anchor`` = (link, point), perpendicular to the
+    mechanism line ``line`` (so parallel to a guide for a ``normal`` line)."""
+
+    anchor: tuple[str, str]
+    line: MechLine
+    #: the pairs crossed from the anchor's link to the link the line is drawn for, as
+    #: (from link, to link, hinge point or sliding pair): the velocity projection carries over
+    #: unchanged, an acceleration's changes by the normal (and Coriolis) terms of each crossing
+    via: tuple[tuple[str, str, str], ...] = ()
+
+
+@dataclass(frozen=True)
+class AuxPoint:
+    """Rosenauer's auxiliary point: the intersection of two mechanism lines, taken as a point of
+    ``link``."""
+
+    name: str
+    link: str
+    lines: tuple[MechLine, MechLine]
+
+
+@dataclass(frozen=True)
+class Step:
+    """One step of the construction script.
+
+    kinds: ``driver`` (link, pivot, reference: the given rate), ``given`` (a point's given
+    velocity), ``meet`` (the image of (link, point) where two plan lines meet), ``divide`` (a
+    point on the line of two known images of its link, in the ratio of the drawing),
+    ``copy`` (a point of a link that turns with ``partner``: its image differs from the known
+    point's image as the partner's images do; the frame as partner: the link translates)."""
+
+    kind: str
+    link: str
+    point: str
+    text: str
+    lines: tuple[PlanLine, ...] = ()
+    aux: AuxPoint | None = None
+    base: tuple[str, ...] = ()  # divide: two points of the link; copy: the known point
+    partner: str | None = None
+    reference: str | None = None
+
+
+@dataclass(frozen=True)
+class VelocityScript:
+    """The result of the constructibility test: the numbered script, the auxiliary points, the
+    order in which the links become known, and the verdicts."""
+
+    steps: tuple[Step, ...]
+    aux: tuple[AuxPoint, ...]
+    order: tuple[str, ...]
+    unreached: tuple[str, ...]
+    unsupported: tuple[str, ...]
+    labels: Mapping[tuple[str, str], str] = field(default_factory=dict)
+    #: for each (link, point) the other (link, point) whose image it shares (hinges, pitch points)
+    shared: Mapping[tuple[str, str], tuple[tuple[str, str], ...]] = field(default_factory=dict)
+    #: false position (similar point rows): the script is drawn for this trial driver (link,
+    #: pivot, reference) and then scaled about o to the given driver ``scale_by`` (Rosenauer
+    #: 1937 paper 7, remark: a binary link driving)
+    trial: tuple[str, str, str] | None = None
+    scale_by: tuple[str, str, str] | None = None
+
+    @property
+    def direct(self) -> bool:
+        """Rosenauer's rule holds: every link reached without trial (similar point rows)."""
+        return not self.unreached and not self.unsupported and self.trial is None
+
+    @property
+    def complete(self) -> bool:
+        """Every link reached: directly, or by false position from a trial driver."""
+        return not self.unreached and not self.unsupported
+
+    def verdict(self) -> str:
+        if self.trial is not None:
+            t, d = self.trial, self.scale_by
+            return (f"not directly constructible from the driver {d[0]} (Rosenauer's rule fails); "
+                    f"by false position: a trial rate of {t[0]} about {upper(t[1])} makes the plan "
+                    f"direct, then every image is moved along its ray from o in the ratio of "
+                    f"{d[0]}'s given to its trial velocity (similar point rows)")
+        if self.unsupported:
+            return ("not decided: the test does not know the pairs " + ", ".join(self.unsupported))
+        if self.unreached:
+            return ("not directly constructible: the links " + ", ".join(self.unreached) + " are "
+                    "reached from known velocities only across more than two joints; the plan "
+                    "needs similar point rows (false position)")
+        n = len(self.aux)
+        return ("directly constructible (Rosenauer's rule holds)" +
+                (f", with {n} auxiliary point{'s' if n > 1 else ''} " +
+                 ", ".join(f"{a.name} = {a.lines[0].text()} \u2229 {a.lines[1].text()} (in {a.link})"
+                           for a in self.aux) if n else ", without auxiliary points"))
+
+    def as_dict(self) -> dict:
+        return {"direct": self.direct, "verdict": self.verdict(),
+                "false_position": None if self.trial is None else
+                {"trial_driver": self.trial[0], "pivot": self.trial[1], "scaled_to": self.scale_by[0]},
+                "auxiliary_points": [{"name": a.name, "link": a.link,
+                                      "lines": [ln.text() for ln in a.lines]} for a in self.aux],
+                "order": list(self.order), "unreached": list(self.unreached),
+                "unsupported": list(self.unsupported), "script": [s.text for s in self.steps]}
+
+    def script(self) -> list[str]:
+        """The numbered construction script."""
+        return [f"{k:2d}. {s.text}" for k, s in enumerate(self.steps, 1)]
+
+
+@dataclass(frozen=True)
+class WittenbauerVerdict:
+    holds: bool
+    worst: tuple[str, str, tuple[str, ...]] | None  # two joints and the joints crossed between
+
+    def as_dict(self) -> dict:
+        return {"holds": self.holds, "verdict": self.text()}
+
+    def text(self) -> str:
+        if self.holds:
+            return "holds: every joint reaches every other across at most one third joint"
+        a, b, path = self.worst
+        return (f"fails: from {a} to {b} the shortest way crosses {len(path)} joints "
+                f"({', '.join(path)})")
+
+
+def wittenbauer_rule(chain: Chain) -> WittenbauerVerdict:
+    """Wittenbauer's rule (*Graphische Dynamik* §176): the velocity plan can be drawn directly
+    if one can get from every joint to every other without crossing more than one third joint
+    (joints are neighbours when they lie on one link)."""
+    import networkx as nx
+
+    joints: dict[str, set[str]] = {}
+    for p, a, b in chain.hinges:
+        joints.setdefault(p, set()).update((a, b))
+    for entry in chain.slides + chain.slots + chain.contacts:
+        joints.setdefault(entry[3], set()).update(entry[1:3])
+    # the points whose velocities are given count as joints of the chain (its free ends)
+    for p in chain.given + chain.directions:
+        joints.setdefault(p, set()).update(ln for ln, pts in chain.links.items() if p in pts)
+    G = nx.Graph()
+    G.add_nodes_from(joints)
+    names = list(joints)
+    for i, p in enumerate(names):
+        for q in names[i + 1:]:
+            if joints[p] & joints[q]:
+                G.add_edge(p, q)
+    worst = None
+    for i, p in enumerate(names):
+        lengths = nx.single_source_shortest_path_length(G, p)
+        for q in names[i + 1:]:
+            d = lengths.get(q, np.inf)
+            if d > 2 and (worst is None or d > worst[0]):
+                path = nx.shortest_path(G, p, q) if np.isfinite(d) else [p, "…", q]
+                worst = (d, p, q, tuple(path[1:-1]))
+    if worst is None:
+        return WittenbauerVerdict(True, None)
+    return WittenbauerVerdict(False, worst[1:])
+
+
+# ---------------------------------------------------------------------------- the planner
+class _Lines:
+    """The mechanism lines met so far, with the points known to lie on each (so that a line
+    named by two other of its points is recognised as the same line)."""
+
+    def __init__(self, collinear) -> None:
+        self.lines: list[tuple[MechLine, set[str]]] = []
+        for s in collinear:
+            pts = sorted(s)
+            self.lines.append((MechLine("join", (pts[0], pts[1])), set(s)))
+
+    def join(self, p: str, q: str) -> MechLine:
+        for line, members in self.lines:
+            if line.kind == "join" and p in members and q in members:
+                return line
+        line = MechLine("join", (p, q))
+        self.lines.append((line, {p, q}))
+        return line
+
+    def special(self, kind: str, p: str, pair: str | None) -> MechLine:
+        for line, members in self.lines:
+            if line.kind == kind and line.pair == pair and p in members:
+                return line
+        line = MechLine(kind, (p,), pair)
+        self.lines.append((line, {p}))
+        return line
+
+    def members(self, line: MechLine) -> set[str]:
+        for ln, members in self.lines:
+            if ln == line:
+                return members
+        raise KeyError(line)
+
+    def parallel_family(self, a: MechLine, b: MechLine) -> bool:
+        """Normals of one guide (or of one direction) are parallel: they never meet."""
+        return a.kind == b.kind == "normal" and a.pair == b.pair
+
+
+class _Planner:
+    def __init__(self, chain: Chain) -> None:
+        self.c = chain
+        # a gear pair's pitch point is the wheels' relative pole: for velocities, a hinge
+        self.hinges = chain.hinges + tuple((t, g1, g2) for _, g1, g2, t, _, _ in chain.meshes) + \
+            tuple((k, a, b) for _, a, b, k in chain.rolls)
+        self.lines = _Lines(chain.collinear)
+        self.steps: list[Step] = []
+        self.aux: list[AuxPoint] = []
+        self.order: list[str] = []
+        self.points = {ln: list(dict.fromkeys(p)) for ln, p in chain.links.items()}
+        used = {p for pts in chain.links.values() for p in pts}
+        self.free_names = [n for n in AUX_NAMES if n not in used] + [f"Q{k}" for k in range(1, 100)
+                                                                    if f"Q{k}" not in used]
+        # image identity: a hinge's point has one image for both its links
+        self.parent: dict[tuple[str, str], tuple[str, str]] = {}
+        for p, a, b in self.hinges:
+            self._union((a, p), (b, p))
+        # rotation classes: links joined by sliding pairs turn together
+        self.rot = {ln: ln for ln in chain.links}
+        for _, g, s, _ in chain.slides:
+            self.rot[self._rfind(g)] = self._rfind(s)
+        self.known: set[str] = set()
+        self.imaged: set[tuple[str, str]] = set()
+        self.kpoints: dict[str, list[str]] = {ln: [] for ln in chain.links}
+        self.conds: dict[str, list[PlanLine]] = {ln: [] for ln in chain.links}
+
+    # ---------------------------------------------------------------- bookkeeping
+    def _find(self, k):
+        while self.parent.get(k, k) != k:
+            k = self.parent[k]
+        return k
+
+    def _union(self, a, b) -> None:
+        ra, rb = self._find(a), self._find(b)
+        if ra != rb:
+            self.parent[ra] = rb
+
+    def _rfind(self, ln: str) -> str:
+        while self.rot[ln] != ln:
+            ln = self.rot[ln]
+        return ln
+
+    def omega_known(self, ln: str) -> bool:
+        r = self._rfind(ln)
+        return any(self._rfind(k) == r for k in self.known)
+
+    def has_image(self, ln: str, p: str) -> bool:
+        return self._find((ln, p)) in self.imaged
+
+    def label(self, ln: str, p: str) -> str:
+        """The plan label of the image of point p of link ln: o for the frame, b for a point
+        whose image all its links share, b_link for one link's own point at a shared place."""
+        if ln == POLE or ln == self.c.frame:
+            return POLE
+        if self.c.frame is not None and p in self.points[self.c.frame] and \
+                self._find((ln, p)) == self._find((self.c.frame, p)):
+            return POLE
+        keys = {self._find((other, p)) for other, pts in self.points.items()
+                if p in pts and other != self.c.frame}
+        return lower(p) if len(keys) <= 1 else f"{lower(p)}_{ln}"
+
+    def mark(self, ln: str, p: str) -> None:
+        """The image of point p of link ln is now known (and so of every link hinged there)."""
+        key = self._find((ln, p))
+        self.imaged.add(key)
+        for other, pts in self.points.items():
+            if p in pts and self._find((other, p)) == key and p not in self.kpoints[other]:
+                self.kpoints[other].append(p)
+
+    def add_point(self, ln: str, p: str) -> None:
+        if p not in self.points[ln]:
+            self.points[ln].append(p)
+
+    def pl_text(self, pl: PlanLine, target: str) -> str:
+        a_ln, a_p = pl.anchor
+        lab = self.label(a_ln, a_p)
+        line = pl.line
+        if line.kind == "join":
+            members = self.lines.members(line)
+            pair = (a_p, target) if a_p in members and target in members and a_p != target else line.points
+            return f"({lab} \u27c2 {upper(pair[0])}{upper(pair[1])})"
+        if line.kind == "normal":
+            return f"({lab} \u2225 {line.pair})"
+        if line.kind == "contact":
+            return f"({lab} \u27c2 n_{line.pair})"
+        return f"({lab} \u2225 v_{upper(line.points[0])})"
+
+    # ---------------------------------------------------------------- steps
+    def emit_meet(self, ln: str, p: str, a: PlanLine, b: PlanLine, aux: AuxPoint | None = None,
+                  note: str = "") -> None:
+        lab = self.label(ln, p)
+        head = (f"{upper(p)} = {aux.lines[0].text()} \u2229 {aux.lines[1].text()}, a point of {ln}; "
+                if aux else "")
+        self.steps.append(Step("meet", ln, p, f"{head}{lab} = {self.pl_text(a, p)} \u2229 "
+                                              f"{self.pl_text(b, p)}{note}", (a, b), aux))
+        self.mark(ln, p)
+
+    def ensure_image(self, ln: str, p: str) -> None:
+        """Construct the image of point p of the known link ln (if not yet drawn)."""
+        self.add_point(ln, p)
+        if self.has_image(ln, p) or ln in self.c.known:
+            if ln in self.c.known:
+                self.mark(ln, p)
+            return
+        kp = [q for q in self.kpoints[ln] if q != p]
+        r = self._rfind(ln)
+        partner = next((k for k in self.known if self._rfind(k) == r and k != ln
+                        and (k in self.c.known or len(self.kpoints[k]) >= 2)), None)
+        if len(kp) >= 2:
+            for i, x in enumerate(kp):
+                for y in kp[i + 1:]:
+                    if not self.collinear(x, y, p):
+                        self.emit_meet(ln, p, PlanLine((ln, x), self.lines.join(x, p)),
+                                       PlanLine((ln, y), self.lines.join(y, p)))
+                        return
+            x, y = kp[:2]
+            self.steps.append(Step("divide", ln, p, f"{self.label(ln, p)} on {self.label(ln, x)}"
+                                   f"{self.label(ln, y)}, dividing it as {upper(p)} divides "
+                                   f"{upper(x)}{upper(y)}", base=(x, y)))
+            self.mark(ln, p)
+            return
+        if kp and partner is not None:
+            x = kp[0]
+            if partner in self.c.known:
+                text = f"{self.label(ln, p)} = {self.label(ln, x)} ({ln} translates with the frame)"
+            else:
+                for q in (x, p):
+                    self.ensure_image(partner, q)
+                text = (f"{self.label(ln, p)}: {self.label(ln, x)}{self.label(ln, p)} equal and parallel to "
+                        f"{self.label(partner, x)}{self.label(partner, p)} ({ln} turns with {partner})")
+            self.steps.append(Step("copy", ln, p, text, base=(x,), partner=partner))
+            self.mark(ln, p)
+            return
+        raise AssertionError(f"link {ln} is not known enough to image {p}")
+
+    def collinear(self, *pts: str) -> bool:
+        return any(line.kind == "join" and set(pts) <= members for line, members in self.lines.lines)
+
+    def on(self, p: str, line: MechLine) -> bool:
+        return p in self.lines.members(line)
+
+    def add_cond(self, ln: str, pl: PlanLine) -> bool:
+        if ln in self.known or any(c.line == pl.line for c in self.conds[ln]):
+            return False
+        # a condition through a known point of the link tells nothing new
+        if any(self.on(k, pl.line) for k in self.kpoints[ln]):
+            return False
+        self.conds[ln].append(pl)
+        return True
+
+    # ---------------------------------------------------------------- completing a link
+    def complete(self, ln: str, level: int) -> bool:
+        """Make ln known if its known points and line conditions allow; True if it is.
+
+        ``level`` 0: only from what is known (two points, or a point and the turning of a
+        partner); 1: also a point and one line condition (the dyad step); 2: also an auxiliary
+        point where two line conditions meet. Returns whether a step was made or the link
+        became known."""
+        start = len(self.steps)
+        while True:
+            kp = self.kpoints[ln]
+            if len(kp) >= 2 or (kp and self.omega_known(ln)):
+                self.known.add(ln)
+                self.order.append(ln)
+                return True
+            conds = [c for c in self.conds[ln] if not any(self.on(k, c.line) for k in kp)]
+            if kp:
+                if not conds or level < 1:
+                    return len(self.steps) > start
+                c = conds[0]
+                x = kp[0]
+                y = next((q for q in self.points[ln] if q != x and self.on(q, c.line)), None)
+                if y is None and c.line.kind != "join" and c.line.points[0] != x:
+                    y = c.line.points[0]  # the link's point at the guide's (a coincident point)
+                    self.add_point(ln, y)
+                aux = None
+                if y is None:
+                    if len(self.points[ln]) < 2:
+                        return len(self.steps) > start
+                    y = self.new_aux(ln, c.line, self.lines.join(x, self.other_point(ln, x)))
+                    aux = self.aux[-1]
+                self.emit_meet(ln, y, PlanLine((ln, x), self.lines.join(x, y)), c, aux)
+                continue
+            pair = self.meeting_pair(conds)
+            if pair is None or level < 2:
+                return len(self.steps) > start
+            a, b = pair
+            common = [q for q in self.points[ln] if self.on(q, a.line) and self.on(q, b.line)]
+            if common:
+                self.emit_meet(ln, common[0], a, b)
+            else:
+                q = self.new_aux(ln, a.line, b.line)
+                self.emit_meet(ln, q, a, b, self.aux[-1])
+            level = 1
+
+    def meeting_pair(self, conds: list[PlanLine]):
+        for i, a in enumerate(conds):
+            for b in conds[i + 1:]:
+                if not self.lines.parallel_family(a.line, b.line):
+                    return a, b
+        return None
+
+    def other_point(self, ln: str, x: str) -> str:
+        return next(q for q in self.points[ln] if q != x)
+
+    def new_aux(self, ln: str, a: MechLine, b: MechLine) -> str:
+        name = self.free_names.pop(0)
+        self.lines.members(a).add(name)
+        self.lines.members(b).add(name)
+        self.add_point(ln, name)
+        self.aux.append(AuxPoint(name, ln, (a, b)))
+        return name
+
+    # ---------------------------------------------------------------- crossing joints
+    def transfer(self) -> bool:
+        """Carry what is known across every pair into the links not yet known."""
+        new = False
+        c = self.c
+        for p, a, b in self.hinges:
+            for L, T in ((a, b), (b, a)):
+                if T in self.known:
+                    continue
+                if L in self.known:
+                    if not self.has_image(T, p):
+                        self.ensure_image(L, p)
+                        new = True
+                    continue
+                kp = [k for k in self.kpoints[L] if k != p]
+                if len(self.kpoints[L]) == 1 and kp:
+                    new |= self.add_cond(T, PlanLine((L, kp[0]), self.lines.join(kp[0], p), ((L, T, p),)))
+                for cond in list(self.conds[L]):
+                    if self.on(p, cond.line):  # Rosenauer's extension: a line through the joint
+                        new |= self.add_cond(T, PlanLine(cond.anchor, cond.line, cond.via + ((L, T, p),)))
+        for pair, G, S, X in c.slides + c.slots:
+            slide = (pair, G, S, X) in c.slides
+            for L, T in ((G, S), (S, G)):
+                if T in self.known:
+                    continue
+                normal = self.lines.special("normal", X, pair)
+                if L in self.known:
+                    self.ensure_image(L, X)
+                    new |= self.add_cond(T, PlanLine((L, X), normal, ((L, T, pair),)))
+                elif slide and len(self.kpoints[L]) == 1:
+                    k = self.kpoints[L][0]
+                    new |= self.add_cond(T, PlanLine((L, k), self.lines.special("normal", k, pair), ((L, T, pair),)))
+                elif not slide and L == S and X in self.kpoints[S]:
+                    new |= self.add_cond(T, PlanLine((L, X), normal, ((L, T, pair),)))
+        for pair, A, B, K in c.contacts:
+            for L, T in ((A, B), (B, A)):
+                if T not in self.known and L in self.known:
+                    self.ensure_image(L, K)
+                    new |= self.add_cond(T, PlanLine((L, K), self.lines.special("contact", K, pair),
+                                                     ((L, T, pair),)))
+        return new
+
+    # ---------------------------------------------------------------- the run
+    def run(self) -> VelocityScript:
+        c = self.c
+        for ln in c.known:
+            self.known.add(ln)
+            for p in self.points[ln]:
+                self.mark(ln, p)
+        for ln, pivot, ref in c.drivers:
+            if ref is None:
+                self.steps.append(Step("driver", ln, pivot, f"given: {self.label(ln, pivot)} = o + "
+                                       f"v_{upper(pivot)} (the block {ln} slides at its given speed)"))
+                self.mark(ln, pivot)
+            else:
+                self.steps.append(Step("driver", ln, ref, f"given: {self.label(ln, ref)} = o + "
+                                       f"\u03c9\u00b7{upper(pivot)}{upper(ref)} turned 90\u00b0 "
+                                       f"({ln} turns about {upper(pivot)})", reference=pivot))
+                self.mark(ln, ref)
+            self.known.add(ln)
+            self.order.append(ln)
+        for p in c.given:
+            owners = [ln for ln, pts in c.links.items() if p in pts]
+            self.steps.append(Step("given", owners[0], p, f"given: {lower(p)} = o + v_{upper(p)}"))
+            self.mark(owners[0], p)
+        for p in c.directions:
+            for ln, pts in c.links.items():
+                if p in pts:
+                    self.conds[ln].append(PlanLine((POLE, p), self.lines.special("direction", p, None)))
+        while True:
+            changed = self.transfer()
+            done = False
+            for level in (0, 1, 2):
+                for ln in c.links:
+                    if ln not in self.known and self.complete(ln, level):
+                        done = True
+                        break
+                if done:
+                    break
+            if not done and not changed:
+                break
+        unreached = tuple(ln for ln in c.links if ln not in self.known)
+        if not unreached:
+            for ln, pts in c.links.items():
+                for p in pts:
+                    if ln not in c.known:
+                        self.ensure_image(ln, p)
+        labels, groups = {}, {}
+        for ln, pts in self.points.items():
+            for p in pts:
+                labels[(ln, p)] = self.label(ln, p)
+                groups.setdefault(self._find((ln, p)), []).append((ln, p))
+        shared = {k: tuple(x for x in g if x != k) for g in groups.values() for k in g}
+        return VelocityScript(tuple(self.steps), tuple(self.aux), tuple(self.order), unreached,
+                              c.unsupported, labels, shared)
+
+
+def plan_velocities(chain: Chain | Mechanism) -> VelocityScript:
+    """The direct velocity construction of ``chain`` (a `Chain`, or a `Mechanism` with its
+    frame and drivers as given data): Rosenauer's rule as a propagation on the chain's graph."""
+    if isinstance(chain, Mechanism):
+        chain = Chain.from_mechanism(chain)
+    script = _Planner(chain).run()
+    if script.direct or script.unsupported or len(chain.drivers) != 1 or chain.given \
+            or chain.directions or chain.drivers[0][2] is None or chain.frame is None:
+        return script
+    return _false_position(chain) or script
+
+
+def _false_position(chain: Chain) -> VelocityScript | None:
+    """Where one crank drives a chain that Rosenauer's rule does not reach: the velocities are
+    proportional to the driver's rate, so another link on a frame pivot may be given a trial
+    rate; if the plan is direct from it, the true plan is the trial plan scaled about o in the
+    ratio of the driver's given to its trial velocity (one trial: the rows pass through o)."""
+    from dataclasses import replace
+
+    driver = chain.drivers[0]
+    for p, a, b in chain.hinges:
+        if chain.frame not in (a, b):
+            continue
+        link = b if a == chain.frame else a
+        if link == driver[0]:
+            continue
+        ref = next((q for q in chain.links[link] if q != p), None)
+        if ref is None:
+            continue
+        trial = _Planner(replace(chain, drivers=((link, p, ref),))).run()
+        if trial.direct:
+            d, dp, dr = driver
+            first = replace(trial.steps[0], text=(
+                f"trial: {lower(ref)}* = o + ω*·{upper(p)}{upper(ref)} turned 90° "
+                f"(an arbitrary rate of {link} about {upper(p)}; the images that follow are trial "
+                "images x*)"))
+            scale = Step("scale", d, dr, (
+                f"similar point rows: {lower(dr)}* (the trial image of {upper(dr)}) and the given "
+                f"{lower(dr)} = o + ω·{upper(dp)}{upper(dr)} turned 90° lie on one ray "
+                f"from o; every image x lies on the ray o x*, with ox : ox* = o{lower(dr)} : "
+                f"o{lower(dr)}*"))
+            return replace(trial, steps=(first,) + trial.steps[1:] + (scale,),
+                           trial=(link, p, ref), scale_by=driver)
+    return None

@@ -1,0 +1,349 @@
+"""The workbench's ASGI application: the Python API over HTTP (JSON in and out, the names and
+units of the command line's JSON) and the page that draws with it.
+
+Safe by design: every request is validated by the pydantic models of `.models` and its body is
+limited in size; no user text is evaluated (TOML is parsed, quantities are parsed by `units`);
+files are read only from the library and the working folder (`.sources`); a `LinkworkError`
+becomes a 4xx answer with its message, anything else a 500 answer without a trace.
+"""
+
+from __future__ import annotations
+
+import tomllib
+import warnings
+from contextlib import contextmanager
+from importlib import resources
+from pathlib import Path
+from typing import Iterator
+
+import numpy as np
+from fastapi import FastAPI, Request
+from fastapi.encoders import jsonable_encoder
+from fastapi.exceptions import RequestValidationError
+from fastapi.responses import FileResponse, JSONResponse
+from fastapi.staticfiles import StaticFiles
+
+from ..errors import LinkworkError, LinkworkWarning, InputError, UnknownMechanismError
+from ..kinematics import Solution, Status, solve, whole_motion
+from ..kinematics.export import to_document
+from ..model import Mechanism, Prismatic
+from . import models as m
+from .sources import Sources
+
+#: the largest request body accepted (a mechanism text of MAX_TEXT and its options)
+MAX_BODY = 1_000_000
+STATIC = Path(str(resources.files("linkwork") / "web" / "static"))
+
+
+class _BodyLimit:
+    """Refuse request bodies above `limit` bytes, announced or streamed (413): the body is read
+    here, counted, and handed on whole."""
+
+    def __init__(self, app, limit: int) -> None:
+        self.app, self.limit = app, limit
+
+    async def __call__(self, scope, receive, send):
+        if scope["type"] != "http":
+            return await self.app(scope, receive, send)
+        too_large = _error(413, f"the request body is larger than {self.limit} bytes", "BodyTooLarge")
+        length = dict(scope.get("headers") or []).get(b"content-length")
+        if length is not None and (not length.isdigit() or int(length) > self.limit):
+            return await too_large(scope, receive, send)
+        parts, size, more = [], 0, True
+        while more:
+            message = await receive()
+            if message["type"] != "http.request":  # the client went away
+                return
+            parts.append(message.get("body", b""))
+            size += len(parts[-1])
+            if size > self.limit:
+                return await too_large(scope, receive, send)
+            more = message.get("more_body", False)
+        body = {"type": "http.request", "body": b"".join(parts), "more_body": False}
+        sent = False
+
+        async def replay():
+            nonlocal sent
+            if not sent:
+                sent = True
+                return body
+            return await receive()
+
+        return await self.app(scope, replay, send)
+
+
+def _error(status: int, message: str, kind: str) -> JSONResponse:
+    return JSONResponse({"error": message, "kind": kind}, status_code=status)
+
+
+def _validation_message(exc: RequestValidationError) -> str:
+    parts = []
+    for e in exc.errors()[:5]:
+        loc = ".".join(str(x) for x in e.get("loc", ()) if x != "body")
+        parts.append(f"{loc or 'request'}: {e.get('msg', 'invalid')}")
+    return "; ".join(parts)
+
+
+@contextmanager
+def _warnings() -> Iterator[list[str]]:
+    """Collect the LinkworkWarnings raised inside (as the command line prints them)."""
+    out: list[str] = []
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", LinkworkWarning)
+        yield out
+        out.extend(dict.fromkeys(str(w.message) for w in caught
+                                 if issubclass(w.category, LinkworkWarning)))
+
+
+def _design_inputs(mech: Mechanism) -> np.ndarray:
+    return np.array([mech.driver_input_at_design(d) for d in mech.drivers])
+
+
+def solve_at(mech: Mechanism, req: m.At, order: int = 2) -> Solution:
+    """Solve where the request says: its inputs, its times, or the design position."""
+    if req.times is not None:
+        return solve(mech, times=np.asarray(req.times, float), order=order)
+    if req.at is None:
+        return solve(mech, _design_inputs(mech)[None, :], order=order)
+    n = len(mech.drivers)
+    if isinstance(req.at[0], list):
+        bad = [len(v) for v in req.at if len(v) != n]
+        if bad:
+            raise InputError(f"at: every sample needs one value per driver ({n}: "
+                             f"{', '.join(d.joint for d in mech.drivers)}), got {bad[0]}")
+        values = np.asarray(req.at, float)
+    else:
+        if n != 1:
+            raise InputError(f"mechanism '{mech.name}' has {n} drivers: give at as one list "
+                             f"of {n} values per sample")
+        values = np.asarray(req.at, float)[:, None]
+    return solve(mech, values, order=order)
+
+
+def mechanism_info(loaded, warned: list[str]) -> dict:
+    from ..constructions import CONSTRUCTIONS
+    from ..drawing import LAYERS
+    mech = loaded.mechanism
+    return {
+        "name": mech.name, "description": mech.description, "source": loaded.label,
+        "text": loaded.text, "units": {"length": mech.length_unit, "angle": "rad", "time": "s"},
+        "frame": mech.frame,
+        "points": {p: [float(v) for v in xy] for p, xy in mech.points.items()},
+        "links": {ln.name: list(ln.points) for ln in mech.links},
+        "owners": dict(mech.point_owner),
+        "joints": [{"name": j.name, "type": j.kind, "links": list(j.links),
+                    "point": getattr(j, "point", None)} for j in mech.joints],
+        "drivers": [{"joint": d.joint,
+                     "kind": "prismatic" if isinstance(mech.joint(d.joint), Prismatic) else "revolute",
+                     "design_input": mech.driver_input_at_design(d)} for d in mech.drivers],
+        "layers": [name for name in LAYERS if name != "construction"],
+        "constructions": list(CONSTRUCTIONS),
+        "warnings": warned,
+    }
+
+
+def drawing(mech: Mechanism, req: m.DrawingRequest) -> dict:
+    """The drawing of `linkwork draw` for the request, with what the page needs beside it."""
+    from ..constructions import construct
+    from ..drawing import Scene, scene_figure
+
+    sol = solve_at(mech, req, order=2)
+    if len(sol) != 1:
+        raise InputError(f"a drawing shows one position; got {len(sol)} samples")
+    where = "the design position" if req.at is None and req.times is None else (
+        f"t = {req.times[0]:g} s" if req.times is not None else "this input")
+    if sol.status[0] == Status.UNREACHABLE:
+        raise InputError(f"mechanism '{mech.name}' cannot be assembled at {where}")
+    sc = Scene(mech, sol)
+    if not req.motion:
+        sc.motion = None  # what the layers draw when the whole motion is not known
+    con = None
+    steps: list[str] = []
+    if req.construction:
+        opts = {}
+        if req.point and req.construction in ("euler-savary", "bobillier", "hartmann"):
+            opts["point"] = req.point
+        if req.link and req.construction in ("euler-savary", "bobillier", "hartmann", "two-points"):
+            opts["link"] = req.link
+        con = construct(req.construction, mech, sol, **opts)
+        con.require(0)
+        con.check()
+        steps = [s.text for s in con.steps]
+        if req.step is not None and req.step >= len(steps):
+            raise InputError(f"step {req.step}: the construction has {len(steps)} steps (0 to "
+                             f"{len(steps) - 1})")
+    fig = scene_figure(sc, list(req.layers), construction=con, step=req.step)
+    if req.fit == "motion" and con is None and req.motion:
+        fig.view["mechanism"] = sc.box(grow=0.12)
+    svg = fig.to_svg()
+    return {"svg": svg, "status": str(Status(int(sol.status[0]))),
+            "input": [None if not np.isfinite(v) else float(v) for v in sol.inputs[0]],
+            "time": None if sol.time is None else float(sol.time[0]),
+            "points": {p: (None if not np.all(np.isfinite(xy)) else [float(xy[0]), float(xy[1])])
+                       for p in mech.points for xy in [sol.point(p).position[0]]},
+            "poses": {ln: (None if not np.all(np.isfinite(q)) else [float(v) for v in q])
+                      for ln in mech.link_names for q in [sol.pose_derivatives(ln)[0, 0]]},
+            "transforms": fig.transforms(), "steps": steps}
+
+
+def create_app(workdir: str | Path | None = None) -> FastAPI:
+    """The workbench application; files are opened only from the library and `workdir`."""
+    sources = Sources(None if workdir is None else Path(workdir))
+    app = FastAPI(title="linkwork workbench", version="1",
+                  description="The linkwork Python API over HTTP: lengths in the mechanism "
+                              "file's unit, angles in radians, times in seconds.",
+                  openapi_url="/api/openapi.json", docs_url=None, redoc_url=None)
+    app.state.sources = sources
+
+    @app.exception_handler(LinkworkError)
+    async def _linkwork_error(request: Request, exc: LinkworkError):
+        status = 404 if isinstance(exc, UnknownMechanismError) else 400
+        return _error(status, str(exc), type(exc).__name__)
+
+    @app.exception_handler(RequestValidationError)
+    async def _invalid(request: Request, exc: RequestValidationError):
+        return _error(422, _validation_message(exc), "RequestValidationError")
+
+    @app.exception_handler(Exception)
+    async def _bug(request: Request, exc: Exception):
+        return _error(500, f"internal error in linkwork ({type(exc).__name__}); please report it",
+                      "InternalError")
+
+    from starlette.exceptions import HTTPException
+
+    @app.exception_handler(HTTPException)
+    async def _http(request: Request, exc: HTTPException):
+        return _error(exc.status_code, str(exc.detail), "HTTPException")
+
+    errors = {400: {"model": m.Error}, 404: {"model": m.Error}, 413: {"model": m.Error},
+              422: {"model": m.Error}, 500: {"model": m.Error}}
+
+    def load(src: m.Source):
+        return sources.load(library=src.library, file=src.file, text=src.text, name=src.name,
+                            points=src.points)
+
+    def respond(doc: dict) -> JSONResponse:
+        return JSONResponse(jsonable_encoder(doc))
+
+    @app.get("/api/library", response_model=m.LibraryList, responses=errors)
+    def library_list():
+        """The library's mechanisms (open them as `{"library": NAME}`) and the mechanism files
+        of the working folder (as `{"file": PATH}`)."""
+        out = []
+        for name in sources.library():
+            text = sources.load(library=name).text
+            out.append({"name": name, "title": tomllib.loads(text).get("name", "")})
+        return {"mechanisms": out, "files": sources_files()}
+
+    def sources_files():
+        from .sources import working_files
+        return working_files(sources.workdir)
+
+    @app.get("/api/library/{name}", response_model=m.MechanismText, responses=errors)
+    def library_text(name: str):
+        """The file of one library mechanism (`linkwork library NAME`)."""
+        if name not in sources.library():
+            raise UnknownMechanismError(f"the library has no mechanism '{name}'")
+        return {"name": name, "text": sources.load(library=name).text}
+
+    @app.post("/api/mechanism", response_model=m.MechanismInfo, responses=errors)
+    def mechanism(req: m.MechanismRequest):
+        """Load and validate a mechanism: its points, links, pairs and drivers."""
+        with _warnings() as warned:
+            loaded = load(req.source)
+        return mechanism_info(loaded, warned)
+
+    @app.post("/api/solve", response_model=m.SolutionDocument, responses=errors)
+    def solve_(req: m.SolveRequest):
+        """`linkwork.solve` at the given inputs or times (`analyze --at … --format json`)."""
+        with _warnings() as warned:
+            sol = solve_at(load(req.source).mechanism, req, req.order)
+            doc = to_document(sol)
+        return respond({**doc, "warnings": warned})
+
+    @app.post("/api/motion", response_model=m.SolutionDocument, responses=errors)
+    def motion(req: m.MotionRequest):
+        """`linkwork.whole_motion` (`analyze --format json` without --at)."""
+        with _warnings() as warned:
+            sol = whole_motion(load(req.source).mechanism)
+            if req.detail == "status":
+                mech = sol.mechanism
+                single = len(mech.drivers) == 1
+                doc = {"mechanism": mech.name,
+                       "units": {"length": mech.length_unit, "angle": "rad", "time": "s"},
+                       "drivers": [d.joint for d in mech.drivers],
+                       "samples": [{"input": float(sol.inputs[n, 0]) if single else sol.inputs[n].tolist(),
+                                    "status": str(Status(int(sol.status[n]))),
+                                    "error": float(sol.errors[n])} for n in range(len(sol))]}
+            else:
+                doc = to_document(sol)
+        return respond({**doc, "warnings": warned})
+
+    @app.post("/api/poles", response_model=m.Document, responses=errors)
+    def poles_(req: m.PolesRequest):
+        """All relative poles (`linkwork poles --format json`)."""
+        from ..instant.export import poles_document
+        with _warnings() as warned:
+            doc = poles_document(solve_at(load(req.source).mechanism, req, 1), req.schedule)
+        return respond({**doc, "warnings": warned})
+
+    @app.post("/api/curvature", response_model=m.Document, responses=errors)
+    def curvature_(req: m.CurvatureRequest):
+        """Curvature theory of a link (`linkwork curvature --format json`); `points` are point
+        names or design coordinates [x, y]."""
+        from ..instant.export import curvature_document
+        with _warnings() as warned:
+            mech = load(req.source).mechanism
+            asked = []
+            for p in req.points:
+                if isinstance(p, str):
+                    if p not in mech.points:
+                        raise InputError(f"points: mechanism '{mech.name}' has no point '{p}' "
+                                         f"(its points are {', '.join(mech.points)})")
+                    asked.append((p, p))
+                else:
+                    asked.append((f"{p[0]:g},{p[1]:g}", np.asarray(p, float)))
+            doc = curvature_document(solve_at(mech, req, 3), req.link, req.relative_to, asked)
+        return respond({**doc, "warnings": warned})
+
+    @app.post("/api/structure", response_model=m.Document, responses=errors)
+    def structure_(req: m.MechanismRequest):
+        """Mobility, Assur groups, Grashof type (`linkwork structure --format json`)."""
+        from ..structure import structure_report
+        with _warnings() as warned:
+            doc = structure_report(load(req.source).mechanism).as_dict()
+        return respond({**doc, "warnings": warned})
+
+    @app.post("/api/construction", response_model=m.ConstructionResult, responses=errors)
+    def construction_(req: m.ConstructionRequest):
+        """A classical construction at one position, checked against the exact values, with
+        its steps in words (`linkwork draw --construction NAME`)."""
+        from ..constructions import construct
+        with _warnings() as warned:
+            mech = load(req.source).mechanism
+            sol = solve_at(mech, req, 2)
+            if len(sol) != 1:
+                raise InputError(f"a construction is drawn at one position; got {len(sol)}")
+            opts = {k: v for k, v in (("point", req.point), ("link", req.link)) if v is not None}
+            con = construct(req.name, mech, sol, **opts)
+            con.require(0)
+            con.check()
+        return {"name": req.name, "title": con.title, "steps": [s.text for s in con.steps],
+                "description": con.describe(), "warnings": warned}
+
+    @app.post("/api/drawing", response_model=m.Drawing, responses=errors)
+    def drawing_(req: m.DrawingRequest):
+        """The SVG of `linkwork draw` at one position, with the layers and construction asked,
+        the point positions drawn and how the drawing maps world to SVG coordinates."""
+        with _warnings() as warned:
+            doc = drawing(load(req.source).mechanism, req)
+        return respond({**doc, "warnings": warned})
+
+    @app.get("/", include_in_schema=False)
+    def page():
+        index = STATIC / "index.html"
+        return FileResponse(index, headers={"Cache-Control": "no-cache"})
+
+    app.mount("/static", StaticFiles(directory=STATIC, check_dir=False), name="static")
+    app.add_middleware(_BodyLimit, limit=MAX_BODY)
+    return app

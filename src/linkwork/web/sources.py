@@ -1,0 +1,146 @@
+"""Where the workbench's mechanisms come from: the library, a file inside the working folder the
+user named, or TOML text sent with the request, optionally with design points moved.
+
+Nothing outside the library and the working folder is ever read: a file name is resolved (links
+followed) and refused unless it lies inside the working folder, and the profile CSV files a
+mechanism names are read from its own folder only (`io.profiles` keeps them there)."""
+
+from __future__ import annotations
+
+from collections import OrderedDict
+from dataclasses import dataclass
+from importlib import resources
+from pathlib import Path
+from threading import Lock
+
+import numpy as np
+
+from ..errors import InputError, UnknownMechanismError
+from ..io import load_text, resolve
+from ..io.library import LIBRARY_PREFIX, library_names
+from ..model import Mechanism
+from ..units import MAX_MAGNITUDE
+
+#: the size of a mechanism file the workbench reads or accepts (the library's are a few kB)
+MAX_TEXT = 200_000
+
+
+@dataclass(frozen=True)
+class Loaded:
+    """A mechanism with the text it was read from and the label its messages name."""
+
+    mechanism: Mechanism
+    text: str
+    label: str
+
+
+def library_folder() -> Path:
+    return Path(str(resources.files("linkwork") / "library"))
+
+
+def working_file(workdir: Path | None, name: str) -> Path:
+    """The file `name` (relative) of the working folder, refused if it leads outside it."""
+    if workdir is None:
+        raise InputError("the workbench has no working folder (start it with `linkwork serve "
+                         "--workdir DIR` to open files)")
+    root = workdir.resolve()
+    if not name or Path(name).is_absolute() or "\x00" in name:
+        raise InputError(f"file '{name}': give a path relative to the working folder")
+    path = (root / name).resolve()
+    if not path.is_relative_to(root):
+        raise InputError(f"file '{name}' lies outside the working folder")
+    if path.suffix.lower() != ".toml":
+        raise InputError(f"file '{name}': the workbench opens mechanism files (.toml)")
+    if not path.is_file():
+        raise UnknownMechanismError(f"the working folder has no file '{name}'")
+    return path
+
+
+def working_files(workdir: Path | None) -> list[str]:
+    """The mechanism files (.toml) of the working folder and its subfolders, relative."""
+    if workdir is None:
+        return []
+    root = workdir.resolve()
+    out = []
+    for p in sorted(root.rglob("*.toml")):
+        if p.is_file() and p.resolve().is_relative_to(root):
+            out.append(p.relative_to(root).as_posix())
+        if len(out) >= 1000:
+            break
+    return out
+
+
+def moved(mech: Mechanism, points: dict[str, tuple[float, float]]) -> Mechanism:
+    """`mech` with the design coordinates of `points` replaced: links, pairs and drivers are the
+    same, and everything the design position defines (lengths, angles, branches) follows."""
+    new = dict(mech.points)
+    for name, xy in points.items():
+        if name not in mech.points:
+            raise InputError(f"mechanism '{mech.name}' has no point '{name}' (its points are "
+                             f"{', '.join(mech.points)})")
+        xy = np.asarray(xy, float)
+        if xy.shape != (2,) or not np.all(np.isfinite(xy)) or np.any(np.abs(xy) > MAX_MAGNITUDE):
+            raise InputError(f"point '{name}': give two finite coordinates of at most 1e12")
+        new[name] = xy
+    return Mechanism.build(name=mech.name, points=new,
+                           links={ln.name: list(ln.points) for ln in mech.links},
+                           joints=list(mech.joints), drivers=list(mech.drivers), frame=mech.frame,
+                           length_unit=mech.length_unit, description=mech.description,
+                           profiles=mech.profiles)
+
+
+class Sources:
+    """Loads mechanisms for requests and keeps the last few (a mechanism is immutable, so one
+    object serves every request that names the same source)."""
+
+    SIZE = 64
+
+    def __init__(self, workdir: Path | None) -> None:
+        self.workdir = None if workdir is None else Path(workdir).resolve()
+        self._cache: OrderedDict[tuple, Loaded] = OrderedDict()
+        self._lock = Lock()
+
+    def _read(self, library: str | None, file: str | None, text: str | None,
+              name: str | None) -> Loaded:
+        if library is not None:
+            label, body = resolve(LIBRARY_PREFIX + library)
+            return Loaded(load_text(body, source=label, base_dir=library_folder()), body, label)
+        if file is not None:
+            path = working_file(self.workdir, file)
+            label, body = resolve(path)
+            return Loaded(load_text(body, source=file, base_dir=path.parent), body, file)
+        assert text is not None
+        if len(text) > MAX_TEXT:
+            raise InputError(f"the mechanism text has {len(text)} characters; at most {MAX_TEXT}")
+        label = name or "<text>"
+        # a text's profile files are looked up in the working folder (or the library), never
+        # in the server's current folder
+        base = self.workdir or library_folder()
+        return Loaded(load_text(text, source=label, base_dir=base), text, label)
+
+    def load(self, *, library: str | None = None, file: str | None = None,
+             text: str | None = None, name: str | None = None,
+             points: dict[str, tuple[float, float]] | None = None) -> Loaded:
+        key = (library, file, text, name,
+               tuple(sorted((k, tuple(map(float, v))) for k, v in (points or {}).items())))
+        # a file may change on disk between requests: read it again every time
+        if file is None:
+            with self._lock:
+                if key in self._cache:
+                    self._cache.move_to_end(key)
+                    return self._cache[key]
+        if points:  # the file as read (kept for the next frame of a drag), then moved
+            base = self.load(library=library, file=file, text=text, name=name)
+            out = Loaded(moved(base.mechanism, points), base.text, base.label)
+        else:
+            out = self._read(library, file, text, name)
+        if file is None:
+            with self._lock:
+                self._cache[key] = out
+                while len(self._cache) > self.SIZE:
+                    self._cache.popitem(last=False)
+        return out
+
+    @staticmethod
+    def library() -> list[str]:
+        return library_names()
