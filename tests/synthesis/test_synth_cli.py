@@ -175,3 +175,15 @@ def test_cognates_command(tmp_path):
     for k in (1, 2):
         m = linkwork.load(tmp_path / f"cg-{k}.toml")
         assert np.allclose(m.points["C"], orig.points["C"])  # drawn where the original has C
+
+
+def test_five_positions_without_two_real_burmester_points(tmp_path):
+    """Five random positions (seed 1008 of test_burmester, where the sign changes of the second
+    cubic along the first count none) have no real Burmester point: one clear message."""
+    rng = np.random.default_rng(1008)
+    P = np.column_stack([rng.uniform(-3, 3, (5, 2)), rng.uniform(-1.2, 1.2, 5)])
+    args = [a for x, y, t in P.tolist() for a in ("--pose", f"{x!r},{y!r},{float(np.degrees(t))!r}")]
+    r = run("synth", "poses", *args, "-o", tmp_path / "none.toml")
+    assert r.exit_code == 2
+    assert "only 0 real Burmester points (4 complex)" in r.output and "no four-bar" in r.output
+    assert not (tmp_path / "none.toml").exists()
