@@ -291,6 +291,8 @@ def register(app: typer.Typer) -> None:
             if report is not None and Path(report).suffix.lower() not in (".json", ".csv"):
                 raise InputError(f"--report {report}: write .json or .csv")
             kind = "slider-crank" if slider else "four-bar"
+            if samples < 2:
+                raise InputError(f"--samples {samples}: give at least 2")
             task = FunctionTask(_function(function), _range(x, "--x", False), _range(input_, "--input-range", True),
                                 _range(output_, "--output-range", not slider))
             precision = points if at is None else [_number(v, f"--at {at}") for v in at.split(",")]
