@@ -187,3 +187,17 @@ def test_five_positions_without_two_real_burmester_points(tmp_path):
     assert r.exit_code == 2
     assert "only 0 real Burmester points (4 complex)" in r.output and "no four-bar" in r.output
     assert not (tmp_path / "none.toml").exists()
+
+
+def test_four_positions_without_pivots_pick_pairs_along_the_curve(tmp_path):
+    pos, A, B = generated([10, 45, 80, 120])
+    out, rep = tmp_path / "four.toml", tmp_path / "four.json"
+    r = run("synth", "poses", *pose_args(pos), "--best", "2", "-o", out, "--report", rep)
+    assert r.exit_code == 0, r.output
+    doc = json.loads(rep.read_text())
+    assert len(doc["linkages"]) == 2
+    for lk in doc["linkages"]:
+        assert not (lk["order_defect"] or lk["circuit_defect"] or lk["branch_defect"])
+        assert lk["min_transmission_deg"] >= 30
+        for s, (x, y, t) in zip(analyze_at(lk["file"], lk["input_angles_deg"]), pos.poses):
+            assert s["points"]["P"]["position"] == pytest.approx([x, y], abs=1e-9)

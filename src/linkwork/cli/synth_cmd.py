@@ -8,8 +8,8 @@
 `poses` guides a plane (a coupler) through prescribed positions x, y, angle (degrees): three
 positions with two chosen pivots (--centre for a fixed pivot, --circle for a moving pivot
 drawn in the first position), four with two fixed pivots on the centre-point curve (or
---slider for the curve's point at infinity), five from the Burmester points (every four-bar
-they make, best first). `function` designs a four-bar (or --slider: a slider-crank) whose output
+--slider for the curve's point at infinity) or, without them, the best pairs of points along
+that curve, five from the Burmester points (every four-bar they make, best first). `function` designs a four-bar (or --slider: a slider-crank) whose output
 follows y = f(x) through precision points by Freudenstein's equation. `dwell` adds Alt's dwell
 dyad to a four-bar at a coupler point (Pöschl §37); `substitute` replaces a crank of a four-bar
 by Pröll's (Rosenauer §29), keeping the coupler's motion to second order. `path` finds a
@@ -37,7 +37,7 @@ from rich.table import Table
 from ..errors import InputError
 from ..outputs import write_output_file
 from .cam_cmd import _number, _pair
-from .common import user_errors
+from .common import err_console, user_errors
 
 TOLERANCE = 1e-9
 
@@ -195,7 +195,8 @@ def register(app: typer.Typer) -> None:
         slider: bool = typer.Option(False, "--slider", help="four positions: a slider whose pin's homologous points lie on a line (the centre-point curve's point at infinity)"),
         unit: str = typer.Option("mm", "--unit", help="length unit of the files"),
         name: str = typer.Option("Synthesized linkage", "--name", help="the mechanisms' name"),
-        all_: bool = typer.Option(False, "--all", help="five positions: write every linkage, also those with defects"),
+        all_: bool = typer.Option(False, "--all", help="write every linkage found, also those with defects (five positions, or four without pivots)"),
+        best: Optional[int] = typer.Option(None, "--best", help="write at most this many of the usable linkages, best first (default: all for five positions, 3 for four without pivots)"),
         min_transmission: float = typer.Option(30.0, "--min-transmission", help="DEG: a linkage is usable from this least transmission angle on"),
         output: str = typer.Option(..., "-o", "--output", help="the mechanism file to write (several: NAME-1.toml, NAME-2.toml, …)"),
         report: Optional[str] = typer.Option(None, "--report", help="FILE.json: poles, Burmester points, linkages and their checks"),
@@ -212,31 +213,45 @@ def register(app: typer.Typer) -> None:
                          "poles": {f"P{i + 1}{j + 1}": {"point": _point_json(p),
                                                          "rotation_deg": math.degrees(pos.rotation(i, j))}
                                    for (i, j), p in pos.poles().items()}}
-            if n == 5:
-                if centre or circle or slider:
-                    raise InputError("five positions: the pivots are the Burmester points (drop --centre, "
-                                     "--circle, --slider)")
-                bp = burmester_points(pos)
-                doc["burmester"] = {"real": [{"centre": _point_json(d.centre), "circle": _point_json(d.circle)}
-                                             for d in bp.dyads], "complex": bp.complex_count}
-                if len(bp.dyads) < 2:
-                    raise InputError(bp.message)
-                found = linkages(bp.dyads, name)
-                usable = [lk for lk in found if lk.check.usable(math.radians(min_transmission))]
+            auto = n == 5 or (n == 4 and not (centre or circle or slider))
+            if best is not None and best < 1:
+                raise InputError(f"--best {best}: give at least 1")
+            if n == 5 and (centre or circle or slider):
+                raise InputError("five positions: the pivots are the Burmester points (drop --centre, "
+                                 "--circle, --slider)")
+            if n == 4:  # the curves to choose the pivots from, sampled for drawing
+                from ..synthesis import centre_point_curve, circle_point_curve, curve_samples
+
+                for key, curve in (("centre_point_curve", centre_point_curve(pos)),
+                                   ("circle_point_curve", circle_point_curve(pos))):
+                    pts = curve_samples(curve, samples=360)
+                    doc[key] = {"coefficients": curve.coefficients.tolist(),
+                                "points": [None if not np.isfinite(p).all() else p.tolist() for p in pts]}
+            if auto:
+                if n == 5:
+                    bp = burmester_points(pos)
+                    doc["burmester"] = {"real": [{"centre": _point_json(d.centre), "circle": _point_json(d.circle)}
+                                                 for d in bp.dyads], "complex": bp.complex_count}
+                    if len(bp.dyads) < 2:
+                        raise InputError(bp.message)
+                    found, what = linkages(bp.dyads, name), bp.message
+                else:
+                    from ..synthesis.linkages import four_position_linkages
+
+                    with err_console.status("trying pairs of centre points along the centre-point curve …"):
+                        found = four_position_linkages(pos, name=name)
+                    what = f"{len(found)} linkages from points of the centre-point curve"
+                usable = [lk for lk in found if lk.geometry_ok and lk.check.usable(math.radians(min_transmission))]
                 chosen = found if all_ else usable
+                limit = best if best is not None else (None if n == 5 else 3)
+                chosen = chosen[:limit]
                 if not chosen:
-                    Console().print(_linkage_table(found, [None] * len(found)))
-                    raise InputError(f"{bp.message}, but none is usable (no defect, least transmission angle "
+                    shown = [lk for lk in found if lk.geometry_ok][:10]
+                    if shown:
+                        Console().print(_linkage_table(shown, [None] * len(shown)))
+                    raise InputError(f"{what}, but none is usable (no defect, least transmission angle "
                                      f"≥ {min_transmission:g}°); --all writes them anyway")
             else:
-                if n == 4:  # the curves to choose the pivots from, sampled for drawing
-                    from ..synthesis import centre_point_curve, circle_point_curve, curve_samples
-
-                    for key, curve in (("centre_point_curve", centre_point_curve(pos)),
-                                       ("circle_point_curve", circle_point_curve(pos))):
-                        pts = curve_samples(curve, samples=360)
-                        doc[key] = {"coefficients": curve.coefficients.tolist(),
-                                    "points": [None if not np.isfinite(p).all() else p.tolist() for p in pts]}
                 ds = _dyads(pos, centre, circle, slider)
                 if len(ds) != 2:
                     raise InputError(f"{n} positions: give two pivots (--centre X,Y or --circle X,Y"
