@@ -58,22 +58,20 @@ def cognates(mech: Mechanism, point, *, name: str | None = None) -> Cognates:
     OC = A0 + lam * (B0 - A0)
     A1, D = A0 + lam * r3, Cz - (1 - lam) * r2
     E, F = B0 + (lam - 1) * r3, Cz - lam * r4
-    unit, speed = fb.unit, "1 rad/s"
     base = name or mech.name
-    first = mechanism_file(
-        name=f"{base}, cognate 1", length_unit=unit, speed=speed, driver="A0",
-        description=f"Roberts–Chebyshev cognate of '{mech.name}' on pivots A0 and OC: its coupler point C "
-                    "traces the same curve. Written by linkwork's synthesis.",
-        points={"A0": _xy(A0), "OC": _xy(OC), "A1": _xy(A1), "C": _xy(Cz), "D": _xy(D)},
-        links={"frame": ["A0", "OC"], "crank": ["A0", "A1"], "coupler": ["A1", "C", "D"], "rocker": ["D", "OC"]},
-        joints={"A0": ("revolute", ("frame", "crank"), ""), "A1": ("revolute", ("crank", "coupler"), ""),
-                "D": ("revolute", ("coupler", "rocker"), ""), "OC": ("revolute", ("rocker", "frame"), "")})
-    second = mechanism_file(
-        name=f"{base}, cognate 2", length_unit=unit, speed=speed, driver="OC",
-        description=f"Roberts–Chebyshev cognate of '{mech.name}' on pivots B0 and OC: its coupler point C "
-                    "traces the same curve, in step with the original's crank. Written by linkwork's synthesis.",
-        points={"OC": _xy(OC), "B0": _xy(B0), "F": _xy(F), "C": _xy(Cz), "E": _xy(E)},
-        links={"frame": ["OC", "B0"], "crank": ["OC", "F"], "coupler": ["F", "C", "E"], "rocker": ["E", "B0"]},
-        joints={"OC": ("revolute", ("frame", "crank"), ""), "F": ("revolute", ("crank", "coupler"), ""),
-                "E": ("revolute", ("coupler", "rocker"), ""), "B0": ("revolute", ("rocker", "frame"), "")})
+
+    def four_bar(k: int, pivots: tuple[str, str], pins: tuple[str, str], pts: dict, note: str) -> str:
+        (p, q), (u, v) = pivots, pins
+        return mechanism_file(
+            name=f"{base}, cognate {k}", length_unit=fb.unit, speed="1 rad/s", driver=p,
+            description=f"Roberts–Chebyshev cognate of '{mech.name}' on pivots {p} and {q}: its coupler "
+                        f"point C traces the same curve{note}. Written by linkwork's synthesis.",
+            points={name_: _xy(z) for name_, z in pts.items()},
+            links={"frame": [p, q], "crank": [p, u], "coupler": [u, "C", v], "rocker": [v, q]},
+            joints={p: ("revolute", ("frame", "crank"), ""), u: ("revolute", ("crank", "coupler"), ""),
+                    v: ("revolute", ("coupler", "rocker"), ""), q: ("revolute", ("rocker", "frame"), "")})
+
+    first = four_bar(1, ("A0", "OC"), ("A1", "D"), {"A0": A0, "OC": OC, "A1": A1, "C": Cz, "D": D}, "")
+    second = four_bar(2, ("OC", "B0"), ("F", "E"), {"OC": OC, "B0": B0, "F": F, "C": Cz, "E": E},
+                      ", in step with the original's crank")
     return Cognates(first, second, _xy(OC))
