@@ -218,3 +218,22 @@ def test_unreachable_scheduler_is_a_clear_error():
     p = sweeps.plan(CR, ["O4.x=36:36:1"], ["grashof"])
     with pytest.raises(InputError, match="cannot reach the Dask scheduler at tcp://127.0.0.1:9"):
         sweeps.execute(p, scheduler="tcp://127.0.0.1:9")
+
+
+def test_parameters_named_in_the_file(tmp_path):
+    """crank-rocker.toml names crank = "O2-A" and frame = "O2-O4": sweeping by those names is
+    sweeping the distances; a [parameters] entry naming an unknown point is refused on loading,
+    with its key and line."""
+    by_name = sweeps.plan(CR, ["crank=8:12:2", "frame=38:42:4"], ["transmission-min:B"])
+    by_expr = sweeps.plan(CR, ["O2-A=8:12:2", "O2-O4=38:42:4"], ["transmission-min:B"])
+    assert [p.name for p in by_name.params] == ["crank", "frame"]
+    assert [r[2:] for r in sweeps.execute(by_name, workers=1)] == [r[2:] for r in sweeps.execute(by_expr, workers=1)]
+    with pytest.raises(InputError, match=r"parameter of the file's \[parameters\] \(coupler, crank, frame, rocker\)"):
+        sweeps.plan(CR, ["crankk=1:2:1"], ["grashof"])
+    from linkwork.errors import MechanismFileError
+    text = linkwork.io.files.resolve(CR)[1].replace('rocker  = "O4-B"', 'rocker  = "O4-X"')
+    bad = tmp_path / "bad.toml"
+    bad.write_text(text)
+    with pytest.raises(MechanismFileError, match=r"bad.toml:\d+, key 'parameters.rocker': parameter 'rocker' "
+                                                 r"names point 'X', which is not in \[points\]"):
+        linkwork.load(str(bad))

@@ -37,13 +37,18 @@ class Parameter:
         return float(p[0 if self.kind == "x" else 1])
 
 
-def parameter(mech: Mechanism, name: str) -> Parameter:
-    """The parameter `name` of `mech` (`P.x`, `P.y` or `A-B`), or an `InputError` naming what
-    is wrong with it."""
+def parameter(mech: Mechanism, name: str, named: dict[str, str] | None = None) -> Parameter:
+    """The parameter `name` of `mech` (`P.x`, `P.y` or `A-B`, or a name the file's
+    `[parameters]` table, `named`, gives one of those), or an `InputError` naming what is wrong
+    with it."""
+    if named and name.strip() in named:
+        p = parameter(mech, named[name.strip()])
+        return Parameter(name.strip(), p.kind, p.point, p.base)
     m = _NAME.match(name.strip())
     if m is None:
         raise InputError(f"--vary {name}: name a coordinate (P.x, P.y) or a distance (A-B) of the "
-                         "drawing's points")
+                         "drawing's points, or a parameter of the file's [parameters]"
+                         + (f" ({', '.join(sorted(named))})" if named else ""))
     known = sorted(mech.points)
     if m.group("p"):
         if m.group("p") not in mech.points:
