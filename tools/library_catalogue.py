@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import argparse
 import sys
+import warnings
 from pathlib import Path
 
 import numpy as np
@@ -28,8 +29,10 @@ def drawing(name: str) -> str:
     """The SVG of `library:NAME` at its design position, with the paths of its points."""
     mech = linkwork.load(f"library:{name}")
     value = np.array([mech.driver_input_at_design(d) for d in mech.drivers])[None, :]
-    sc = Scene(mech, linkwork.solve(mech, value))
-    return scene_figure(sc, ("mechanism", "paths"), title=mech.name).to_svg()
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", linkwork.LinkworkWarning)  # over-closed chains say so
+        sc = Scene(mech, linkwork.solve(mech, value))
+        return scene_figure(sc, ("mechanism", "paths"), title=mech.name).to_svg()
 
 
 def page(entries: list[dict], failed: dict[str, str]) -> str:
