@@ -18,6 +18,7 @@ import numpy as np
 
 import linkwork
 from linkwork.drawing.layers import Scene, scene_figure
+from linkwork.errors import LinkworkWarning
 from linkwork.io.library import library_entries
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -30,7 +31,7 @@ def drawing(name: str) -> str:
     mech = linkwork.load(f"library:{name}")
     value = np.array([mech.driver_input_at_design(d) for d in mech.drivers])[None, :]
     with warnings.catch_warnings():
-        warnings.simplefilter("ignore", linkwork.LinkworkWarning)  # over-closed chains say so
+        warnings.simplefilter("ignore", LinkworkWarning)  # over-closed chains say so
         sc = Scene(mech, linkwork.solve(mech, value))
         return scene_figure(sc, ("mechanism", "paths"), title=mech.name).to_svg()
 
