@@ -237,3 +237,23 @@ def test_parameters_named_in_the_file(tmp_path):
     with pytest.raises(MechanismFileError, match=r"bad.toml:\d+, key 'parameters.rocker': parameter 'rocker' "
                                                  r"names point 'X', which is not in \[points\]"):
         linkwork.load(str(bad))
+
+
+def test_direction_parameters_turn_a_point_about_another():
+    """`O2-A.angle` turns the crank pin about O2 (radius kept); swept over the circle, the crank
+    of length 10 stays a crank (Grashof) while the coupler |AB| follows the cosine rule."""
+    m = linkwork.load(CR)
+    prm = sweeps.parameter(m, "O2-A.angle")
+    assert prm.value(m) == pytest.approx(90.0)
+    q = sweeps.apply(m, [prm], [30.0])
+    np.testing.assert_allclose(q.points["A"], [10 * np.cos(np.radians(30)), 10 * np.sin(np.radians(30))])
+    p = sweeps.plan(CR, ["O2-A.angle=0:180:60"], ["A.y:max", "grashof"], inputs=np.radians([0.0]))
+    df = frame(p, sweeps.execute(p, workers=1))
+    # the crank is turned back to 0° by the input; its drawn angle does not matter for A,
+    # but the coupler length |AB| = |(30, 30) − 10·(cos φ, sin φ)| does for the class
+    for _, r in df.iterrows():
+        phi = math.radians(r["O2-A.angle"])
+        b = math.hypot(30 - 10 * math.cos(phi), 30 - 10 * math.sin(phi))
+        L = sorted([40.0, 10.0, b, math.hypot(10, 30)])
+        assert r["grashof"].startswith("Grashof" if L[0] + L[3] < L[1] + L[2] else "non-Grashof")
+        assert r["A.y:max"] == pytest.approx(0.0, abs=1e-12)

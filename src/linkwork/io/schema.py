@@ -247,7 +247,8 @@ class MechanismFile(_Strict):
     units: Units = Units()
     parameters: dict[str, str] = Field(
         default_factory=dict, description="named design parameters for sweeps: NAME = \"P.x\", "
-        "\"P.y\" (a point's coordinate) or \"A-B\" (the distance from A to B, B moving along it)")
+        "\"P.y\" (a point's coordinate), \"A-B\" (the distance from A to B, B moving along it) or "
+        "\"A-B.angle\" (the direction of B from A in degrees, B turning about A)")
     frame: str = "frame"
     points: dict[str, Coordinates]
     profiles: dict[str, ProfileSpec] = Field(
