@@ -103,6 +103,11 @@ class ScriptDrawer:
         self.vc._point(key, image, lab, lines=lines)
 
     def text(self, st) -> str:
+        if getattr(self.vc, "mode", "plan") == "rotated":
+            # the script is written for the polar plan; on the mechanism the tips X' of the
+            # rotated velocities lie on the parallels where the plan has the perpendiculars
+            return (st.text + "  [rotated velocities: x is the tip X', a line \u27c2 XY in the plan "
+                    "is the parallel to XY through the tip]")
         return st.text
 
     def _one(self, st) -> None:
