@@ -477,3 +477,26 @@ def test_papers_free_chain_scripts_give_the_velocities(example, seed):
         if ln in chain.known or ln == "o":
             continue
         assert np.linalg.norm(image((ln, p)) - ref(ln, pos[p])) <= 1e-9 * scale, (ln, p)
+
+
+# ------------------------------------------------------------------ curved slots, the library's valve gears
+@pytest.mark.parametrize("name", ["stephenson-link-motion", "heusinger-valve-gear", "heusinger-hinge-chain"])
+@pytest.mark.parametrize("build", [velocity_plan, rotated_velocities, acceleration_plan],
+                         ids=["plan", "rotated", "acceleration"])
+def test_valve_gears_of_the_library(name, build):
+    """A pin in a curved slot (the die in the Kulisse): the relative velocity is tangent to the arc,
+    so both links project equally on its radius; for accelerations the relative normal v²/r
+    towards the arc's centre and the Coriolis term are transferred. The library's Heusinger gear
+    has two drivers (crank and reversing arm): sampled in time."""
+    mech = linkwork.load(f"library:{name}")
+    if len(mech.drivers) > 1:
+        sol = solve(mech, times=np.array([0.05, 0.2, 0.4, 0.7]))
+    else:
+        # away from the drawn position: the Stephenson gear is drawn where Q, E and K fall on one
+        # line (the step k = (q ⟂ QK) ∩ (e ⟂ EK) degenerates there, and says so)
+        sol = solve(mech, mech.driver_input_at_design(mech.drivers[0]) + np.array([0.3, 0.9, 2.0, 4.0]))
+    assert (np.asarray(sol.status) == Status.OK).all()
+    con = build(mech, sol)
+    con.check()
+    assert con.max_error() <= 1e-9 and not con.degenerate.any()
+    assert plan_velocities(mech).direct
