@@ -18,7 +18,7 @@ import typer
 from rich.console import Console
 from rich.table import Table
 
-from .common import user_errors, write_output
+from .common import recording_console, user_errors, write_output
 
 if TYPE_CHECKING:
     from ..kinematics import Solution
@@ -44,7 +44,7 @@ def _table(sol: Solution) -> str:
 
     mech = sol.mechanism
     # markup off: names from the file ("[A]", "x [mm]") are text
-    out = Console(record=True, width=160, file=open("/dev/null", "w"), markup=False)
+    out = recording_console(160, markup=False)
     unit = mech.length_unit
     single = len(mech.drivers) == 1
 
