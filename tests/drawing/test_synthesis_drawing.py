@@ -119,3 +119,22 @@ def test_a_translation_puts_its_pole_in_the_legend():
     assert pole_ident(0, 1) not in {p.ident for p in fig.prims}
     assert any("P_{12} at infinity" in n for n in fig.legend)
     fig.to_svg()
+
+
+@pytest.mark.parametrize("degrees, kind", [([10, 45, 80, 120], "4"), ([20, 50, 80, 110, 140], "5")])
+def test_synth_poses_draw_writes_the_figure(tmp_path, degrees, kind):
+    from typer.testing import CliRunner
+
+    from linkwork.cli import app
+
+    pos = generated(degrees)[0]
+    args = [a for x, y, t in pos.poses for a in ("--pose", f"{float(x)!r},{float(y)!r},{float(np.degrees(t))!r}")]
+    pivots = ["--centre", "0,0", "--centre", "4,0"] if kind == "4" else []
+    svg = tmp_path / "poses.svg"
+    r = CliRunner().invoke(app, ["synth", "poses", *args, *pivots, "-o", str(tmp_path / "g.toml"), "--draw", str(svg)])
+    assert r.exit_code == 0, r.output
+    text = svg.read_text()
+    n = len(degrees)
+    assert text.count('id="pole-P') == n * (n - 1) // 2
+    assert ('id="centre-point-curve"' in text) == (kind == "4")
+    assert 'id="centre-point-1"' in text and 'id="centre-point-2"' in text

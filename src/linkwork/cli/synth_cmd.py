@@ -200,6 +200,7 @@ def register(app: typer.Typer) -> None:
         min_transmission: float = typer.Option(30.0, "--min-transmission", help="DEG: a linkage is usable from this least transmission angle on"),
         output: str = typer.Option(..., "-o", "--output", help="the mechanism file to write (several: NAME-1.toml, NAME-2.toml, …)"),
         report: Optional[str] = typer.Option(None, "--report", help="FILE.json: poles, Burmester points, linkages and their checks"),
+        draw: Optional[str] = typer.Option(None, "--draw", help="FILE.svg (.png, .pdf): the positions, poles, pole triangles, for four positions the Burmester curves, and the pivots found"),
     ) -> None:
         """Guide a plane through 3–5 prescribed positions with a four-bar or slider-crank."""
         with user_errors():
@@ -259,6 +260,11 @@ def register(app: typer.Typer) -> None:
                 if ds[0].is_slider:
                     ds.reverse()
                 chosen = [Linkage(ds[0], ds[1], name)]
+            if draw:
+                from ..drawing.synthesis_layers import draw_positions
+
+                marked = list(bp.dyads) if n == 5 else [chosen[0].input, chosen[0].output]
+                draw_positions(pos, marked, unit=unit, title=name).save(draw)
             paths = _paths(output, len(chosen))
             errors = []
             for k, (lk, path) in enumerate(zip(chosen, paths), start=1):
@@ -274,7 +280,8 @@ def register(app: typer.Typer) -> None:
                     Console().print(f"{p.name}: {note}", highlight=False)
             if report:
                 write_output_file(report, json.dumps(doc, indent=2, default=float) + "\n")
-            Console().print("wrote " + ", ".join(str(p) for p in paths) + (f" and {report}" if report else ""))
+            Console().print("wrote " + ", ".join(str(p) for p in paths) + (f", {report}" if report else "")
+                            + (f", {draw}" if draw else ""))
             bad = [str(p) for p, e, lk in zip(paths, errors, chosen) if e > TOLERANCE and not lk.check.circuit_defect]
             if bad:
                 raise InputError("the engine does not reproduce the positions with " + ", ".join(bad)
