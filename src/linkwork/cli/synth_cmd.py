@@ -9,7 +9,9 @@
 positions with two chosen pivots (--centre for a fixed pivot, --circle for a moving pivot
 drawn in the first position), four with two fixed pivots on the centre-point curve (or
 --slider for the curve's point at infinity) or, without them, the best pairs of points along
-that curve, five from the Burmester points (every four-bar they make, best first). `function` designs a four-bar (or --slider: a slider-crank) whose output
+that curve, five from the Burmester points (every four-bar they make, best first); --draw
+FILE.svg draws the positions, poles, pole triangles, for four positions the centre-point and
+circle-point curves, and the pivots used (five: the Burmester points). `function` designs a four-bar (or --slider: a slider-crank) whose output
 follows y = f(x) through precision points by Freudenstein's equation. `dwell` adds Alt's dwell
 dyad to a four-bar at a coupler point (Pöschl §37); `substitute` replaces a crank of a four-bar
 by Pröll's (Rosenauer §29), keeping the coupler's motion to second order. `path` finds a
