@@ -51,12 +51,16 @@ def draw_positions(pos: Positions, dyads: tuple[Dyad, ...] | list[Dyad] = (), *,
     size = pos.size
     arrow = 0.2 * size if size > 1e-300 else 1.0
     pts = [pos.origin, pos.origin + arrow * np.column_stack([np.cos(pos.angle), np.sin(pos.angle)])]
-    pts += [np.atleast_2d(v) for v in finite.values()]
     for d in dyads:
         if d.centre.is_finite:
             pts.append(np.atleast_2d(d.centre.xy))
         pts.append(d.homologous())
-    cloud = np.vstack(pts)
+    base = np.vstack(pts)
+    # poles far beyond the positions (nearly equal rotations) would shrink the drawing to a dot:
+    # they stay in the file but outside the panel, with their place in the legend
+    mid, reach = base.mean(0), 3.0 * max(float(np.ptp(base, axis=0).max()), arrow)
+    far = {k for k, v in finite.items() if np.hypot(*(v - mid)) > reach}
+    cloud = np.vstack([base] + [np.atleast_2d(v) for k, v in finite.items() if k not in far])
     lo, hi = cloud.min(0), cloud.max(0)
     extent = float(max(np.ptp(cloud, axis=0).max(), arrow))
     pad = 0.25 * extent
@@ -85,6 +89,8 @@ def draw_positions(pos: Positions, dyads: tuple[Dyad, ...] | list[Dyad] = (), *,
         if P.is_finite:
             fig.dot(P.xy, r=0.6, style=Style(stroke=COLOURS["pole"]), layer="poles", ident=pole_ident(i, j))
             fig.label(P.xy, label, size=2.8, ident=pole_ident(i, j))
+            if (i, j) in far:
+                fig.note(f"{label} outside the drawing, at ({P.xy[0]:.4g}, {P.xy[1]:.4g})")
         else:
             u = P.direction.xy
             fig.note(f"{label} at infinity (direction {np.degrees(np.arctan2(u[1], u[0])) % 180:.1f}\u00b0): "
