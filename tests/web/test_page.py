@@ -216,6 +216,14 @@ def test_dragging_a_point_solves_again(page):
     assert svg_position(page, "point-C") == pytest.approx(expected_svg(page, xy), abs=2e-3)
     # and the crank is longer: A on the circle of radius |moved|
     assert np.hypot(*number_row(page, "A")) == pytest.approx(np.hypot(*moved), abs=1e-4)
+    # Save TOML: the file with A's new design coordinates, the rest as it was
+    with page.expect_download() as dl:
+        page.click("#save")
+    saved = Path(dl.value.path()).read_text()
+    assert dl.value.suggested_filename == "crank-rocker.toml"
+    assert load_text(saved).points["A"] == pytest.approx(moved, abs=1e-6)
+    assert [ln for ln in saved.splitlines() if not ln.startswith("A ")] == \
+        [ln for ln in resolve("library:crank-rocker")[1].splitlines() if not ln.startswith("A ")]
 
 
 def test_an_unassemblable_drag_shows_the_engines_message(page):
