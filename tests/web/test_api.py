@@ -370,3 +370,13 @@ def test_serve_binds_locally_unless_told(monkeypatch, workdir):
     assert r.exit_code == 0 and "?file=mine.toml" in r.output
     r = runner.invoke(cli_app, ["serve", "library:nope"])
     assert r.exit_code == 2 and "no mechanism 'nope'" in r.output
+
+
+def test_the_page_and_only_its_files_are_served(client):
+    r = client.get("/")
+    assert r.status_code == 200 and '<script src="/static/app.js">' in r.text
+    assert client.get("/static/style.css").status_code == 200
+    for path in ("/static/../app.py", "/static/..%2fapp.py", "/static/%2e%2e/sources.py",
+                 "/static/../../io/files.py"):
+        r = client.get(path)
+        assert r.status_code == 404 and "import" not in r.text, path
