@@ -73,11 +73,21 @@ def warm_up() -> None:
     from linkwork.cli import app  # noqa: F401
     from linkwork.structure import structure_report
 
-    for name in ("crank-rocker", "slider-crank-offset", "jansen-linkage"):
+    from linkwork.kinematics import kernels
+
+    # (the parallelogram: change points, its dyad's signs an array rather than one number)
+    for name in ("crank-rocker", "slider-crank-offset", "jansen-linkage", "parallelogram"):
         mech = linkwork.load(f"library:{name}")
         sol = linkwork.solve(mech, _inputs(mech, random.Random(0)))
         check_ok_samples(sol)
         structure_report(mech, limits=False)
+        # batches above INTERPRETED_UP_TO run compiled (numba): compiled here, not in a case
+        # (the change-point scans take 2049–4097 samples, a path's grid more); an alarm in
+        # the middle of numba's compiler leaves its loops broken for the cases after
+        u0 = mech.driver_input_at_design(mech.drivers[0])
+        many = u0 + np.linspace(-np.pi, np.pi, kernels.INTERPRETED_UP_TO + 1)
+        linkwork.solve(mech, many, order=2)
+        linkwork.solve(mech, many, order=3)
 
 
 # ----------------------------------------------------------------------------- mutations

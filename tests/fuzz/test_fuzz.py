@@ -58,3 +58,44 @@ def test_tiny_rocker_is_not_ok_with_an_open_pair():
     u0 = mech.driver_input_at_design(mech.drivers[0])
     sol = linkwork.solve(mech, u0 + np.linspace(-np.pi, np.pi, 13))
     assert check_ok_samples(sol) is None
+
+
+def test_runaway_structure_step_is_not_a_linalg_crash():
+    """Found by tools/fuzz.py (seed 12, case 999): the Proell–Schwabe gear with P58 drawn
+    1e-12 from P38. The structure report's finite step (Gauss–Newton) ran away to NaN poses
+    and the cam's gap took an SVD of NaN (LinAlgError); it now ends as a step that does not
+    close."""
+    from fuzz_harness import _POINT
+
+    text = TEXTS["proell-schwabe-valve-gear"]
+    pts = {m.group(1): m for m in _POINT.finditer(text)}
+    m, o = pts["P58"], pts["P38"]
+    x, y = float(o.group(2)) + 1e-12, float(o.group(3)) - 1e-12
+    data = (text[:m.start(2)] + repr(x) + ", " + repr(y) + text[m.end(3):]).encode()
+    _assert_fine(run_file_case(data, random.Random(0)), "P58 -> P38 + 1e-12")
+
+
+def test_change_point_scans_run_the_solves_compiled_loops():
+    """Found by tools/fuzz.py (seed 12, case 41, the Holst mechanism): a change-point scan of
+    more than INTERPRETED_UP_TO samples laid its poses out otherwise than `solve`, so numba
+    compiled the dyad's loop once more (seconds, inside a case: a hang, and an alarm in the
+    middle of the compiler broke the loop for the cases after). The scans now lay poses out as
+    the solve does: no new compiled version."""
+    import numpy as np
+
+    import linkwork
+    from linkwork.kinematics import branches, kernels, solver
+
+    mech = linkwork.load("library:parallelogram")
+    solvers = solver.plan(mech)
+    n = kernels.INTERPRETED_UP_TO + 1
+    u = np.linspace(0.0, 4 * np.pi, n)
+    sol = linkwork.solve(mech, u)  # the solve's versions (compiled by warm_up already)
+    rrr = kernels._compiled()["rrr_positions"]
+    before = list(rrr.signatures)
+    dyad = next(s for s in solvers if s.kind == "RRR")
+    state = branches._positions(mech, solvers, dyad, u, branches.branch_schedule(mech))
+    assert list(rrr.signatures) == before
+    # (and the scan places the dyad where the solve does)
+    np.testing.assert_allclose(state.Q[0][:, mech.link_index["coupler"], 2],
+                               sol.link("coupler").angle, atol=1e-12)

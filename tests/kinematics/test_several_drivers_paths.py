@@ -216,3 +216,18 @@ def test_streamed_analyze_of_a_five_bar_equals_one_solve(monkeypatch, tmp_path):
     A, C = sol.point("A").position, sol.point("C").position
     P = got[["P.x", "P.y"]].to_numpy(float)
     np.testing.assert_allclose(P, A + C, atol=1e-6)
+
+
+@pytest.mark.parametrize("name", ["roemer-mechanism", "crank-driven-wedge", "jansen-linkage"])
+def test_one_driver_chunks_equal_the_one_piece_solve(name):
+    """One driver: every sample is solved on its own (its change points counted from the
+    design input, its Newton start interpolated from the kept march, reduced by the period
+    only when beyond half of it), so chunks of 9 — some within half a turn, some beyond — give
+    the one-piece solve bit for bit, and `path_end` is None."""
+    mech = linkwork.load(f"library:{name}")
+    values = _design(mech)[0] + np.radians(np.arange(-30, 400, 7.0))
+    whole = linkwork.solve(mech, values)
+    parts = [linkwork.solve(mech, values[i:i + 9]) for i in range(0, len(values), 9)]
+    _assert_same(whole, parts, mech)
+    np.testing.assert_array_equal(np.concatenate([p.errors for p in parts]), whole.errors)
+    assert whole.path_end is None

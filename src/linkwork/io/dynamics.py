@@ -16,7 +16,7 @@ import numpy as np
 from ..errors import InputError, MechanismFileError, ModelError
 from ..model import Mechanism
 from ..model.inertia import (STANDARD_GRAVITY, Couple, Dynamics, LinearSpring, Loads, LoadTable,
-                             MassProperties, PointForce, TorsionSpring)
+                             MassProperties, PairFriction, PointForce, TorsionSpring)
 from ..units import parse_quantity
 from . import schema
 from .files import LIBRARY_PREFIX, _did_you_mean, _dotted, _line_of, parse, resolve
@@ -128,8 +128,16 @@ def build_dynamics(mech: Mechanism, spec: schema.MechanismFile, text: str, sourc
             t.joint, quantity(loc + ("stiffness",), t.stiffness, "N*m/rad", "torsion stiffness"),
             float(free), quantity(loc + ("damping",), t.damping, "N*m*s/rad", "rotary damping"),
             name=f"loads.torsion_springs[{i}]"))
+    friction = []
+    for i, fr in enumerate(ls.friction):
+        loc = ("loads", "friction", i)
+        if fr.joint not in mech.joint_index:
+            fail(loc + ("joint",), f"joint '{fr.joint}', which is not in [joints]"
+                                   f"{_did_you_mean(fr.joint, mech.joint_index)}")
+        friction.append(PairFriction(fr.joint, float(fr.coefficient), quantity(
+            loc + ("radius",), fr.radius, length, "journal radius", True)))
     loads = Loads(gravity=g, forces=tuple(forces), couples=tuple(couples), springs=tuple(springs),
-                  torsion_springs=tuple(torsion))
+                  torsion_springs=tuple(torsion), friction=tuple(friction))
     try:
         return Dynamics.build(mech, masses, loads, metres_per_unit=metres)
     except ModelError as exc:

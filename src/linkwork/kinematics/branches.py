@@ -88,6 +88,13 @@ class PathSchedule:
         return self.signs(lam)
 
 
+def _poses(mech: Mechanism, N: int) -> np.ndarray:
+    """Zero poses Q[0, n, row, (x, y, θ)] laid out as `solve` lays them out (the sample axis
+    last in memory), so that the compiled kernels run the loops compiled for the solve rather
+    than compiling another version (seconds) for another layout."""
+    return np.zeros((1, len(rows(mech)), 3, N)).transpose(0, 3, 1, 2)
+
+
 def _positions(mech: Mechanism, solvers: tuple[GroupSolver, ...], upto: GroupSolver,
                u: np.ndarray, branches: dict) -> State:
     """Positions of every group before and including `upto` at inputs u (one driver); NaN
@@ -97,7 +104,7 @@ def _positions(mech: Mechanism, solvers: tuple[GroupSolver, ...], upto: GroupSol
     from .continuation import continuation_guesses
 
     N = u.shape[0]
-    Q = np.zeros((1, N, len(rows(mech)), 3))
+    Q = _poses(mech, N)
     state = State(mech, Q, input_coefficients(mech, u[:, None], None, None, None, 0),
                   branches={g: s.signs(u) for g, s in branches.items()})
     upstream = solvers[:solvers.index(upto) + 1]
@@ -235,7 +242,7 @@ def path_schedule(mech: Mechanism, solvers: tuple[GroupSolver, ...], values: np.
 
             def state(lam: np.ndarray) -> State:
                 u = inputs(lam)
-                st = State(mech, np.zeros((1, lam.size, len(rows(mech)), 3)),
+                st = State(mech, _poses(mech, lam.size),
                            input_coefficients(mech, u, None, None, None, 0),
                            branches={g: sc.signs(lam) for g, sc in found.items()})
                 ok = np.ones(lam.size, dtype=bool)

@@ -124,8 +124,11 @@ def continuation_guesses(mech: Mechanism, solvers, values: np.ndarray,
             found = _period(mech, solvers, gen, lanes)
             if found is not None:  # inputs far out: the same poses some periods nearer
                 period, advance = found
-                near = np.where(finite, np.mod(lam + period / 2, period) - period / 2, lam)
-                turns = np.where(finite, np.round((lam - near) / period), 0.0)
+                # only the samples beyond half a period: the others keep their own λ, so
+                # that a sample's answer does not depend on the others in its batch
+                far = finite & (np.abs(lam) > period / 2)
+                near = np.where(far, np.mod(lam + period / 2, period) - period / 2, lam)
+                turns = np.where(far, np.round((lam - near) / period), 0.0)
                 lam = near
         reach = {+1: lam[finite].max(initial=0.0), -1: -lam[finite].min(initial=0.0)}
         _march(mech, solvers, gen, list(lanes.values()), reach)

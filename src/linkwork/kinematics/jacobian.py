@@ -192,7 +192,11 @@ def pair_residuals(mech: Mechanism, poses: np.ndarray) -> np.ndarray:
         if contact.is_higher(j):
             # what the contact coordinates cannot close: the gap between the elements
             g = Group(links=(contact.row_name(j),), joints=(j.name,), drivers=())
-            U = np.linalg.svd(residual_and_jacobian(state, g)[1][0])[0]
+            Jc = residual_and_jacobian(state, g)[1][0]
+            if not (np.isfinite(Jc).all() and np.isfinite(res).all()):
+                out.extend(np.full(res.size - 3, np.nan))  # poses far off: no gap to measure
+                continue
+            U = np.linalg.svd(Jc)[0]
             res = U[:, 3:].T @ res
         out.extend(res)
     return np.array(out)

@@ -480,6 +480,8 @@ def _finite_step(mech: Mechanism, real: int, step: float = 1e-3) -> tuple[bool, 
     for _ in range(60):
         q = to_q(u)
         r = pair_residuals(mech, q.reshape(k, 3))
+        if not (np.isfinite(r).all() and np.isfinite(q).all()):
+            break  # Gauss–Newton ran away (a degenerate drawing): the chain does not close
         along = float(np.dot(d, u - u0))
         if np.abs(r).max(initial=0.0) <= 1e-11 * scale and abs(along) <= 1e-11 * scale:
             ok = True
