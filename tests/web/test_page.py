@@ -300,3 +300,38 @@ def test_velocity_plan(page):
     page.check("#show-acceleration-plan")
     wait_drawn(page, lambda: "acceleration plan" in page.inner_text("#drawing"), "draw the acceleration plan")
     assert not page.is_checked("#show-velocity-plan")
+
+
+def _api(server, path, body):
+    import urllib.request
+    req = urllib.request.Request(f"{server}{path}", data=json.dumps(body).encode(),
+                                 headers={"content-type": "application/json"})
+    with urllib.request.urlopen(req, timeout=60) as r:
+        return json.loads(r.read())
+
+
+def test_a_construction_played_step_by_step(page, server):
+    from linkwork.constructions import CONSTRUCTIONS
+    options = page.locator("#construction option").evaluate_all("els => els.map(e => e.value)")
+    assert options == [""] + list(CONSTRUCTIONS)  # every construction the engine offers
+    api = _api(server, "/api/construction", {"source": {"library": "crank-rocker"}, "name": "kennedy"})
+    page.select_option("#construction", "kennedy")
+    wait_drawn(page, lambda: page.inner_text("#step-text") == api["steps"][0], "show the first step")
+    assert page.inner_text("#step-count") == f"step 1 of {len(api['steps'])}"
+    assert page.is_disabled("#step-back")
+    page.click("#step-forward")
+    wait_drawn(page, lambda: page.inner_text("#step-text") == api["steps"][1], "show the second step")
+    # the drawing is the construction up to that step: the API's drawing for step 1
+    want = _api(server, "/api/drawing", {"source": {"library": "crank-rocker"}, "at": [math.pi / 2],
+                                         "layers": ["mechanism"], "construction": "kennedy", "step": 1})
+    assert page.locator("#drawing svg").evaluate("e => e.outerHTML").count("<path") == \
+        want["svg"].count("<path")
+    page.click("#step-back")
+    wait_drawn(page, lambda: page.inner_text("#step-text") == api["steps"][0], "step back")
+    # a construction the mechanism does not allow: the engine's message, the mechanism still drawn
+    page.select_option("#construction", "klein")
+    page.wait_for_selector("#error:not([hidden])", timeout=20_000)
+    assert "klein: " in page.inner_text("#error") and "slider-crank" in page.inner_text("#error")
+    assert page.inner_text("#step-text") == ""
+    page.select_option("#construction", "")
+    wait_drawn(page, lambda: page.is_hidden("#error"), "drop the construction")

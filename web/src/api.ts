@@ -76,6 +76,9 @@ export interface DrawingRequest {
   at?: number[];
   layers: string[];
   construction?: string;
+  step?: number;
+  link?: string;
+  point?: string;
   fit?: "motion" | "drawing";
   motion?: boolean;
 }

@@ -31,6 +31,13 @@ const ui = {
   edit: $<HTMLInputElement>("edit"),
   numbers: $<HTMLTableElement>("numbers"),
   structure: $<HTMLDListElement>("structure"),
+  construction: $<HTMLSelectElement>("construction"),
+  constructionLink: $<HTMLSelectElement>("construction-link"),
+  constructionPoint: $<HTMLSelectElement>("construction-point"),
+  stepBack: $<HTMLButtonElement>("step-back"),
+  stepForward: $<HTMLButtonElement>("step-forward"),
+  stepCount: $<HTMLOutputElement>("step-count"),
+  stepText: $<HTMLParagraphElement>("step-text"),
 };
 
 /** Layers drawn over the mechanism, and the plans (constructions drawn beside it). */
@@ -45,6 +52,8 @@ interface State {
   playing: boolean;
   layers: Set<string>;
   plan: string | null;
+  // the construction played step by step (0-based step; its link and point, if chosen)
+  construction: { name: string; link: string; point: string; step: number } | null;
   drawn: Drawing | null;
   busy: boolean;
   again: boolean;
@@ -53,7 +62,7 @@ interface State {
 
 const state: State = {
   base: null, moved: {}, info: null, motion: null, index: 0, playing: false,
-  layers: new Set(), plan: null, drawn: null, busy: false, again: false, generation: 0,
+  layers: new Set(), plan: null, construction: null, drawn: null, busy: false, again: false, generation: 0,
 };
 
 function source(): Source {
@@ -100,7 +109,13 @@ function drawingRequest(): DrawingRequest {
   const layers = ["mechanism", ...Array.from(state.layers)];
   const req: DrawingRequest = { source: source(), layers };
   if (state.motion) req.at = sampleInput(state.index);
-  if (state.plan) req.construction = state.plan;
+  const c = state.construction;
+  if (c) {
+    req.construction = c.name;
+    req.step = c.step;
+    if (c.link) req.link = c.link;
+    if (c.point) req.point = c.point;
+  } else if (state.plan) req.construction = state.plan;
   // while dragging, the frames leave the whole motion out: they follow the pointer sooner
   if (dragging) req.motion = false;
   return req;
@@ -128,8 +143,9 @@ async function redraw(): Promise<void> {
         if (generation !== state.generation) continue;
         if (req.construction && e instanceof ApiError && e.status === 400) {
           // a plan that cannot be drawn here: say why, draw the rest
-          showError(`${PLANS[req.construction]}: ${e.message}`);
-          const plain = { ...req, construction: undefined };
+          showError(`${PLANS[req.construction] ?? req.construction}: ${e.message}`);
+          if (state.construction) stepShown([], 0);
+          const plain = { ...req, construction: undefined, step: undefined };
           const rest = await post<Drawing>("/api/drawing", plain).catch(() => null);
           if (rest && generation === state.generation) show(rest, plain);
         } else {
@@ -157,6 +173,60 @@ function show(d: Drawing, req: DrawingRequest): void {
   ui.sampleStatus.textContent = d.status;
   ui.sampleStatus.className = d.status;
   numbers(d);
+  if (req.construction && state.construction && req.construction === state.construction.name) {
+    stepShown(d.steps, req.step ?? 0);
+  }
+}
+
+/** The step drawn and its text (as the engine words it), and which way one can step. */
+function stepShown(steps: string[], k: number): void {
+  const n = steps.length;
+  ui.stepCount.textContent = n ? `step ${k + 1} of ${n}` : "";
+  ui.stepText.textContent = n ? steps[k] : "";
+  ui.stepText.dataset.step = String(k);
+  ui.stepBack.disabled = !n || k <= 0;
+  ui.stepForward.disabled = !n || k >= n - 1;
+}
+
+function step(by: number): void {
+  const c = state.construction;
+  const n = state.drawn?.steps.length ?? 0;
+  if (!c || !n) return;
+  const k = Math.min(Math.max(c.step + by, 0), n - 1);
+  if (k === c.step) return;
+  c.step = k;
+  void redraw();
+}
+
+function chooseConstruction(): void {
+  const name = ui.construction.value;
+  state.construction = name ? {
+    name, link: ui.constructionLink.value, point: ui.constructionPoint.value, step: 0,
+  } : null;
+  if (name) { // one construction is drawn at a time: the plans' toggles give way
+    state.plan = null;
+    for (const other of Object.keys(PLANS)) {
+      const box = document.getElementById(`show-${other}`) as HTMLInputElement | null;
+      if (box) box.checked = false;
+    }
+  }
+  stepShown([], 0);
+  void redraw();
+}
+
+function buildConstructions(info: MechanismInfo): void {
+  const keep = ui.construction.value;
+  ui.construction.innerHTML = `<option value="">none</option>` + info.constructions
+    .map((c) => `<option value="${c}">${c}</option>`).join("");
+  ui.construction.value = info.constructions.includes(keep) ? keep : "";
+  const moving = Object.keys(info.links).filter((l) => l !== info.frame);
+  ui.constructionLink.innerHTML = `<option value="">default</option>` + moving
+    .map((l) => `<option value="${escapeHtml(l)}">${escapeHtml(l)}</option>`).join("");
+  ui.constructionPoint.innerHTML = `<option value="">default</option>` + Object.keys(info.points)
+    .map((p) => `<option value="${escapeHtml(p)}">${escapeHtml(p)}</option>`).join("");
+  state.construction = null;
+  if (ui.construction.value) chooseConstruction();
+  else stepShown([], 0);
 }
 
 function numbers(d: Drawing): void {
@@ -187,6 +257,7 @@ async function open(base: Source): Promise<void> {
     ui.title.textContent = info.name;
     ui.description.textContent = info.description;
     buildLayers(info);
+    buildConstructions(info);
     void structure(base);
     await loadMotion();
     if (info.warnings.length) showError(info.warnings.join("\n"));
@@ -282,6 +353,11 @@ function buildLayers(info: MechanismInfo): void {
     if (!info.constructions.includes(name)) continue;
     addToggle(`show-${name}`, label, state.plan === name, (on) => {
       state.plan = on ? name : null;
+      if (on && state.construction) {
+        state.construction = null;
+        ui.construction.value = "";
+        stepShown([], 0);
+      }
       for (const other of Object.keys(PLANS)) {
         const box = document.getElementById(`show-${other}`) as HTMLInputElement | null;
         if (box && other !== name) box.checked = false;
@@ -453,6 +529,11 @@ ui.slider.addEventListener("input", () => {
   pause();
   setIndex(Number(ui.slider.value));
 });
+ui.construction.addEventListener("change", chooseConstruction);
+ui.constructionLink.addEventListener("change", chooseConstruction);
+ui.constructionPoint.addEventListener("change", chooseConstruction);
+ui.stepBack.addEventListener("click", () => step(-1));
+ui.stepForward.addEventListener("click", () => step(1));
 ui.edit.addEventListener("change", () => {
   ui.drawing.classList.toggle("editing", ui.edit.checked);
 });
