@@ -335,3 +335,27 @@ def test_a_construction_played_step_by_step(page, server):
     assert page.inner_text("#step-text") == ""
     page.select_option("#construction", "")
     wait_drawn(page, lambda: page.is_hidden("#error"), "drop the construction")
+
+
+@pytest.mark.parametrize("key, values", [
+    ("point:C:y", lambda sol: sol.point("C").position[:, 1]),
+    ("point:B:v", lambda sol: np.hypot(*sol.point("B").velocity.T)),
+    ("link:rocker:angle", lambda sol: np.degrees(sol.link("rocker").angle)),
+    ("link:coupler:alpha", lambda sol: sol.link("coupler").alpha),
+])
+def test_plot_over_the_motion_marks_the_input_and_its_extremes_are_the_engines(page, key, values):
+    sol = linkwork.whole_motion(MECH)
+    page.select_option("#quantity", key)
+    page.wait_for_selector("#plot svg", timeout=30_000)
+    svg = page.locator("#plot svg")
+    v = values(sol)
+    assert float(svg.get_attribute("data-max")) == pytest.approx(np.nanmax(v), rel=1e-12, abs=1e-12)
+    assert float(svg.get_attribute("data-min")) == pytest.approx(np.nanmin(v), rel=1e-12, abs=1e-12)
+    assert int(svg.get_attribute("data-argmax")) == int(np.nanargmax(v))
+    assert svg.locator("polyline.curve").count() >= 1
+    assert svg.get_attribute("data-current") == "0"
+    # the slider moves the mark
+    page.focus("#input-slider")
+    for _ in range(10):
+        page.keyboard.press("ArrowRight")
+    wait_drawn(page, lambda: page.get_attribute("#plot svg", "data-current") == "10", "move the mark")

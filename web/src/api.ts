@@ -53,6 +53,33 @@ export interface Motion {
   warnings: string[];
 }
 
+export interface PointState {
+  position: [number | null, number | null];
+  velocity: [number | null, number | null] | null;
+  acceleration: [number | null, number | null] | null;
+}
+
+export interface LinkState {
+  angle: number | null;
+  omega: number | null;
+  alpha: number | null;
+}
+
+/** A sample of `analyze --format json` (the full motion document). */
+export interface FullSample extends MotionSample {
+  condition: number | null;
+  points: Record<string, PointState>;
+  links: Record<string, LinkState>;
+  joints: Record<string, LinkState>;
+}
+
+export interface FullMotion {
+  mechanism: string;
+  drivers: string[];
+  samples: FullSample[];
+  warnings: string[];
+}
+
 export interface Transform {
   origin: XY;
   lo: XY;

@@ -3,9 +3,10 @@
 // the page only asks, shows and maps the pointer into the drawing's world coordinates.
 
 import {
-  ApiError, Drawing, DrawingRequest, LibraryList, MechanismInfo, Motion, Source, Transform, XY,
-  get, post, toSvg, toWorld,
+  ApiError, Drawing, DrawingRequest, FullMotion, FullSample, LibraryList, MechanismInfo, Motion,
+  Source, Transform, XY, get, post, toSvg, toWorld,
 } from "./api";
+import { plotSvg } from "./plot";
 
 const $ = <T extends HTMLElement>(id: string): T => {
   const el = document.getElementById(id);
@@ -38,6 +39,8 @@ const ui = {
   stepForward: $<HTMLButtonElement>("step-forward"),
   stepCount: $<HTMLOutputElement>("step-count"),
   stepText: $<HTMLParagraphElement>("step-text"),
+  quantity: $<HTMLSelectElement>("quantity"),
+  plot: $<HTMLDivElement>("plot"),
 };
 
 /** Layers drawn over the mechanism, and the plans (constructions drawn beside it). */
@@ -48,6 +51,8 @@ interface State {
   moved: Record<string, XY>; // design points dragged since
   info: MechanismInfo | null;
   motion: Motion | null;
+  full: Promise<FullMotion> | null; // the whole motion with every number, asked for when needed
+  motionSource: Source | null; // the design the motion is of
   index: number;
   playing: boolean;
   layers: Set<string>;
@@ -61,7 +66,7 @@ interface State {
 }
 
 const state: State = {
-  base: null, moved: {}, info: null, motion: null, index: 0, playing: false,
+  base: null, moved: {}, info: null, motion: null, full: null, motionSource: null, index: 0, playing: false,
   layers: new Set(), plan: null, construction: null, drawn: null, busy: false, again: false, generation: 0,
 };
 
@@ -173,6 +178,7 @@ function show(d: Drawing, req: DrawingRequest): void {
   ui.sampleStatus.textContent = d.status;
   ui.sampleStatus.className = d.status;
   numbers(d);
+  void plot();
   if (req.construction && state.construction && req.construction === state.construction.name) {
     stepShown(d.steps, req.step ?? 0);
   }
@@ -244,6 +250,85 @@ function numbers(d: Drawing): void {
   }
 }
 
+// ------------------------------------------------------------------ quantities and plots
+/** What can be read off a sample: a point's x, y, speed and acceleration magnitude, a link's
+ * angle, angular velocity and acceleration, in the file's length unit, degrees and radians. */
+interface Quantity {
+  label: string;
+  unit: string;
+  of: (s: FullSample) => number | null;
+}
+
+const hyp = (v: [number | null, number | null] | null | undefined): number | null =>
+  v && v[0] !== null && v[1] !== null ? Math.hypot(v[0], v[1]) : null;
+
+function quantities(info: MechanismInfo): Map<string, Quantity> {
+  const u = info.units.length;
+  const out = new Map<string, Quantity>();
+  for (const p of Object.keys(info.points)) {
+    out.set(`point:${p}:x`, { label: `${p} x`, unit: u, of: (s) => s.points[p]?.position[0] ?? null });
+    out.set(`point:${p}:y`, { label: `${p} y`, unit: u, of: (s) => s.points[p]?.position[1] ?? null });
+    out.set(`point:${p}:v`, { label: `${p} |v|`, unit: `${u}/s`, of: (s) => hyp(s.points[p]?.velocity) });
+    out.set(`point:${p}:a`, { label: `${p} |a|`, unit: `${u}/s²`, of: (s) => hyp(s.points[p]?.acceleration) });
+  }
+  for (const l of Object.keys(info.links)) {
+    if (l === info.frame) continue;
+    const deg = (v: number | null | undefined) => (v === null || v === undefined ? null : (v * 180) / Math.PI);
+    out.set(`link:${l}:angle`, { label: `${l} angle`, unit: "°", of: (s) => deg(s.links[l]?.angle) });
+    out.set(`link:${l}:omega`, { label: `${l} ω`, unit: "rad/s", of: (s) => s.links[l]?.omega ?? null });
+    out.set(`link:${l}:alpha`, { label: `${l} α`, unit: "rad/s²", of: (s) => s.links[l]?.alpha ?? null });
+  }
+  return out;
+}
+
+function buildQuantities(info: MechanismInfo): void {
+  const keep = ui.quantity.value;
+  const qs = quantities(info);
+  ui.quantity.innerHTML = `<option value="">none</option>` + Array.from(qs.entries())
+    .map(([k, q]) => `<option value="${escapeHtml(k)}">${escapeHtml(q.label)} [${escapeHtml(q.unit)}]</option>`).join("");
+  ui.quantity.value = qs.has(keep) ? keep : "";
+}
+
+/** The whole motion with every number (asked for once per design, when a panel needs it). */
+function fullMotion(): Promise<FullMotion> {
+  if (!state.full) {
+    state.full = post<FullMotion>("/api/motion", { source: state.motionSource ?? source(), detail: "full" });
+    state.full.catch(() => { state.full = null; });
+  }
+  return state.full;
+}
+
+let plotted = ""; // the quantity and sample drawn last (a plot is redrawn when either changes)
+
+async function plot(): Promise<void> {
+  const key = ui.quantity.value;
+  const info = state.info;
+  if (!key || !info || !state.motion) {
+    ui.plot.innerHTML = "";
+    plotted = "";
+    return;
+  }
+  const q = quantities(info).get(key);
+  if (!q) return;
+  const generation = state.generation;
+  let full: FullMotion;
+  try {
+    full = await fullMotion();
+  } catch (e) {
+    ui.plot.textContent = messageOf(e);
+    return;
+  }
+  if (generation !== state.generation || key !== ui.quantity.value) return;
+  const wish = `${key}@${state.index}#${generation}`;
+  if (wish === plotted) return;
+  plotted = wish;
+  ui.plot.innerHTML = plotSvg({
+    label: q.label, unit: q.unit, values: full.samples.map(q.of),
+    inputs: full.samples.map((s) => inputText(Array.isArray(s.input) ? s.input : [s.input])),
+  }, state.index);
+  ui.plot.dataset.quantity = key;
+}
+
 // ------------------------------------------------------------------ opening
 async function open(base: Source): Promise<void> {
   state.generation += 1;
@@ -258,6 +343,7 @@ async function open(base: Source): Promise<void> {
     ui.description.textContent = info.description;
     buildLayers(info);
     buildConstructions(info);
+    buildQuantities(info);
     void structure(base);
     await loadMotion();
     if (info.warnings.length) showError(info.warnings.join("\n"));
@@ -326,6 +412,8 @@ async function loadMotion(keep = false): Promise<void> {
   const motion = await post<Motion>("/api/motion", { source: src, detail: "status" });
   if (generation !== state.generation) return;
   state.motion = motion;
+  state.full = null;
+  state.motionSource = src;
   ui.slider.dataset.moved = JSON.stringify(src.points ?? {}); // the design the motion is of
   const n = motion.samples.length;
   ui.slider.max = String(Math.max(n - 1, 0));
@@ -532,6 +620,7 @@ ui.slider.addEventListener("input", () => {
 ui.construction.addEventListener("change", chooseConstruction);
 ui.constructionLink.addEventListener("change", chooseConstruction);
 ui.constructionPoint.addEventListener("change", chooseConstruction);
+ui.quantity.addEventListener("change", () => void plot());
 ui.stepBack.addEventListener("click", () => step(-1));
 ui.stepForward.addEventListener("click", () => step(1));
 ui.edit.addEventListener("change", () => {
