@@ -380,3 +380,16 @@ def test_the_page_and_only_its_files_are_served(client):
                  "/static/../../io/files.py"):
         r = client.get(path)
         assert r.status_code == 404 and "import" not in r.text, path
+
+
+def test_drawing_traces_the_paths_asked(client):
+    def ids(**extra):
+        r = post(client, "/api/drawing", source=SRC, layers=["mechanism", "paths"], **extra)
+        assert r.status_code == 200, r.text
+        return set(re.findall(r'id="(path-[^"]+)"', r.json()["svg"]))
+
+    assert ids() == {"path-A", "path-B", "path-C"}  # every moving point by default
+    assert ids(paths=["C"]) == {"path-C"}
+    assert ids(paths=[]) == set()
+    r = post(client, "/api/drawing", source=SRC, layers=["paths"], paths=["Z"])
+    assert r.status_code == 400 and "no point 'Z'" in r.json()["error"]

@@ -359,3 +359,55 @@ def test_plot_over_the_motion_marks_the_input_and_its_extremes_are_the_engines(p
     for _ in range(10):
         page.keyboard.press("ArrowRight")
     wait_drawn(page, lambda: page.get_attribute("#plot svg", "data-current") == "10", "move the mark")
+
+
+def selected_rows(pg) -> dict[str, tuple[float, str]]:
+    rows = pg.locator("#selected tr").evaluate_all(
+        "trs => trs.map(r => [r.dataset.quantity, r.cells[1].textContent, r.cells[2].textContent])")
+    return {k: (float(v), unit) for k, v, unit in rows}
+
+
+def test_clicking_selects_a_point_a_link_or_a_pair(page):
+    """(The panel shows four decimals.) At the design position (crank up, 60 rpm = 2π rad/s): the crank's end A moves at
+    |v| = 10 mm · 2π/s, its acceleration is centripetal, 10 mm · (2π/s)²."""
+    w = 2 * math.pi
+    page.mouse.click(*_client_of(page, (0.0, 10.0)))
+    wait_drawn(page, lambda: page.get_attribute("#selected", "data-selected") == "point:A", "select A")
+    rows = selected_rows(page)
+    assert rows["x"] == (pytest.approx(0.0, abs=1e-9), "mm") and rows["y"] == (pytest.approx(10.0, abs=5e-5), "mm")
+    assert rows["|v|"] == (pytest.approx(10 * w, abs=5e-5), "mm/s")
+    assert rows["vx"] == (pytest.approx(-10 * w, abs=5e-5), "mm/s")
+    assert rows["|a|"] == (pytest.approx(10 * w * w, abs=5e-5), "mm/s²")
+    assert page.input_value("#selection") == "point:A"
+    # a second click on a point that is a pair selects the pair: O2's relative ω is the crank's
+    page.mouse.click(*_client_of(page, (0.0, 0.0)))
+    wait_drawn(page, lambda: page.get_attribute("#selected", "data-selected") == "point:O2", "select O2")
+    page.mouse.click(*_client_of(page, (0.0, 0.0)))
+    wait_drawn(page, lambda: page.get_attribute("#selected", "data-selected") == "joint:O2", "select the pair O2")
+    assert selected_rows(page)["ω"] == (pytest.approx(w, abs=5e-5), "rad/s")
+    # the middle of the crank's bar: the crank, at 90°, turning at 2π rad/s
+    page.mouse.click(*_client_of(page, (0.0, 5.0)))
+    wait_drawn(page, lambda: page.get_attribute("#selected", "data-selected") == "link:crank", "select the crank")
+    rows = selected_rows(page)
+    assert rows["angle"] == (pytest.approx(90.0, abs=5e-5), "°") and rows["ω"] == (pytest.approx(w, abs=5e-5), "rad/s")
+    # the numbers follow the input: the coupler point C, 40 samples on, as the engine solves it
+    page.select_option("#selection", "point:C")
+    page.focus("#input-slider")
+    for _ in range(40):
+        page.keyboard.press("ArrowRight")
+    k = float(linkwork.whole_motion(MECH).inputs[40, 0])
+    wait_drawn(page, lambda: json.loads(page.get_attribute("#selected", "data-input") or "[0]") ==
+               pytest.approx([k], abs=1e-15) and page.get_attribute("#selected", "data-selected") == "point:C",
+               "show C at the new input")
+    sol = linkwork.solve(MECH, [k])
+    rows = selected_rows(page)
+    assert (rows["x"][0], rows["y"][0]) == pytest.approx(tuple(sol.point("C").position[0]), abs=1e-4)
+    assert rows["|a|"][0] == pytest.approx(np.hypot(*sol.point("C").acceleration[0]), abs=1e-4)
+
+
+def test_traced_paths_are_those_chosen(page):
+    page.check("#show-paths")
+    wait_drawn(page, lambda: page.locator("#drawing svg [id^=path-]").count() == 3, "trace every path")
+    page.select_option("#paths-of", ["C"])
+    wait_drawn(page, lambda: page.locator("#drawing svg [id^=path-]").evaluate_all("es => es.map(e => e.id)")
+               == ["path-C"], "trace C's path only")

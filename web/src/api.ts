@@ -27,6 +27,7 @@ export interface MechanismInfo {
   points: Record<string, XY>;
   links: Record<string, string[]>;
   owners: Record<string, string>;
+  joints: { name: string; type: string; links: string[]; point: string | null }[];
   drivers: DriverInfo[];
   layers: string[];
   constructions: string[];
@@ -65,12 +66,15 @@ export interface LinkState {
   alpha: number | null;
 }
 
+/** A pair's (joint's) numbers: relative angle, ω, α; a prismatic pair also its slide. */
+export type JointState = Record<string, number | [number | null, number | null] | null>;
+
 /** A sample of `analyze --format json` (the full motion document). */
 export interface FullSample extends MotionSample {
   condition: number | null;
   points: Record<string, PointState>;
   links: Record<string, LinkState>;
-  joints: Record<string, LinkState>;
+  joints: Record<string, JointState>;
 }
 
 export interface FullMotion {
@@ -104,6 +108,7 @@ export interface DrawingRequest {
   layers: string[];
   construction?: string;
   step?: number;
+  paths?: string[];
   link?: string;
   point?: string;
   fit?: "motion" | "drawing";

@@ -41,6 +41,9 @@ const ui = {
   stepText: $<HTMLParagraphElement>("step-text"),
   quantity: $<HTMLSelectElement>("quantity"),
   plot: $<HTMLDivElement>("plot"),
+  pathsOf: $<HTMLSelectElement>("paths-of"),
+  selection: $<HTMLSelectElement>("selection"),
+  selected: $<HTMLTableElement>("selected"),
 };
 
 /** Layers drawn over the mechanism, and the plans (constructions drawn beside it). */
@@ -123,6 +126,8 @@ function drawingRequest(): DrawingRequest {
   } else if (state.plan) req.construction = state.plan;
   // while dragging, the frames leave the whole motion out: they follow the pointer sooner
   if (dragging) req.motion = false;
+  const traced = Array.from(ui.pathsOf.selectedOptions).map((o) => o.value);
+  if (traced.length) req.paths = traced;
   return req;
 }
 
@@ -179,6 +184,7 @@ function show(d: Drawing, req: DrawingRequest): void {
   ui.sampleStatus.className = d.status;
   numbers(d);
   void plot();
+  void selected(d, req);
   if (req.construction && state.construction && req.construction === state.construction.name) {
     stepShown(d.steps, req.step ?? 0);
   }
@@ -329,6 +335,130 @@ async function plot(): Promise<void> {
   ui.plot.dataset.quantity = key;
 }
 
+// ------------------------------------------------------------------ selection
+/** The units of a pair's numbers (the names of the JSON of `analyze`). */
+function jointUnit(field: string, u: string): string {
+  return ({
+    angle: "°", omega: "rad/s", alpha: "rad/s²", slide: u, sliding_velocity: `${u}/s`,
+    sliding_acceleration: `${u}/s²`, velocity: `${u}/s`, acceleration: `${u}/s²`, coriolis: `${u}/s²`,
+  } as Record<string, string>)[field] ?? "";
+}
+
+const num = (v: number | null | undefined, digits = 4): string =>
+  v === null || v === undefined || !Number.isFinite(v) ? "—" : v.toFixed(digits);
+
+let selectedFor = ""; // the request whose numbers the panel shows
+
+/** The numbers of the selected point, link or pair at the drawn input (`linkwork.solve`). */
+async function selected(d: Drawing, req: DrawingRequest): Promise<void> {
+  const choice = ui.selection.value;
+  const info = state.info;
+  const body = ui.selected.tBodies[0];
+  if (!choice || !info) {
+    body.innerHTML = "";
+    selectedFor = "";
+    return;
+  }
+  if (d.input.some((v) => v === null)) return;
+  const at = info.drivers.length === 1 ? [d.input[0] as number] : [d.input as number[]];
+  const ask = JSON.stringify({ source: req.source, at, choice });
+  if (ask === selectedFor) return;
+  selectedFor = ask;
+  let doc: { samples: FullSample[] };
+  try {
+    doc = await post<{ samples: FullSample[] }>("/api/solve", { source: req.source, at, order: 2 });
+  } catch (e) {
+    body.innerHTML = `<tr><td>${escapeHtml(messageOf(e))}</td></tr>`;
+    return;
+  }
+  if (ask !== selectedFor) return;
+  const s = doc.samples[0];
+  const u = info.units.length;
+  const rows: [string, string, string][] = [];
+  const [kind, name] = [choice.slice(0, choice.indexOf(":")), choice.slice(choice.indexOf(":") + 1)];
+  const vec = (label: string, v: [number | null, number | null] | null | undefined, unit: string, size = true) => {
+    rows.push([`${label}x`, num(v?.[0]), unit], [`${label}y`, num(v?.[1]), unit]);
+    if (size) rows.push([`|${label}|`, num(hyp(v ?? null)), unit]);
+  };
+  if (kind === "point") {
+    const p = s.points[name];
+    rows.push(["x", num(p?.position[0]), u], ["y", num(p?.position[1]), u]);
+    vec("v", p?.velocity, `${u}/s`);
+    vec("a", p?.acceleration, `${u}/s²`);
+  } else if (kind === "link") {
+    const l = s.links[name];
+    rows.push(["angle", num(l ? (l.angle === null ? null : (l.angle * 180) / Math.PI) : null), "°"],
+      ["ω", num(l?.omega), "rad/s"], ["α", num(l?.alpha), "rad/s²"]);
+  } else {
+    for (const [field, v] of Object.entries(s.joints[name] ?? {})) {
+      const unit = jointUnit(field, u);
+      const label = ({ omega: "ω", alpha: "α" } as Record<string, string>)[field] ?? field;
+      if (Array.isArray(v)) vec(`${label} `, v, unit, false);
+      else rows.push([label, num(field === "angle" && v !== null ? (v * 180) / Math.PI : v), unit]);
+    }
+  }
+  body.innerHTML = rows.map(([k, v, unit]) =>
+    `<tr data-quantity="${escapeHtml(k)}"><th>${escapeHtml(k)}</th><td>${v}</td><td class="unit">${escapeHtml(unit)}</td></tr>`).join("");
+  ui.selected.dataset.selected = choice;
+  ui.selected.dataset.input = JSON.stringify(d.input);
+}
+
+function select(choice: string): void {
+  ui.selection.value = choice;
+  selectedFor = "";
+  if (state.drawn) void selected(state.drawn, drawingRequest());
+}
+
+function buildSelection(info: MechanismInfo): void {
+  const keep = ui.selection.value;
+  const opt = (v: string, t: string) => `<option value="${escapeHtml(v)}">${escapeHtml(t)}</option>`;
+  const moving = Object.keys(info.points).filter((p) => info.owners[p] !== info.frame);
+  ui.selection.innerHTML = opt("", "none (click the drawing)") +
+    Object.keys(info.points).map((p) => opt(`point:${p}`, `point ${p}`)).join("") +
+    Object.keys(info.links).filter((l) => l !== info.frame).map((l) => opt(`link:${l}`, `link ${l}`)).join("") +
+    info.joints.map((j) => opt(`joint:${j.name}`, `pair ${j.name} (${j.type})`)).join("");
+  ui.selection.value = Array.from(ui.selection.options).some((o) => o.value === keep) ? keep : "";
+  const traced = new Set(Array.from(ui.pathsOf.selectedOptions).map((o) => o.value));
+  ui.pathsOf.innerHTML = moving.map((p) => opt(p, p)).join("");
+  for (const o of Array.from(ui.pathsOf.options)) o.selected = traced.has(o.value);
+  selectedFor = "";
+}
+
+/** What a click at `q` (SVG units of the mechanism panel) hits: a point, else a link's bar. */
+function hit(q: XY, t: Transform): string | null {
+  const point = nearestPoint(q, t);
+  const info = state.info;
+  if (point) {
+    // a pair drawn at this point is chosen by a second click on it
+    const pair = info?.joints.find((j) => j.point === point || j.name === point);
+    if (pair && ui.selection.value === `point:${point}`) return `joint:${pair.name}`;
+    return `point:${point}`;
+  }
+  let best: string | null = null;
+  let bestDist = 2.5; // mm of paper
+  for (const [link, names] of Object.entries(info?.links ?? {})) {
+    if (link === info?.frame) continue;
+    const xy = names.map((n) => state.drawn?.points[n]).filter((p): p is XY => !!p).map((p) => toSvg(t, p));
+    for (let i = 0; i < xy.length; i++) {
+      for (let j = i + 1; j < xy.length; j++) {
+        const d = segmentDistance(q, xy[i], xy[j]);
+        if (d < bestDist) {
+          best = `link:${link}`;
+          bestDist = d;
+        }
+      }
+    }
+  }
+  return best;
+}
+
+function segmentDistance(q: XY, a: XY, b: XY): number {
+  const dx = b[0] - a[0], dy = b[1] - a[1];
+  const len2 = dx * dx + dy * dy;
+  const u = len2 ? Math.min(Math.max(((q[0] - a[0]) * dx + (q[1] - a[1]) * dy) / len2, 0), 1) : 0;
+  return Math.hypot(q[0] - a[0] - u * dx, q[1] - a[1] - u * dy);
+}
+
 // ------------------------------------------------------------------ opening
 async function open(base: Source): Promise<void> {
   state.generation += 1;
@@ -344,6 +474,7 @@ async function open(base: Source): Promise<void> {
     buildLayers(info);
     buildConstructions(info);
     buildQuantities(info);
+    buildSelection(info);
     void structure(base);
     await loadMotion();
     if (info.warnings.length) showError(info.warnings.join("\n"));
@@ -554,7 +685,15 @@ function nearestPoint(q: XY, t: Transform): string | null {
 }
 
 ui.drawing.addEventListener("pointerdown", (ev) => {
-  if (!ui.edit.checked || !state.drawn) return;
+  if (!state.drawn) return;
+  if (!ui.edit.checked) { // a click selects what it hits
+    const t = state.drawn.transforms["mechanism"];
+    const screen = screenToSvg();
+    if (!t || !screen) return;
+    const what = hit(svgPoint(ev, screen), t);
+    if (what) select(what);
+    return;
+  }
   const t = state.drawn.transforms["mechanism"];
   const screen = screenToSvg();
   if (!t || !screen) return;
@@ -621,6 +760,8 @@ ui.construction.addEventListener("change", chooseConstruction);
 ui.constructionLink.addEventListener("change", chooseConstruction);
 ui.constructionPoint.addEventListener("change", chooseConstruction);
 ui.quantity.addEventListener("change", () => void plot());
+ui.selection.addEventListener("change", () => select(ui.selection.value));
+ui.pathsOf.addEventListener("change", () => void redraw());
 ui.stepBack.addEventListener("click", () => step(-1));
 ui.stepForward.addEventListener("click", () => step(1));
 ui.edit.addEventListener("change", () => {

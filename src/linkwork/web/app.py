@@ -172,7 +172,15 @@ def drawing(mech: Mechanism, req: m.DrawingRequest) -> dict:
         if req.step is not None and req.step >= len(steps):
             raise InputError(f"step {req.step}: the construction has {len(steps)} steps (0 to "
                              f"{len(steps) - 1})")
-    fig = scene_figure(sc, list(req.layers), construction=con, step=req.step)
+    layers = list(req.layers)
+    if req.paths is not None:
+        unknown = [p for p in req.paths if p not in mech.points]
+        if unknown:
+            raise InputError(f"paths: mechanism '{mech.name}' has no point '{unknown[0]}' (its "
+                             f"points are {', '.join(mech.points)})")
+        if not req.paths:
+            layers = [n for n in layers if n != "paths"]
+    fig = scene_figure(sc, layers, construction=con, step=req.step, paths=req.paths or None)
     if req.fit == "motion" and con is None and req.motion:
         fig.view["mechanism"] = sc.box(grow=0.12)
     svg = fig.to_svg()

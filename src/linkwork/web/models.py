@@ -109,6 +109,9 @@ class DrawingRequest(At):
     point: Optional[Name] = None
     link: Optional[Name] = None
     step: Optional[int] = Field(None, ge=0, le=1000)
+    paths: Optional[Annotated[list[Name], Field(max_length=1000)]] = Field(
+        None, description="the points whose paths the paths layer traces (default: every "
+                          "moving point; an empty list: none)")
     motion: bool = Field(
         True, description="false: leave the whole motion out (no paths; the panel fits the "
                           "position drawn), for the frames of a drag")
