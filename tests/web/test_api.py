@@ -393,3 +393,34 @@ def test_drawing_traces_the_paths_asked(client):
     assert ids(paths=[]) == set()
     r = post(client, "/api/drawing", source=SRC, layers=["paths"], paths=["Z"])
     assert r.status_code == 400 and "no point 'Z'" in r.json()["error"]
+
+
+def _png_size(data: bytes) -> tuple[int, int]:
+    assert data[:8] == b"\x89PNG\r\n\x1a\n" and data[12:16] == b"IHDR"
+    return int.from_bytes(data[16:20], "big"), int.from_bytes(data[20:24], "big")
+
+
+def test_drawing_as_png(client):
+    pytest.importorskip("cairosvg")
+    body = dict(source=SRC, layers=["mechanism", "poles"], at=[1.0])
+    svg = post(client, "/api/drawing", **body).json()["svg"]
+    w_mm, h_mm = (float(v) for v in re.search(r'width="([\d.]+)mm" height="([\d.]+)mm"', svg).groups())
+    for dpi in (200.0, 96.0):
+        r = post(client, "/api/drawing.png", **body, dpi=dpi)
+        assert r.status_code == 200 and r.headers["content-type"] == "image/png"
+        w, h = _png_size(r.content)  # the paper's size at the resolution asked
+        assert abs(w - w_mm / 25.4 * dpi) <= 1 and abs(h - h_mm / 25.4 * dpi) <= 1
+    r = post(client, "/api/drawing.png", **body, dpi=5000)
+    assert r.status_code == 422 and r.json()["kind"] == "RequestValidationError"
+
+
+def test_motion_as_csv(client):
+    from linkwork.kinematics.export import csv_lines
+    r = post(client, "/api/motion.csv", source=SRC)
+    assert r.status_code == 200 and r.headers["content-type"].startswith("text/csv")
+    sol = linkwork.whole_motion(MECH)
+    assert r.text == "".join(csv_lines(sol))
+    head, *rows = r.text.splitlines()
+    assert len(rows) == len(sol)
+    col = head.split(",").index("C.x")
+    assert [float(row.split(",")[col]) for row in rows] == pytest.approx(sol.point("C").position[:, 0], rel=1e-15)

@@ -411,3 +411,23 @@ def test_traced_paths_are_those_chosen(page):
     page.select_option("#paths-of", ["C"])
     wait_drawn(page, lambda: page.locator("#drawing svg [id^=path-]").evaluate_all("es => es.map(e => e.id)")
                == ["path-C"], "trace C's path only")
+
+
+def test_exports(page):
+    from linkwork.kinematics.export import csv_lines
+    page.check("#show-poles")
+    wait_drawn(page, lambda: page.locator("#drawing svg #layer-poles").count() == 1, "draw the poles")
+    shown = page.locator("#drawing svg").evaluate("e => e.outerHTML")
+    with page.expect_download() as dl:
+        page.click("#export-svg")
+    svg = Path(dl.value.path()).read_text()
+    assert dl.value.suggested_filename == "crank-rocker.svg"
+    assert 'id="layer-poles"' in svg and svg.count("<circle") == shown.count("<circle")
+    with page.expect_download() as dl:
+        page.click("#export-png")
+    assert dl.value.suggested_filename == "crank-rocker.png"
+    assert Path(dl.value.path()).read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    with page.expect_download(timeout=60_000) as dl:
+        page.click("#export-csv")
+    assert dl.value.suggested_filename == "crank-rocker-motion.csv"
+    assert Path(dl.value.path()).read_text() == "".join(csv_lines(linkwork.whole_motion(MECH)))

@@ -148,6 +148,17 @@ export async function post<T>(path: string, body: unknown): Promise<T> {
   }));
 }
 
+/** A POST whose answer is a file (PNG, CSV); errors come as JSON like every other answer. */
+export async function postFile(path: string, body: unknown): Promise<Blob> {
+  const r = await fetch(path, {
+    method: "POST",
+    headers: { "content-type": "application/json" },
+    body: JSON.stringify(body),
+  });
+  if (!r.ok) await answer<never>(r);
+  return r.blob();
+}
+
 /** World coordinates of a panel → SVG user units (mm of paper, y down). */
 export function toSvg(t: Transform, p: XY): XY {
   return [t.origin[0] + (p[0] - t.lo[0]) / t.per_mm, t.origin[1] + (t.hi[1] - p[1]) / t.per_mm];

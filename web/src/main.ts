@@ -4,7 +4,7 @@
 
 import {
   ApiError, Drawing, DrawingRequest, FullMotion, FullSample, LibraryList, MechanismInfo, Motion,
-  Source, Transform, XY, get, post, toSvg, toWorld,
+  Source, Transform, XY, get, post, postFile, toSvg, toWorld,
 } from "./api";
 import { plotSvg } from "./plot";
 
@@ -18,6 +18,9 @@ const ui = {
   mechanism: $<HTMLSelectElement>("mechanism"),
   upload: $<HTMLInputElement>("upload"),
   save: $<HTMLButtonElement>("save"),
+  exportSvg: $<HTMLButtonElement>("export-svg"),
+  exportPng: $<HTMLButtonElement>("export-png"),
+  exportCsv: $<HTMLButtonElement>("export-csv"),
   error: $<HTMLDivElement>("error"),
   drawing: $<HTMLDivElement>("drawing"),
   title: $<HTMLHeadingElement>("title"),
@@ -775,14 +778,40 @@ ui.upload.addEventListener("change", async () => {
   void open({ text, name: file.name });
   ui.upload.value = "";
 });
+/** The file name the downloads start with: the mechanism's file or library name. */
+function stem(): string {
+  return `${(state.info?.source ?? "mechanism").replace(/^library:/, "").replace(/\.toml$/, "").split("/").pop()}`;
+}
+
+function download(blob: Blob, name: string): void {
+  const a = document.createElement("a");
+  a.href = URL.createObjectURL(blob);
+  a.download = name;
+  a.click();
+  window.setTimeout(() => URL.revokeObjectURL(a.href), 1000);
+}
+
 ui.save.addEventListener("click", () => {
   const text = savedText();
-  if (!text) return;
-  const a = document.createElement("a");
-  a.href = URL.createObjectURL(new Blob([text], { type: "text/plain" }));
-  a.download = `${(state.info?.source ?? "mechanism").replace(/^library:/, "").replace(/\.toml$/, "").split("/").pop()}.toml`;
-  a.click();
-  URL.revokeObjectURL(a.href);
+  if (text) download(new Blob([text], { type: "text/plain" }), `${stem()}.toml`);
+});
+ui.exportSvg.addEventListener("click", () => {
+  // the very SVG the server drew (that of `linkwork draw`), as shown
+  if (state.drawn) download(new Blob([state.drawn.svg], { type: "image/svg+xml" }), `${stem()}.svg`);
+});
+ui.exportPng.addEventListener("click", async () => {
+  try {
+    download(await postFile("/api/drawing.png", drawingRequest()), `${stem()}.png`);
+  } catch (e) {
+    showError(messageOf(e));
+  }
+});
+ui.exportCsv.addEventListener("click", async () => {
+  try {
+    download(await postFile("/api/motion.csv", { source: state.motionSource ?? source() }), `${stem()}-motion.csv`);
+  } catch (e) {
+    showError(messageOf(e));
+  }
 });
 
 async function start(): Promise<void> {

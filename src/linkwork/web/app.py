@@ -20,7 +20,7 @@ import numpy as np
 from fastapi import FastAPI, Request
 from fastapi.encoders import jsonable_encoder
 from fastapi.exceptions import RequestValidationError
-from fastapi.responses import FileResponse, JSONResponse
+from fastapi.responses import FileResponse, JSONResponse, Response
 from fastapi.staticfiles import StaticFiles
 
 from ..errors import LinkworkError, LinkworkWarning, InputError, UnknownMechanismError
@@ -346,6 +346,32 @@ def create_app(workdir: str | Path | None = None) -> FastAPI:
         with _warnings() as warned:
             doc = drawing(load(req.source).mechanism, req)
         return respond({**doc, "warnings": warned})
+
+    @app.post("/api/drawing.png", responses={**errors, 200: {"content": {"image/png": {}}}},
+              response_class=Response)
+    def drawing_png(req: m.PngRequest):
+        """The drawing of `/api/drawing` as PNG (`linkwork draw -o FILE.png`: cairo converts
+        the very same SVG)."""
+        import tempfile
+
+        from ..drawing.svg import convert
+        with _warnings():
+            svg = drawing(load(req.source).mechanism, req)["svg"]
+        with tempfile.TemporaryDirectory() as tmp:
+            out = Path(tmp) / "drawing.png"
+            convert(svg, out, dpi=req.dpi)
+            data = out.read_bytes()
+        return Response(data, media_type="image/png")
+
+    @app.post("/api/motion.csv", responses={**errors, 200: {"content": {"text/csv": {}}}},
+              response_class=Response)
+    def motion_csv(req: m.MechanismRequest):
+        """The whole motion as the CSV of `linkwork analyze --format csv` (one row a sample)."""
+        from ..kinematics.export import csv_lines
+        with _warnings():
+            sol = whole_motion(load(req.source).mechanism)
+            text = "".join(csv_lines(sol))
+        return Response(text, media_type="text/csv; charset=utf-8")
 
     @app.get("/", include_in_schema=False)
     def page():

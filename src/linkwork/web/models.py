@@ -120,6 +120,12 @@ class DrawingRequest(At):
                               "animation share one layout; drawing: it fits what is drawn")
 
 
+class PngRequest(DrawingRequest):
+    """The drawing of a `DrawingRequest` as PNG (converted from the same SVG by cairo)."""
+
+    dpi: float = Field(200.0, ge=30.0, le=600.0, description="pixels per inch of paper")
+
+
 # ---------------------------------------------------------------------------- responses
 class Error(BaseModel):
     error: str = Field(description="the message, naming the part and the reason")
