@@ -424,3 +424,22 @@ def test_motion_as_csv(client):
     assert len(rows) == len(sol)
     col = head.split(",").index("C.x")
     assert [float(row.split(",")[col]) for row in rows] == pytest.approx(sol.point("C").position[:, 0], rel=1e-15)
+
+
+def test_motion_status_with_error_bounds_that_are_not_finite(client):
+    """A Stephenson six-bar (the crank-rocker with a dyad C–F–O6) passes two samples whose error
+    bound is not finite: they come back as null, the answer stays JSON."""
+    text = resolve("library:crank-rocker")[1]
+    text = (text.replace('C  = [15, 25]\n', 'C  = [15, 25]\nF = [45, 45]\nO6 = [70, 30]\n')
+            .replace('frame   = ["O2", "O4"]', 'frame = ["O2", "O4", "O6"]')
+            .replace('rocker  = ["B", "O4"]\n', 'rocker  = ["B", "O4"]\nl5 = ["C", "F"]\nl6 = ["F", "O6"]\n')
+            + '\n[joints.C]\ntype = "revolute"\nlinks = ["coupler", "l5"]\n'
+              '[joints.F]\ntype = "revolute"\nlinks = ["l5", "l6"]\n'
+              '[joints.O6]\ntype = "revolute"\nlinks = ["l6", "frame"]\n')
+    sol = linkwork.whole_motion(linkwork.io.load_text(text))
+    bad = ~np.isfinite(sol.errors)
+    assert bad.any()
+    r = post(client, "/api/motion", source={"text": text}, detail="status")
+    assert r.status_code == 200, r.text
+    errors = [s["error"] for s in r.json()["samples"]]
+    assert [e is None for e in errors] == bad.tolist()

@@ -431,3 +431,70 @@ def test_exports(page):
         page.click("#export-csv")
     assert dl.value.suggested_filename == "crank-rocker-motion.csv"
     assert Path(dl.value.path()).read_text() == "".join(csv_lines(linkwork.whole_motion(MECH)))
+
+
+def _edit(pg, op, name, **fields):
+    pg.select_option("#edit-op", op)
+    pg.fill("#edit-name", name)
+    for field, value in fields.items():
+        pg.fill(f"#edit-{field}", value)
+    pg.click("#edit-apply")
+    wait_drawn(pg, lambda: pg.get_attribute("#editor", "data-applied") in ("ok", "error"), f"apply {op} {name}")
+    return pg.get_attribute("#editor", "data-applied")
+
+
+def test_editing_adds_and_deletes_points_links_and_joints(page):
+    """The crank-rocker becomes a Stephenson six-bar: a dyad C–F–O6 hung between the coupler
+    point C and a new frame pivot O6; each edit is read by the engine, and the intermediate files
+    that do not build show its message. The expected file is written here by hand."""
+    text = resolve("library:crank-rocker")[1]
+    want = (text.replace('C  = [15, 25]\n', 'C  = [15, 25]\nO6 = [70, 30]\nF = [45, 45]\n')
+            .replace('frame   = ["O2", "O4"]', 'frame = ["O2", "O4", "O6"]')
+            .replace('rocker  = ["B", "O4"]\n', 'rocker  = ["B", "O4"]\nl5 = ["C", "F"]\nl6 = ["F", "O6"]\n')
+            .replace('O4 = { type = "revolute", links = ["rocker", "frame"] }\n',
+                     'O4 = { type = "revolute", links = ["rocker", "frame"] }\n'
+                     'C = { type = "revolute", links = ["coupler", "l5"] }\n'
+                     'F = { type = "revolute", links = ["l5", "l6"] }\n'
+                     'O6 = { type = "revolute", links = ["l6", "frame"] }\n'))
+    six = load_text(want)
+    assert _edit(page, "add-point", "O6", link="frame", xy="70, 30") == "ok"
+    wait_drawn(page, lambda: page.locator("#numbers tr[data-point='O6']").count() == 1, "list O6")
+    assert number_row(page, "O6") == (70.0, 30.0)
+    # a link whose point does not exist yet: the engine's message, and the text stays for the next edit
+    assert _edit(page, "add-link", "l5", members="C, F") == "error"
+    msg = page.inner_text("#error")
+    with pytest.raises(LinkworkError) as exc:
+        load_text(page.input_value("#edit-text"), source="crank-rocker.toml")
+    assert msg == str(exc.value) and "F" in msg
+    assert page.locator("#drawing.stale").count() == 1
+    assert _edit(page, "add-point", "F", link="l5", xy="45, 45") == "error"  # l5 has no pair yet
+    assert _edit(page, "add-link", "l6", members="F, O6") == "error"
+    assert _edit(page, "add-joint", "C", members="coupler, l5") == "error"
+    assert _edit(page, "add-joint", "F", members="l5, l6") == "error"
+    assert _edit(page, "add-joint", "O6", members="l6, frame") == "ok"
+    assert page.is_hidden("#error")
+    got = load_text(page.input_value("#edit-text")).points
+    assert {p: tuple(v) for p, v in got.items()} == {p: tuple(v) for p, v in six.points.items()}
+    assert page.input_value("#edit-text").replace(" ", "") == want.replace(" ", "")
+    # the six-bar is solved where the four-bar was (the design position): F as the engine puts it
+    assert number_row(page, "F") == pytest.approx((45.0, 45.0), abs=1e-4)
+    page.wait_for_selector("#structure dd")
+    wait_drawn(page, lambda: "1" in page.inner_text("#structure"), "the six-bar's structure")
+    # and deleting takes it back apart: the pair O6 first (the engine says what is then wrong)
+    assert _edit(page, "delete-joint", "O6") == "error"
+    assert "O6" in page.inner_text("#error") or "l6" in page.inner_text("#error")
+    for op, name in (("delete-joint", "F"), ("delete-joint", "C"), ("delete-link", "l6"),
+                     ("delete-link", "l5"), ("delete-point", "F")):
+        _edit(page, op, name)
+    assert _edit(page, "delete-point", "O6") == "ok", page.inner_text("#error")
+    assert page.input_value("#edit-text").replace(" ", "") == text.replace(" ", "")
+
+
+def test_an_edit_that_is_incomplete_is_refused_by_the_form(page):
+    page.select_option("#edit-op", "add-point")
+    page.fill("#edit-name", "D")
+    page.fill("#edit-link", "coupler")
+    page.fill("#edit-xy", "1")
+    page.click("#edit-apply")
+    page.wait_for_selector("#error:not([hidden])")
+    assert page.inner_text("#error") == "edit: give the design coordinates as x, y"

@@ -6,6 +6,7 @@ import {
   ApiError, Drawing, DrawingRequest, FullMotion, FullSample, LibraryList, MechanismInfo, Motion,
   Source, Transform, XY, get, post, postFile, toSvg, toWorld,
 } from "./api";
+import { EditError, addEntry, addToLink, removeEntry, removeFromLinks } from "./edit";
 import { plotSvg } from "./plot";
 
 const $ = <T extends HTMLElement>(id: string): T => {
@@ -21,6 +22,16 @@ const ui = {
   exportSvg: $<HTMLButtonElement>("export-svg"),
   exportPng: $<HTMLButtonElement>("export-png"),
   exportCsv: $<HTMLButtonElement>("export-csv"),
+  editOp: $<HTMLSelectElement>("edit-op"),
+  editName: $<HTMLInputElement>("edit-name"),
+  editLink: $<HTMLInputElement>("edit-link"),
+  editXy: $<HTMLInputElement>("edit-xy"),
+  editMembers: $<HTMLInputElement>("edit-members"),
+  editMembersWhat: $<HTMLSpanElement>("edit-members-what"),
+  editApply: $<HTMLButtonElement>("edit-apply"),
+  editText: $<HTMLTextAreaElement>("edit-text"),
+  editTextApply: $<HTMLButtonElement>("edit-text-apply"),
+  editor: $<HTMLFieldSetElement>("editor"),
   error: $<HTMLDivElement>("error"),
   drawing: $<HTMLDivElement>("drawing"),
   title: $<HTMLHeadingElement>("title"),
@@ -463,15 +474,17 @@ function segmentDistance(q: XY, a: XY, b: XY): number {
 }
 
 // ------------------------------------------------------------------ opening
-async function open(base: Source): Promise<void> {
+async function open(base: Source, keep = false): Promise<boolean> {
   state.generation += 1;
   pause();
   clearError();
+  const before = keep ? sampleInput(state.index) : [];
   try {
     const info = await post<MechanismInfo>("/api/mechanism", { source: base });
     state.base = base;
     state.moved = {};
     state.info = info;
+    ui.editText.value = info.text;
     ui.title.textContent = info.name;
     ui.description.textContent = info.description;
     buildLayers(info);
@@ -479,10 +492,13 @@ async function open(base: Source): Promise<void> {
     buildQuantities(info);
     buildSelection(info);
     void structure(base);
-    await loadMotion();
+    await loadMotion(before);
     if (info.warnings.length) showError(info.warnings.join("\n"));
+    return true;
   } catch (e) {
     showError(messageOf(e));
+    ui.drawing.classList.add("stale");
+    return false;
   }
 }
 
@@ -539,9 +555,10 @@ async function structure(base: Source): Promise<void> {
   }
 }
 
-async function loadMotion(keep = false): Promise<void> {
+/** The whole motion of the design; the slider goes to the sample nearest `before` (the input
+ * shown before an edit), else to the start. */
+async function loadMotion(before: number[] = []): Promise<void> {
   const generation = state.generation;
-  const before = keep ? sampleInput(state.index) : [];
   const src = source();
   const motion = await post<Motion>("/api/motion", { source: src, detail: "status" });
   if (generation !== state.generation) return;
@@ -722,7 +739,7 @@ const endDrag = () => {
   if (!dragging) return;
   dragging = null;
   state.generation += 1;
-  void loadMotion(true).catch((e) => showError(messageOf(e)));
+  void loadMotion(sampleInput(state.index)).catch((e) => showError(messageOf(e)));
 };
 ui.drawing.addEventListener("pointerup", endDrag);
 ui.drawing.addEventListener("pointercancel", endDrag);
@@ -753,7 +770,80 @@ function savedText(): string {
   return out.join("\n");
 }
 
+/** The text the edits apply to: the file being edited (which may not build yet), else the
+ * file open, with the dragged points written in. */
+function editorText(): string {
+  const info = state.info;
+  if (info && ui.editText.value === info.text) return savedText();
+  return ui.editText.value;
+}
+
+const names = (s: string): string[] => s.split(/[\s,;]+/).map((x) => x.trim()).filter(Boolean);
+
+/** The file's text after the form's action (a clear message if the form is incomplete). */
+function edited(text: string): string {
+  const op = ui.editOp.value;
+  const name = ui.editName.value.trim();
+  if (!name) throw new EditError("give a name");
+  switch (op) {
+    case "add-point": {
+      const xy = names(ui.editXy.value).map(Number);
+      if (xy.length !== 2 || !xy.every(Number.isFinite)) throw new EditError("give the design coordinates as x, y");
+      const link = ui.editLink.value.trim();
+      if (!link) throw new EditError("give the link the point belongs to");
+      return addToLink(addEntry(text, "points", name, `[${xy[0]}, ${xy[1]}]`), link, name);
+    }
+    case "delete-point":
+      return removeFromLinks(removeEntry(text, "points", name), name);
+    case "add-link": {
+      const pts = names(ui.editMembers.value);
+      return addEntry(text, "links", name, `[${pts.map((p) => JSON.stringify(p)).join(", ")}]`);
+    }
+    case "delete-link":
+      return removeEntry(text, "links", name);
+    case "add-joint": {
+      const links = names(ui.editMembers.value);
+      if (links.length !== 2) throw new EditError("a hinge joins two links: give both");
+      return addEntry(text, "joints", name, `{ type = "revolute", links = [${links.map((l) => JSON.stringify(l)).join(", ")}] }`);
+    }
+    case "delete-joint":
+      return removeEntry(text, "joints", name);
+  }
+  throw new EditError(`unknown action ${op}`);
+}
+
+/** Open the edited text; when it does not build, the engine's message is shown and the text
+ * stays in the editor for the next edit. */
+async function applyText(text: string): Promise<void> {
+  const label = `${stem()}.toml`;
+  ui.editText.value = text;
+  ui.editor.dataset.applied = "pending";
+  const ok = await open({ text, name: label }, true);
+  if (!ok) ui.editText.value = text;
+  ui.editor.dataset.applied = ok ? "ok" : "error";
+}
+
+function showEditFields(): void {
+  const op = ui.editOp.value;
+  document.querySelectorAll<HTMLElement>("#editor label[class^=for-]").forEach((l) => {
+    l.hidden = !l.className.split(" ").includes(`for-${op}`);
+  });
+  ui.editMembersWhat.textContent = op === "add-joint" ? "two links" : "points";
+}
+
 // ------------------------------------------------------------------ wiring
+ui.editOp.addEventListener("change", showEditFields);
+ui.editApply.addEventListener("click", () => {
+  let text: string;
+  try {
+    text = edited(editorText());
+  } catch (e) {
+    showError(`edit: ${messageOf(e)}`);
+    return;
+  }
+  void applyText(text);
+});
+ui.editTextApply.addEventListener("click", () => void applyText(ui.editText.value));
 ui.play.addEventListener("click", () => (state.playing ? pause() : play()));
 ui.slider.addEventListener("input", () => {
   pause();

@@ -95,6 +95,12 @@ def _warnings() -> Iterator[list[str]]:
                                  if issubclass(w.category, LinkworkWarning)))
 
 
+def _finite(x) -> float | None:
+    """A number of the JSON: null where it is not finite (an unreachable sample's error bound)."""
+    x = float(x)
+    return x if np.isfinite(x) else None
+
+
 def _design_inputs(mech: Mechanism) -> np.ndarray:
     return np.array([mech.driver_input_at_design(d) for d in mech.drivers])
 
@@ -282,7 +288,7 @@ def create_app(workdir: str | Path | None = None) -> FastAPI:
                        "drivers": [d.joint for d in mech.drivers],
                        "samples": [{"input": float(sol.inputs[n, 0]) if single else sol.inputs[n].tolist(),
                                     "status": str(Status(int(sol.status[n]))),
-                                    "error": float(sol.errors[n])} for n in range(len(sol))]}
+                                    "error": _finite(sol.errors[n])} for n in range(len(sol))]}
             else:
                 doc = to_document(sol)
         return respond({**doc, "warnings": warned})
