@@ -268,7 +268,8 @@ def test_a_bad_file_gives_its_message(client):
     assert r.status_code == 400
     err = r.json()
     assert err["kind"] == "MechanismFileError"
-    assert err["error"].startswith("bad.toml:15, key 'links.coupler'") and "'X'" in err["error"]
+    line = text.splitlines().index('coupler = ["A", "B", "X"]') + 1  # the message's line, counted here
+    assert err["error"].startswith(f"bad.toml:{line}, key 'links.coupler'") and "'X'" in err["error"]
     r = post(client, "/api/mechanism", source={"text": "name = [", "name": "x.toml"})
     assert r.status_code == 400 and "not valid TOML" in r.json()["error"]
 
@@ -443,3 +444,20 @@ def test_motion_status_with_error_bounds_that_are_not_finite(client):
     assert r.status_code == 200, r.text
     errors = [s["error"] for s in r.json()["samples"]]
     assert [e is None for e in errors] == bad.tolist()
+
+
+def test_the_server_solves_with_the_compiled_loops(monkeypatch):
+    """`linkwork serve` makes its application with compiled=True: when it starts, the
+    kinematics' compiled loops are made ready and then used for every batch; the drawing is
+    the one of the interpreted loops (to the last bits numba's fused multiply-adds change)."""
+    from linkwork.kinematics import kernels
+    from linkwork.web.app import compile_kernels
+    monkeypatch.setattr(kernels, "INTERPRETED_UP_TO", kernels.INTERPRETED_UP_TO)
+    body = dict(source={"library": "crank-rocker", "points": {"C": [16.0, 24.0]}}, at=[2.0],
+                layers=["mechanism"], motion=False)
+    before = TestClient(create_app(None)).post("/api/drawing", json=body).json()
+    compile_kernels()
+    assert kernels.INTERPRETED_UP_TO == 0
+    after = TestClient(create_app(None)).post("/api/drawing", json=body).json()
+    for p, xy in before["points"].items():
+        assert after["points"][p] == pytest.approx(xy, abs=1e-12)

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import tomllib
 import warnings
-from contextlib import contextmanager
+from contextlib import asynccontextmanager, contextmanager
 from importlib import resources
 from pathlib import Path
 from typing import Iterator
@@ -200,10 +200,39 @@ def drawing(mech: Mechanism, req: m.DrawingRequest) -> dict:
             "transforms": fig.transforms(), "steps": steps}
 
 
-def create_app(workdir: str | Path | None = None) -> FastAPI:
-    """The workbench application; files are opened only from the library and `workdir`."""
+def compile_kernels() -> None:
+    """Run the kinematics' compiled loops for every batch size from now on.
+
+    A command line solve of a few samples runs them interpreted, because loading numba costs a
+    second or more per process; a server pays that once, and a drag frame of a four-bar (a
+    branch scan of 2 049 inputs and the solve) then takes a few milliseconds instead of a
+    hundred. The loops are compiled (or loaded from numba's cache) first by batches large
+    enough to take the compiled path anyway, so no request waits for the compiler; only then
+    is the threshold lowered."""
+    from ..io import load
+    from ..io.library import LIBRARY_PREFIX
+    from ..kinematics import kernels
+    inputs = np.linspace(0.0, 2 * np.pi, kernels.INTERPRETED_UP_TO + 1)[:, None]
+    for name in ("crank-rocker", "slider-crank-centric"):  # the RRR and RRP dyads, the driver
+        solve(load(LIBRARY_PREFIX + name), inputs, order=2)
+    kernels.INTERPRETED_UP_TO = 0
+
+
+
+def create_app(workdir: str | Path | None = None, *, compiled: bool = False) -> FastAPI:
+    """The workbench application; files are opened only from the library and `workdir`.
+    `compiled`: compile the kinematics' loops in the background and use them for every solve
+    (`linkwork serve`; see `compile_kernels`)."""
     sources = Sources(None if workdir is None else Path(workdir))
-    app = FastAPI(title="linkwork workbench", version="1",
+
+    @asynccontextmanager
+    async def lifespan(app):
+        if compiled:  # when the server starts (not when the application is merely made)
+            import threading
+            threading.Thread(target=compile_kernels, name="compile-kernels", daemon=True).start()
+        yield
+
+    app = FastAPI(title="linkwork workbench", version="1", lifespan=lifespan,
                   description="The linkwork Python API over HTTP: lengths in the mechanism "
                               "file's unit, angles in radians, times in seconds.",
                   openapi_url="/api/openapi.json", docs_url=None, redoc_url=None)
