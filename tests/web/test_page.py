@@ -498,3 +498,17 @@ def test_an_edit_that_is_incomplete_is_refused_by_the_form(page):
     page.click("#edit-apply")
     page.wait_for_selector("#error:not([hidden])")
     assert page.inner_text("#error") == "edit: give the design coordinates as x, y"
+
+
+def test_a_mechanism_with_two_drivers(page):
+    """Heusinger's valve gear has two drivers (the wheel O and the reversing arm RV): the page
+    asks for each drawing with one value per driver and shows both inputs."""
+    mech = linkwork.load("library:heusinger-valve-gear")
+    page.select_option("#mechanism", "library:heusinger-valve-gear")
+    wait_drawn(page, lambda: page.inner_text("#title") == mech.name and
+               page.locator("#numbers tr[data-point='P45']").count() == 1, "open the valve gear", timeout=120)
+    assert page.is_hidden("#error")
+    want = [mech.driver_input_at_design(d) for d in mech.drivers]
+    assert drawn_input(page) == pytest.approx(want, abs=1e-12)
+    assert page.inner_text("#input-value") == ", ".join(
+        f"{d.joint} {math.degrees(v):.2f}°" for d, v in zip(mech.drivers, want))

@@ -104,7 +104,7 @@ export interface Drawing {
 
 export interface DrawingRequest {
   source: Source;
-  at?: number[];
+  at?: number[] | number[][];
   layers: string[];
   construction?: string;
   step?: number;

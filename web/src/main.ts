@@ -87,6 +87,12 @@ const state: State = {
   layers: new Set(), plan: null, construction: null, drawn: null, busy: false, again: false, generation: 0,
 };
 
+// drag → redrawn frame: for each drawing of a drag, the time from the pointer's move it follows to
+// the first paint after it (ms); bench/bench_workbench.py reads them
+const frames: number[] = [];
+(window as unknown as { linkworkFrames: number[] }).linkworkFrames = frames;
+let movedAt = 0; // when the pointer moved last during a drag (performance.now())
+
 function source(): Source {
   const s: Source = { ...(state.base as Source) };
   if (Object.keys(state.moved).length) s.points = { ...state.moved };
@@ -130,7 +136,11 @@ function inputText(values: (number | null)[]): string {
 function drawingRequest(): DrawingRequest {
   const layers = ["mechanism", ...Array.from(state.layers)];
   const req: DrawingRequest = { source: source(), layers };
-  if (state.motion) req.at = sampleInput(state.index);
+  if (state.motion) {
+    // one sample: a number per driver, as one list of them when there are several
+    const at = sampleInput(state.index);
+    req.at = at.length > 1 ? [at] : at;
+  }
   const c = state.construction;
   if (c) {
     req.construction = c.name;
@@ -158,10 +168,14 @@ async function redraw(): Promise<void> {
       state.again = false;
       const generation = state.generation;
       const req = drawingRequest();
+      const asked = req.motion === false ? movedAt : 0;
       try {
         const d = await post<Drawing>("/api/drawing", req);
         if (generation !== state.generation) continue;
         show(d, req);
+        if (asked) { // after the next paint: a task queued in the frame callback runs after it
+          requestAnimationFrame(() => window.setTimeout(() => frames.push(performance.now() - asked), 0));
+        }
         clearError();
       } catch (e) {
         if (generation !== state.generation) continue;
@@ -728,6 +742,7 @@ ui.drawing.addEventListener("pointerdown", (ev) => {
 
 ui.drawing.addEventListener("pointermove", (ev) => {
   if (!dragging) return;
+  movedAt = performance.now();
   const w = toWorld(dragging.transform, svgPoint(ev, dragging.screen));
   const [x, y, th] = dragging.pose;
   const c = Math.cos(th), s = Math.sin(th);
