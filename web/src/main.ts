@@ -89,8 +89,10 @@ const state: State = {
 
 // drag → redrawn frame: for each drawing of a drag, the time from the pointer's move it follows to
 // the first paint after it (ms); bench/bench_workbench.py reads them
+// (and of that, the request's round trip: linkworkFetches)
 const frames: number[] = [];
-(window as unknown as { linkworkFrames: number[] }).linkworkFrames = frames;
+const fetches: number[] = [];
+Object.assign(window, { linkworkFrames: frames, linkworkFetches: fetches });
 let movedAt = 0; // when the pointer moved last during a drag (performance.now())
 
 function source(): Source {
@@ -170,8 +172,10 @@ async function redraw(): Promise<void> {
       const req = drawingRequest();
       const asked = req.motion === false ? movedAt : 0;
       try {
+        const sent = performance.now();
         const d = await post<Drawing>("/api/drawing", req);
         if (generation !== state.generation) continue;
+        if (asked) fetches.push(performance.now() - sent);
         show(d, req);
         if (asked) { // after the next paint: a task queued in the frame callback runs after it
           requestAnimationFrame(() => window.setTimeout(() => frames.push(performance.now() - asked), 0));
