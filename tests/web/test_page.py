@@ -512,3 +512,71 @@ def test_a_mechanism_with_two_drivers(page):
     assert drawn_input(page) == pytest.approx(want, abs=1e-12)
     assert page.inner_text("#input-value") == ", ".join(
         f"{d.joint} {math.degrees(v):.2f}°" for d, v in zip(mech.drivers, want))
+
+
+def test_keyboard_only(page):
+    """The main controls are reached with Tab and worked with keys alone."""
+    page.focus("#mechanism")
+    seen = []
+    for _ in range(80):
+        seen.append(page.evaluate("document.activeElement.id"))
+        page.keyboard.press("Tab")
+    for control in ("mechanism", "upload", "export-svg", "export-png", "export-csv", "save", "drawing",
+                    "quantity", "play", "speed", "input-slider", "show-poles", "show-velocity-plan",
+                    "paths-of", "selection", "edit", "construction", "edit-op", "edit-name", "edit-apply"):
+        assert control in seen, control
+    # a construction chosen and stepped with keys
+    page.focus("#construction")
+    page.keyboard.press("ArrowDown")  # the first construction of the list
+    first = page.input_value("#construction")
+    assert first == "rotated-velocities"
+    from linkwork.constructions import construct
+    steps = [s.text for s in construct(first, MECH, linkwork.solve(MECH, [math.pi / 2])).steps]
+    wait_drawn(page, lambda: page.inner_text("#step-text") == steps[0], "show the first step")
+    page.focus("#step-forward")
+    page.keyboard.press("Enter")
+    wait_drawn(page, lambda: page.inner_text("#step-text") == steps[1], "step with Enter")
+    page.focus("#drawing")
+    page.keyboard.press(".")
+    wait_drawn(page, lambda: page.inner_text("#step-text") == steps[2], "step with the period key")
+    page.keyboard.press(",")
+    wait_drawn(page, lambda: page.inner_text("#step-text") == steps[1], "step back with the comma key")
+    # the motion: arrows go one sample, Space plays and pauses
+    page.keyboard.press("ArrowRight")
+    page.keyboard.press("ArrowRight")
+    assert page.input_value("#input-slider") == "2"
+    sol = linkwork.whole_motion(MECH)
+    wait_drawn(page, lambda: drawn_input(page) == pytest.approx([sol.inputs[2, 0]], abs=1e-15), "draw sample 2")
+    page.keyboard.press("Space")
+    assert page.get_attribute("#play", "aria-pressed") == "true"
+    page.keyboard.press("Space")
+    assert page.get_attribute("#play", "aria-pressed") == "false"
+    # a design point moved with Alt+arrows: A one step (0.1 mm for this drawing of 40 mm) up
+    page.focus("#selection")
+    page.select_option("#selection", "point:A")
+    page.check("#edit")
+    page.focus("#drawing")
+    page.keyboard.press("Alt+ArrowUp")
+    wait_drawn(page, lambda: json.loads(page.get_attribute("#drawing", "data-moved") or "{}").get("A")
+               == pytest.approx([0.0, 10.1]), "move A up")
+
+
+def test_numbers_carry_units(page):
+    assert page.inner_text("#numbers thead").split() == ["point", "x", "[mm]", "y", "[mm]"]
+    assert page.inner_text("#input-value").endswith("°")
+    for choice in ("point:C", "link:coupler", "joint:B"):
+        page.select_option("#selection", choice)
+        wait_drawn(page, lambda: page.get_attribute("#selected", "data-selected") == choice, f"select {choice}")
+        rows = page.locator("#selected tr").evaluate_all(
+            "trs => trs.map(r => [r.cells[0].textContent, r.cells[1].textContent, r.cells[2].textContent])")
+        assert rows and all(unit.strip() for _, _, unit in rows), rows
+        units = {k: u for k, _, u in rows}
+        want = {"point:C": {"x": "mm", "|v|": "mm/s", "|a|": "mm/s²"},
+                "link:coupler": {"angle": "°", "ω": "rad/s", "α": "rad/s²"},
+                "joint:B": {"angle": "°", "ω": "rad/s", "α": "rad/s²"}}[choice]
+        assert {k: units[k] for k in want} == want
+    for key, unit in (("point:C:x", "mm"), ("point:C:a", "mm/s²"), ("link:rocker:omega", "rad/s")):
+        page.select_option("#quantity", key)
+        wait_drawn(page, lambda: page.get_attribute("#plot svg", "data-unit") == unit, f"plot {key}")
+        assert f"[{unit}]" in page.inner_text("#plot")
+        assert page.locator(f"#quantity option[value='{key}']").inner_text().endswith(f"[{unit}]")

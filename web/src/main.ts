@@ -850,6 +850,50 @@ function showEditFields(): void {
   ui.editMembersWhat.textContent = op === "add-joint" ? "two links" : "points";
 }
 
+// ------------------------------------------------------------------ keyboard
+/** A design point moved by the keyboard: `by` in the file's length unit, in the design
+ * coordinates of the point's link (those the file holds). */
+function nudge(name: string, by: XY): void {
+  const info = state.info;
+  if (!info) return;
+  const at = state.moved[name] ?? info.points[name];
+  state.moved[name] = [at[0] + by[0], at[1] + by[1]];
+  state.generation += 1;
+  void loadMotion(sampleInput(state.index)).catch((e) => showError(messageOf(e)));
+}
+
+const ARROWS: Record<string, XY> = { ArrowLeft: [-1, 0], ArrowRight: [1, 0], ArrowUp: [0, 1], ArrowDown: [0, -1] };
+
+document.addEventListener("keydown", (ev) => {
+  const target = ev.target as HTMLElement;
+  const typing = !!target.closest("input[type=text], input:not([type]), textarea");
+  if (ev.altKey && ARROWS[ev.key] && !typing && ui.edit.checked && ui.selection.value.startsWith("point:")) {
+    const info = state.info;
+    if (!info) return;
+    // a step of 1/200 of the drawing's size (Shift: ten times that), in round numbers
+    const xs = Object.values(info.points);
+    const size = Math.max(...xs.map((p) => p[0])) - Math.min(...xs.map((p) => p[0])) || 1;
+    const unit = 10 ** Math.floor(Math.log10(size / 200)) * (ev.shiftKey ? 10 : 1);
+    const [dx, dy] = ARROWS[ev.key];
+    nudge(ui.selection.value.slice(6), [dx * unit, dy * unit]);
+    ev.preventDefault();
+    return;
+  }
+  // the form's own controls keep their keys (a slider's arrows, a button's Space)
+  if (typing || ev.altKey || ev.ctrlKey || ev.metaKey || target.closest("input, select, textarea, button, summary")) return;
+  if (ev.key === " ") {
+    if (state.playing) pause();
+    else play();
+  } else if ((ev.key === "ArrowRight" || ev.key === "ArrowLeft") && state.motion) {
+    pause();
+    const n = state.motion.samples.length;
+    setIndex((state.index + (ev.key === "ArrowRight" ? 1 : n - 1)) % n);
+  } else if (ev.key === "." || ev.key === ",") {
+    step(ev.key === "." ? 1 : -1);
+  } else return;
+  ev.preventDefault();
+});
+
 // ------------------------------------------------------------------ wiring
 ui.editOp.addEventListener("change", showEditFields);
 ui.editApply.addEventListener("click", () => {
