@@ -142,7 +142,7 @@ def register(app: typer.Typer) -> None:
 
     @app.command("forces")
     def forces_cmd(
-        mechanism: str = typer.Argument(..., help="a mechanism file with [masses] (and [loads]), or library:NAME"),
+        mechanism: str = typer.Argument(..., help="a mechanism file with its mass data and loads, or library:NAME"),
         at: Optional[list[str]] = typer.Option(None, "--at", help="input values as for `analyze --at`"),
         sweep: Optional[list[str]] = typer.Option(None, "--sweep", help="START:STOP:STEP as for `analyze --sweep`"),
         speed: Optional[list[str]] = typer.Option(None, "--speed", help="driver speed, e.g. '120 rpm' (overrides the file)"),
