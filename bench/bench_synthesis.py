@@ -9,8 +9,9 @@ them the way a user would call it:
   defaults otherwise: up to 10 solutions). With five positions it usually filters every
   candidate out; then its Burmester candidates (`compute_circle_point_curve`, a grid search
   accepting 1 % radius error, and `select_compatible_dyads`) are measured as well.
-- linkwork: three positions, the dyads of two chosen centre points (the generating pivots);
-  four, `four_position_linkages` (pairs of points along the centre-point curve); five,
+- linkwork: three and four positions, the dyads of two chosen centre points (the generating
+  pivots; pylinkage is given them too, as `ground_pivot_a`, `ground_pivot_d`); four,
+  `four_position_linkages` (pairs of points along the centre-point curve); five,
   `burmester_points` and `linkages` (the quartic's roots).
 
 The error of every linkage is measured the same way for both: the two dyads (fixed pivot and
@@ -88,6 +89,12 @@ def pylinkage_rows(pos, repeats):
     errs = [engine_error(pos, s.ground_pivot_a, s.crank_pivot_b, s.ground_pivot_d, s.coupler_pivot_c)
             for s in res.raw_solutions]
     rows = [("pylinkage motion_generation", dt, len(errs), span(errs))]
+    if len(pos) < 5:  # like for like with linkwork's chosen centre points
+        pivots = dict(ground_pivot_a=tuple(map(float, O2)), ground_pivot_d=tuple(map(float, O4)))
+        res, dt = timed(lambda: motion_generation(poses, require_grashof=False, **pivots), repeats)
+        errs = [engine_error(pos, s.ground_pivot_a, s.crank_pivot_b, s.ground_pivot_d, s.coupler_pivot_c)
+                for s in res.raw_solutions]
+        rows.append(("pylinkage motion_generation, pivots given", dt, len(errs), span(errs)))
     if len(pos) == 5 and not errs:
         def candidates():
             return select_compatible_dyads(compute_circle_point_curve(poses))
@@ -102,22 +109,24 @@ def pylinkage_rows(pos, repeats):
 
 def linkwork_rows(pos, repeats):
     n = len(pos)
-    if n == 3:
-        def run():
-            return [Linkage(dyad(pos, O2), dyad(pos, O4))]
-        what = "linkwork dyads of 2 chosen centres"
-    elif n == 4:
-        def run():
-            return four_position_linkages(pos)
-        what = "linkwork four_position_linkages"
-    else:
-        def run():
-            return linkages(burmester_points(pos).dyads)
-        what = "linkwork burmester_points + linkages"
+    rows = []
+
+    def chosen():
+        return [Linkage(dyad(pos, O2), dyad(pos, O4))]
+    if n < 5:
+        rows.append(("linkwork dyads of 2 chosen centre points", chosen))
+    if n == 4:
+        rows.append(("linkwork four_position_linkages", lambda: four_position_linkages(pos)))
+    if n == 5:
+        rows.append(("linkwork burmester_points + linkages", lambda: linkages(burmester_points(pos).dyads)))
+    return [_linkwork_row(pos, what, run, repeats) for what, run in rows]
+
+
+def _linkwork_row(pos, what, run, repeats):
     found, dt = timed(run, repeats)
     errs = [engine_error(pos, lk.input.centre.xy, lk.input.circle.xy, lk.output.centre.xy, lk.output.circle.xy)
             if not (lk.input.is_slider or lk.output.is_slider) else float(lk.check.pose_error) for lk in found]
-    return [(what, dt, len(errs), span(errs))]
+    return (what, dt, len(errs), span(errs))
 
 
 def main() -> None:
