@@ -284,6 +284,8 @@ def column_magnitudes(value, units: list[str], what: str, names: list[str]):
         return np.stack([convert(value[..., i], u, n) for i, (u, n) in
                          enumerate(zip(units, names))], axis=-1)
     if isinstance(value, (list, tuple)) and value and any(is_quantity(v) for v in value):
+        if len(units) == 1 and all(is_quantity(v) for v in value):  # one driver: samples
+            return np.array([convert(v, units[0], names[0]) for v in value])
         if len(value) != len(units) or not all(is_quantity(v) for v in value):
             raise InputError(f"{what}: give one quantity per driver ({len(units)}), or one "
                              "quantity array for all")

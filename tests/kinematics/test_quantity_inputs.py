@@ -29,6 +29,9 @@ def test_degrees_equal_radians():
     with_units = linkwork.solve(mech, Q_(deg, "deg"), velocities=Q_(60, "rpm"),
                                 accelerations=Q_(0.5, "rad/s^2"))
     _same(by_hand, with_units)
+    listed = linkwork.solve(mech, [Q_(d, "deg") for d in deg], velocities=Q_(60, "rpm"),
+                            accelerations=Q_(0.5, "rad/s^2"))
+    _same(by_hand, listed)
 
 
 def test_one_quantity_per_driver_of_each_kind():
