@@ -74,3 +74,18 @@ def test_other_layers_are_refused(tmp_path):
     r = runner.invoke(app, ["draw", "library:crank-rocker", "--show", "poles",
                             "-o", str(tmp_path / "m.dxf")])
     assert r.exit_code != 0 and "DXF" in r.output
+
+
+def test_cam_profiles_and_roller(tmp_path):
+    out = tmp_path / "cam.dxf"
+    r = runner.invoke(app, ["draw", "library:radial-roller-cam", "-o", str(out)])
+    assert r.exit_code == 0, r.output
+    mech = linkwork.load("library:radial-roller-cam")
+    cam = next(j for j in mech.joints if j.kind == "cam")
+    centre = linkwork.solve(mech).point(cam.point).position[0]
+    polys = [np.array([v[:2] for v in e.get_points()])
+             for e in ezdxf.readfile(out).modelspace().query("LWPOLYLINE[layer=='PROFILES']")]
+    assert len(polys) == 2
+    # the roller: a closed circle of the roller's radius about the solved roller centre
+    dist = [np.linalg.norm(p - centre, axis=1) for p in polys]
+    assert any(np.allclose(d, cam.radius, rtol=0, atol=1e-9) for d in dist)

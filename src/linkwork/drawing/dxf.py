@@ -6,6 +6,8 @@ thing, so that a CAD user can switch them on and off:
 
 * ``LINKS`` — each moving link as a polyline: a bar from end to end, a plate as its closed
   convex outline (as the ``mechanism`` drawing layer draws them);
+* ``PROFILES`` — the profiles of higher pairs (cam, roller, flat face, rolling curves) at the
+  drawn position, as the ``mechanism`` drawing layer draws them;
 * ``JOINTS`` — a circle at every hinge (revolute pair, pin of a slot);
 * ``POINTS`` — the mechanism's points as DXF points, named by ``LABELS`` (text);
 * ``PATHS`` — the path of every moving point over the whole motion as a polyline through the
@@ -30,7 +32,7 @@ _INSUNITS = {"in": 1, "inch": 1, "ft": 2, "foot": 2, "mm": 4, "millimeter": 4, "
              "centimeter": 5, "m": 6, "meter": 6, "km": 7, "um": 13, "µm": 13, "micrometer": 13,
              "dm": 14}
 #: colour (AutoCAD colour index) of each DXF layer
-_COLOURS = {"LINKS": 7, "JOINTS": 1, "POINTS": 7, "LABELS": 8, "PATHS": 5}
+_COLOURS = {"LINKS": 7, "PROFILES": 7, "JOINTS": 1, "POINTS": 7, "LABELS": 8, "PATHS": 5}
 
 
 def finite_runs(xy: np.ndarray) -> list[np.ndarray]:
@@ -67,6 +69,12 @@ def scene_dxf(sc: Scene, show: Iterable[str] = ("mechanism",)):
             hull = _hull(xy)
             msp.add_lwpolyline([tuple(map(float, xy[k])) for k in hull], close=len(hull) >= 3,
                                dxfattribs={"layer": "LINKS"})
+        if any(j.kind in ("cam", "rolling") for j in mech.joints):
+            from .higher_layers import outlines
+            for _, xy, closed in outlines(sc):
+                for run in finite_runs(np.asarray(xy, float)):
+                    msp.add_lwpolyline([tuple(map(float, v)) for v in run], close=closed,
+                                       dxfattribs={"layer": "PROFILES"})
         r = 0.02 * mech.length_scale
         for p in dict.fromkeys(j.point for j in mech.joints if getattr(j, "point", None)):
             if np.isfinite(P[p]).all():
