@@ -244,3 +244,51 @@ def check_length_unit(unit: str) -> str:
     if u.dimensionality != ureg.Unit("m").dimensionality:
         raise InputError(f"'{unit}' is not a unit of length")
     return unit
+
+
+def Q_(value, unit: str | None = None) -> pint.Quantity:
+    """A quantity of linkwork's registry: `Q_([0, 30], "deg")`, `Q_(2, "rad/s")`."""
+    return registry().Quantity(value, unit)
+
+
+def is_quantity(value) -> bool:
+    """Whether `value` is a pint quantity (of any registry), checked without importing pint
+    for plain numbers and arrays."""
+    return type(value).__module__.startswith("pint") and hasattr(value, "to")
+
+
+def column_magnitudes(value, units: list[str], what: str, names: list[str]):
+    """`value` as plain numbers with one column per entry of `units`, where `value` may carry
+    units: a pint quantity (array of shape (N,) or (N, columns); one column for one unit), or
+    a sequence of one quantity per column. Plain numbers are returned unchanged (they are taken
+    in `units` already). A quantity that cannot be converted to a column's unit is an
+    `InputError` naming `what` and that column's `names` entry."""
+    import numpy as np
+
+    def convert(q, unit: str, name: str):
+        from pint.errors import PintError
+
+        try:
+            return np.asarray(q.to(unit).magnitude, dtype=float)
+        except PintError:
+            raise InputError(f"{what} for {name}: '{q.units}' cannot be converted to '{unit}'"
+                             ) from None
+
+    if is_quantity(value):
+        mag = np.asarray(value.magnitude, dtype=float)
+        if len(units) == 1:
+            return convert(value, units[0], names[0])
+        if mag.ndim == 0 or mag.shape[-1] != len(units):
+            # the shape check of the caller gives the message; convert with the first unit
+            return convert(value, units[0], names[0])
+        return np.stack([convert(value[..., i], u, n) for i, (u, n) in
+                         enumerate(zip(units, names))], axis=-1)
+    if isinstance(value, (list, tuple)) and value and any(is_quantity(v) for v in value):
+        if len(units) == 1 and all(is_quantity(v) for v in value):  # one driver: samples
+            return np.array([convert(v, units[0], names[0]) for v in value])
+        if len(value) != len(units) or not all(is_quantity(v) for v in value):
+            raise InputError(f"{what}: give one quantity per driver ({len(units)}), or one "
+                             "quantity array for all")
+        cols = [convert(v, u, n) for v, u, n in zip(value, units, names)]
+        return np.stack(np.broadcast_arrays(*cols), axis=-1)
+    return value

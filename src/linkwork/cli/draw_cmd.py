@@ -42,7 +42,7 @@ def register(app: typer.Typer) -> None:
         velocity_scale: Optional[float] = typer.Option(None, "--velocity-scale", help="velocity units per mm of paper"),
         acceleration_scale: Optional[float] = typer.Option(None, "--acceleration-scale", help="acceleration units per mm of paper"),
         dpi: float = typer.Option(200.0, "--dpi", help="resolution of PNG output"),
-        output: str = typer.Option(..., "-o", "--output", help="FILE.svg, FILE.png or FILE.pdf"),
+        output: str = typer.Option(..., "-o", "--output", help="FILE.svg, FILE.png, FILE.pdf or FILE.dxf (mechanism and paths layers, in the file's length unit, for CAD)"),
     ) -> None:
         """Draw the mechanism at one position with layers and a construction, as the books do."""
         import numpy as np
@@ -60,8 +60,8 @@ def register(app: typer.Typer) -> None:
                 positive_option(value, option, MAX_MAGNITUDE)
             mech = load_mechanism(mechanism)
             out = Path(output)
-            if out.suffix.lower() not in (".svg", ".png", ".pdf"):
-                raise InputError(f"-o {output}: write .svg, .png or .pdf")
+            if out.suffix.lower() not in (".svg", ".png", ".pdf", ".dxf"):
+                raise InputError(f"-o {output}: write .svg, .png, .pdf or .dxf")
             if animate is not None and out.suffix.lower() != ".svg":
                 raise InputError("--animate writes an animated SVG: give -o FILE.svg")
             if at is None:
@@ -103,6 +103,13 @@ def register(app: typer.Typer) -> None:
                     fig.save(p, dpi=dpi)
                     written.append(p)
                 typer.echo(f"wrote {len(written)} drawings {written[0]} … {written[-1]}")
+                return
+            if out.suffix.lower() == ".dxf":  # CAD: the mechanism's coordinates, no paper scale
+                if con is not None:
+                    raise InputError("a construction is drawn to SVG, PNG or PDF, not DXF")
+                from ..drawing.dxf import write_dxf
+                write_dxf(sc, out, layers)
+                typer.echo(f"wrote {out}")
                 return
             fig = scene_figure(sc, layers, construction=con)
             fig.save(out, dpi=dpi, animate=animate)

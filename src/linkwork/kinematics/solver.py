@@ -13,7 +13,7 @@ from functools import lru_cache
 import numpy as np
 
 from ..errors import InputError, StructureError
-from ..model import ConstantSpeed, Mechanism
+from ..model import ConstantSpeed, Mechanism, Prismatic
 from ..topology import solution_order
 from .branches import branch_schedule, path_schedule
 from .contact import interference, rows
@@ -81,12 +81,32 @@ def _as_2d(a, n_drivers: int, name: str, rows: int | None = None) -> np.ndarray 
     return arr
 
 
+def _plain_numbers(mech: Mechanism, inputs, times, *rates) -> tuple:
+    """The arguments of `solve` with pint quantities converted to radians or the file's length
+    unit (per second to the k-th power for the k-th rate) and seconds."""
+    from ..units import column_magnitudes
+
+    base = [mech.length_unit if isinstance(mech.joint(d.joint), Prismatic)
+            else "rad" for d in mech.drivers]
+    names = [f"driver '{d.joint}'" for d in mech.drivers]
+    out = [column_magnitudes(inputs, base, "inputs", names),
+           column_magnitudes(times, ["s"], "times", ["the time"])]
+    for k, (a, what) in enumerate(zip(rates, ("velocities", "accelerations", "jerks", "snaps")),
+                                  start=1):
+        out.append(column_magnitudes(a, [f"{u} / s ** {k}" for u in base], what, names))
+    return tuple(out)
+
+
 def solve(mech: Mechanism, inputs=None, *, times=None, velocities=None, accelerations=None,
           jerks=None, snaps=None, order: int = 2, resume: PathEnd | None = None) -> Solution:
     """Solve `mech` at the given input values (shape (N,) for one driver, (N, drivers) else) or
     at `times` (each driver's law evaluated at those times).
 
-    Revolute inputs are in radians, prismatic ones in the file's length unit. Input speeds
+    Plain numbers are radians for revolute inputs and the file's length unit for prismatic
+    ones (seconds for `times`, per second and per second squared … for the rates); pint
+    quantities (`linkwork.units.Q_([0, 30], "deg")`, `Q_(2, "rad/s")`) are converted to those,
+    and a quantity of the wrong kind (a length for a revolute driver) is an `InputError`
+    naming the driver. Several drivers of different kinds: one quantity per driver. Input speeds
     default to each driver's constant speed; give `velocities`/`accelerations` arrays to
     override them (for example the reversed speed of a rocker's return sweep).
     `order` = 3 also computes jerks, `order` = 4 the fourth derivatives (snaps) of the link
@@ -104,6 +124,8 @@ def solve(mech: Mechanism, inputs=None, *, times=None, velocities=None, accelera
         raise InputError("order must be 1 (velocities), 2 (accelerations), 3 (jerks) or 4 "
                          "(snaps)")
     nd = len(mech.drivers)
+    inputs, times, velocities, accelerations, jerks, snaps = _plain_numbers(
+        mech, inputs, times, velocities, accelerations, jerks, snaps)
     t = None
     if times is not None:
         t = np.atleast_1d(np.asarray(times, dtype=float))
