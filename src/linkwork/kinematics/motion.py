@@ -5,7 +5,9 @@ is driven from the design position to its limit position, back to the other limi
 to the design position again, on the assembly branch of the design, with the input speed
 reversed on the way back (as in the Stephenson III reference sweeps). Limit positions are found
 by bisection to machine precision (with Newton-solved groups: where the continuation of the
-design's branch stops, to ~1e-12) and included as samples.
+design's branch stops, to ~1e-12) and included as samples. Whether the chain assembles is a
+matter of positions alone, so the limit search solves positions only (no rates, no error
+bounds), and its bisection steps are taken a few at a time in one batch.
 """
 
 from __future__ import annotations
