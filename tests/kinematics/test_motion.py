@@ -5,7 +5,7 @@ import pytest
 
 import linkwork
 from linkwork import Status
-from mechanism_texts import four_bar_text
+from mechanism_texts import four_bar_text, slider_crank_text
 
 ROCKER_DRIVEN = four_bar_text(name="four-bar driven by its rocker", rocker_points=("O4", "B"),
                               driver="O4", speed="1 rad/s")
@@ -86,3 +86,64 @@ def test_exports_pandas_csv_parquet_agree(tmp_path):
     pd.testing.assert_frame_equal(pd.read_parquet(tmp_path / "s.parquet"), df)
     back = pd.read_csv(tmp_path / "s.csv")
     np.testing.assert_allclose(back["B.ay"], df["B.ay"], rtol=1e-15)
+
+
+# ---------------------------------------------------------------- limit positions, closed forms
+SLIDER_DRIVEN = slider_crank_text(name="slider-crank driven at its slider", A=(0, 10),
+                                  B=(np.sqrt(875.0), 5), driver="guide", speed=1)  # a 10, b 30, e 5
+
+
+def _bisected_limits(mech):
+    """The limits as the step-by-step definition finds them: the input scanned on 1441 points
+    out to one turn (or 4 length scales) either side, each side's first sample that `solve`
+    marks unreachable bracketed, and 60 bisection steps, one `solve` of one sample each."""
+    d = mech.drivers[0]
+    u0 = mech.driver_input_at_design(d)
+    span = 4 * mech.length_scale if mech.joint(d.joint).kind == "prismatic" else 2 * np.pi
+    grid = np.linspace(0.0, span, 1441)
+    out = []
+    for sign in (-1.0, 1.0):
+        ok = linkwork.solve(mech, u0 + sign * grid, order=1).status != Status.UNREACHABLE
+        k = int(np.argmin(ok))
+        lo, hi = grid[k - 1], grid[k]
+        for _ in range(60):
+            mid = 0.5 * (lo + hi)
+            if linkwork.solve(mech, np.array([u0 + sign * mid]), order=1).status[0] \
+                    != Status.UNREACHABLE:
+                lo = mid
+            else:
+                hi = mid
+        out.append(u0 + sign * lo)
+    return tuple(out)
+
+
+def test_double_rocker_limits_from_the_cosine_rule():
+    from linkwork.kinematics.motion import input_limits
+    # frame d = 50, input a = 40, coupler b = 20, output c = 50: the input's limits are where
+    # coupler and output stretch (|A O4| = b + c) or fold (|A O4| = c − b); cosine rule in
+    # the triangle O2 A O4 for the input angle
+    a_, b_, c_, d_ = 40.0, 20.0, 50.0, 50.0
+    lo, hi = input_limits(linkwork.load("library:double-rocker"))
+    expected = [np.arccos((a_**2 + d_**2 - D**2) / (2 * a_ * d_)) for D in (c_ - b_, b_ + c_)]
+    assert [lo, hi] == pytest.approx(expected, abs=1e-12)
+
+
+def test_slider_driven_slider_crank_limits():
+    from linkwork.kinematics.motion import input_limits
+    # crank 10, rod 30, guide 5 above the crank pivot: B at (x, 5) assembles while
+    # b − a ≤ |O B| ≤ a + b, i.e. √(20² − 5²) ≤ x ≤ √(40² − 5²); the input is x − x_design.
+    # The dyad counts as assembled down to h² = −1e-12·L1² (rounding at a limit position), which
+    # here moves the limits outwards by some 7e-12: the tolerance is 1e-11
+    lo, hi = input_limits(linkwork.load_text(SLIDER_DRIVEN))
+    x0 = np.sqrt(875.0)
+    assert [lo, hi] == pytest.approx([np.sqrt(375.0) - x0, np.sqrt(1575.0) - x0], abs=1e-11)
+    assert lo < np.sqrt(375.0) - x0 and hi > np.sqrt(1575.0) - x0  # outwards, not inwards
+
+
+@pytest.mark.parametrize("source", ["library:double-rocker", "library:hart-inversor",
+                                    "library:pmks-stephenson-iii", "slider", "rocker"])
+def test_limits_are_the_step_by_step_bisection_to_the_last_bit(source):
+    from linkwork.kinematics.motion import input_limits
+    mech = (linkwork.load_text(SLIDER_DRIVEN) if source == "slider" else
+            linkwork.load_text(ROCKER_DRIVEN) if source == "rocker" else linkwork.load(source))
+    assert input_limits(mech) == _bisected_limits(mech)

@@ -5,7 +5,9 @@ is driven from the design position to its limit position, back to the other limi
 to the design position again, on the assembly branch of the design, with the input speed
 reversed on the way back (as in the Stephenson III reference sweeps). Limit positions are found
 by bisection to machine precision (with Newton-solved groups: where the continuation of the
-design's branch stops, to ~1e-12) and included as samples.
+design's branch stops, to ~1e-12) and included as samples. Whether the chain assembles is a
+matter of positions alone, so the limit search solves positions only (no rates, no error
+bounds), and its bisection steps are taken a few at a time in one batch.
 """
 
 from __future__ import annotations
@@ -14,15 +16,84 @@ import numpy as np
 
 from ..errors import InputError
 from ..model import ConstantSpeed, Mechanism
+from .branches import branch_schedule
+from .contact import interference, rows
 from .continuation import march_limit
-from .solution import Solution, Status
+from .groups import State, input_coefficients
+from .solution import Solution
 from .solver import plan, solve
 
 BISECTIONS = 60
+# bisection steps per batch (their 2^DEPTH − 1 possible midpoints solved at once): a position
+# solve costs some 50 µs per call and 9 µs per sample (the interpreted kernels), so three steps
+# (7 samples) per call are cheapest
+DEPTH = 3
+FIRST_CHUNK = 64  # samples of the limit scan solved first; each further chunk twice as many
 
 
-def _assembles(mech: Mechanism, u: np.ndarray) -> np.ndarray:
-    return solve(mech, u, order=1).status != Status.UNREACHABLE
+def _assembles(mech: Mechanism, solvers, u: np.ndarray) -> np.ndarray:
+    """Where the mechanism assembles at inputs u (one driver, closed-form groups): positions
+    only, with the assembly branches and the contact check of `solve`, whose status is
+    unreachable exactly where this is False (its rates and error bounds do not decide it)."""
+    N = u.shape[0]
+    # zero poses laid out as `solve` lays them out (the sample axis last in memory)
+    Q = np.zeros((1, len(rows(mech)), 3, N)).transpose(0, 3, 1, 2)
+    state = State(mech, Q, input_coefficients(mech, u[:, None], None, None, None, 0),
+                  branches={g: s.signs(u) for g, s in branch_schedule(mech).items()})
+    ok = np.ones(N, dtype=bool)
+    for s in solvers:
+        ok &= s.positions(state)
+    if Q.shape[2] > len(mech.link_names):  # higher pairs: a contact cut into is no contact
+        Q[0, ~ok] = np.nan
+        ok &= ~interference(mech, Q[0])
+    return ok
+
+
+def _first_failure(mech: Mechanism, solvers, u0: float, sign: float,
+                   grid: np.ndarray) -> int | None:
+    """Index of the first offset on `grid` at which u0 + sign·offset does not assemble (None if
+    all do), solved in chunks outwards from the design position, each twice the last, so that a
+    rocker's scan stops soon after its limit."""
+    start, size = 0, FIRST_CHUNK
+    while start < grid.size:
+        ok = _assembles(mech, solvers, u0 + sign * grid[start:start + size])
+        if not ok.all():
+            return start + int(np.argmin(ok))
+        start, size = start + size, 2 * size
+    return None
+
+
+def _bisect(mech: Mechanism, solvers, u0: float, sign: float, lo: float, hi: float) -> float:
+    """`BISECTIONS` steps of bisection on the offset from u0 between lo (assembles) and hi
+    (does not), the same midpoints in the same floating-point arithmetic as one step at a time,
+    so the same limit to the last bit; but `DEPTH` steps per batch: every midpoint those steps
+    may visit (a full binary tree, level by level) is solved at once, then the tree is walked."""
+    steps = BISECTIONS
+    while steps > 0:
+        depth = min(DEPTH, steps)
+        # level k of the tree holds the 2^k brackets (lo, hi) that k steps can leave
+        los, his, mids = [np.array([lo])], [np.array([hi])], []
+        for k in range(depth):
+            m = 0.5 * (los[k] + his[k])
+            mids.append(m)
+            if k + 1 < depth:
+                los.append(np.stack([los[k], m], axis=1).ravel())  # left child, right child
+                his.append(np.stack([m, his[k]], axis=1).ravel())
+        flat = np.concatenate(mids)
+        ok = _assembles(mech, solvers, u0 + sign * flat)
+        node = 0  # index within the level
+        start = 0  # index of the level's first midpoint in `flat`
+        for k in range(depth):
+            i = start + node
+            if ok[i]:
+                lo = flat[i]
+                node = 2 * node + 1
+            else:
+                hi = flat[i]
+                node = 2 * node
+            start += 2 ** k
+        steps -= depth
+    return lo
 
 
 def input_limits(mech: Mechanism, *, resolution: float | None = None) -> tuple[float, float] | None:
@@ -38,24 +109,16 @@ def input_limits(mech: Mechanism, *, resolution: float | None = None) -> tuple[f
     n = 1441
     res = resolution or span / (n - 1)
     grid = np.linspace(0.0, span, max(n, int(span / res) + 1))
-    up = _assembles(mech, u0 + grid)
-    if not prismatic and up.all():
+    up = _first_failure(mech, solvers, u0, +1.0, grid)
+    if not prismatic and up is None:
         return None  # a crank: the lower side is not needed
-    down = _assembles(mech, u0 - grid)
+    down = _first_failure(mech, solvers, u0, -1.0, grid)
     limits = []
-    for sign, ok in ((-1.0, down), (1.0, up)):
-        if ok.all():
+    for sign, k in ((-1.0, down), (1.0, up)):
+        if k is None:
             raise InputError(f"driver '{d.joint}': no limit position within ±{span:g} of the design "
                              "position; give --sweep explicitly")
-        k = int(np.argmin(ok))  # first sample that does not assemble
-        lo, hi = grid[k - 1], grid[k]
-        for _ in range(BISECTIONS):
-            mid = 0.5 * (lo + hi)
-            if _assembles(mech, np.array([u0 + sign * mid]))[0]:
-                lo = mid
-            else:
-                hi = mid
-        limits.append(u0 + sign * lo)
+        limits.append(u0 + sign * _bisect(mech, solvers, u0, sign, grid[k - 1], grid[k]))
     return limits[0], limits[1]
 
 
