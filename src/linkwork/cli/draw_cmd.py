@@ -32,7 +32,7 @@ def register(app: typer.Typer) -> None:
     def draw(
         mechanism: str = typer.Argument(..., help="a mechanism file, or library:NAME"),
         at: Optional[list[str]] = typer.Option(None, "--at", help="input value: degrees (revolute) or the file's length unit (prismatic) unless a unit is written, or a time (0.5s); several drivers: NAME=V per driver (--at O2=30 --at O5=10); default: the design position"),
-        show: str = typer.Option("mechanism", "--show", help="layers, comma-separated: mechanism, paths, velocities, accelerations, poles, pole-lines, centrodes, inflection, return, bresse, gamma; higher pairs: contact (contact point, common normal), equivalent (equivalent linkage, dashed)"),
+        show: str = typer.Option("mechanism", "--show", help="layers, comma-separated: mechanism, paths, velocities, accelerations, poles, pole-lines, centrodes, inflection, return, bresse, gamma; forces (pair reactions and the driver's effort at scale, from the file's [masses]/[loads]); higher pairs: contact (contact point, common normal), equivalent (equivalent linkage, dashed)"),
         construction: Optional[str] = typer.Option(None, "--construction", help="rotated-velocities, velocity-plan, acceleration-plan, euler-savary, bobillier, hartmann, two-points, klein, kennedy, mohr"),
         point: Optional[str] = typer.Option(None, "--point", help="the point whose centre of curvature a curvature construction seeks"),
         link: Optional[str] = typer.Option(None, "--link", help="the link of a curvature construction (default: the coupler)"),
@@ -104,7 +104,12 @@ def register(app: typer.Typer) -> None:
                     written.append(p)
                 typer.echo(f"wrote {len(written)} drawings {written[0]} … {written[-1]}")
                 return
-            fig = scene_figure(sc, layers, construction=con)
+            forces = "forces" in layers
+            fig = scene_figure(sc, [x for x in layers if x != "forces"], construction=con)
+            if forces:
+                from ..drawing.force_layers import draw_forces
+                from ..io import load_dynamics
+                draw_forces(fig, sc, load_dynamics(mechanism))
             fig.save(out, dpi=dpi, animate=animate)
             typer.echo(f"wrote {out}")
 
