@@ -18,6 +18,7 @@ import numpy as np
 from ..constructions.scales import Scale, nice_ceil
 from ..errors import InputError, ModelError
 from ..forces import ForceAnalysis, kinetostatics
+from ..forces.loads import rotate
 from ..model import Prismatic
 from ..model.inertia import Dynamics
 from .svg import Figure, Style
@@ -89,10 +90,8 @@ def draw_forces(fig: Figure, sc, dyn: Dynamics, *, per_mm: float | None = None,
             continue
         p = sc.pos(j.point)
         if isinstance(j, Prismatic):
-            axis = np.asarray(j.axis, float)
-            th = sc.theta(j.links[0])
-            u = np.array([np.cos(th) * axis[0] - np.sin(th) * axis[1],
-                          np.sin(th) * axis[0] + np.cos(th) * axis[1]]) / np.linalg.norm(axis)
+            u = rotate(np.float64(sc.theta(j.links[0])), j.axis)  # the guide's direction now
+            u = u / np.linalg.norm(u)
             if abs(e) * kF < tiny:
                 continue
             head = p + kF * e * u
