@@ -32,9 +32,11 @@ def _figure(spec="library:crank-rocker", deg=50.0):
     return sc, fig, scale, ref
 
 
-@pytest.mark.parametrize("deg", [0.0, 50.0, 200.0])
-def test_drawn_reactions_are_the_kinetostatic_ones(deg):
-    sc, fig, scale, ref = _figure(deg=deg)
+@pytest.mark.parametrize("spec,deg", [("library:crank-rocker", 0.0), ("library:crank-rocker", 50.0),
+                                      ("library:crank-rocker", 200.0),
+                                      ("library:slider-crank-centric", 50.0)])
+def test_drawn_reactions_are_the_kinetostatic_ones(spec, deg):
+    sc, fig, scale, ref = _figure(spec, deg)
     kF = sc.scales.length.per_mm / scale.per_mm
     arrows = {p.ident[len("force-"):]: p.data for p in fig.prims if p.kind == "arrow"
               and p.ident and p.ident.startswith("force-")}
