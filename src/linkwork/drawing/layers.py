@@ -463,8 +463,10 @@ def construction_spaces(con: Construction, scales: Scales) -> dict[str, Scale]:
 
 def scene_figure(sc: Scene, show: Iterable[str] = ("mechanism",), *,
                  construction: Construction | None = None, step: int | None = None,
-                 title: str | None = None) -> Figure:
-    """A figure of the scene with the named layers (and a construction, up to ``step``)."""
+                 title: str | None = None, paths: Sequence[str] | None = None) -> Figure:
+    """A figure of the scene with the named layers (and a construction, up to ``step``);
+    ``paths`` names the points whose paths the ``paths`` layer traces (default: every moving
+    point)."""
     show = list(show)
     unknown = [s for s in show if s not in LAYERS]
     if unknown:
@@ -504,7 +506,7 @@ def scene_figure(sc: Scene, show: Iterable[str] = ("mechanism",), *,
             own = construction is not None and construction.own_labels
             draw_mechanism(fig, sc, labels=not own)
         elif layer == "paths":
-            draw_paths(fig, sc)
+            draw_paths(fig, sc, paths)
         elif layer == "velocities":
             draw_vectors(fig, sc, "velocity")
         elif layer == "accelerations":
