@@ -107,6 +107,10 @@ def test_cli_draw_show_forces(tmp_path):
     root = ET.fromstring(out.read_text())
     ids = {g.get("id") for g in root.iter(f"{NS}g")}
     assert {"force-O2", "force-A", "force-B", "force-O4", "scale-force"} <= ids
+    res = runner.invoke(app, ["draw", "library:crank-rocker", "--show", "mechanism,forces",
+                              "--construction", "velocity-plan", "--steps", "-o", str(tmp_path / "s.svg")])
+    assert res.exit_code == 0, res.output
+    assert 'id="force-O4"' in (tmp_path / "s-01.svg").read_text()
     res = runner.invoke(app, ["draw", "library:double-crank", "--show", "forces", "-o",
                               str(tmp_path / "g.svg")])
     assert res.exit_code != 0

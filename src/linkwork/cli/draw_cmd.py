@@ -49,6 +49,8 @@ def register(app: typer.Typer) -> None:
 
         from ..constructions import construct
         from ..drawing import scene_figure
+        from ..drawing.force_layers import draw_forces
+        from ..io import load_dynamics
         from ..drawing.layers import Scene
         from ..kinematics import solve
         from .inputs import input_values
@@ -80,6 +82,9 @@ def register(app: typer.Typer) -> None:
                                            acceleration=acceleration_scale,
                                            plan_mm=70.0 if construction in ("velocity-plan", "acceleration-plan") else None)
             layers = _list(show)
+            # the force layer needs the file's mass data: drawn here, after the kinematic layers
+            forces = load_dynamics(mechanism) if "forces" in layers else None
+            layers = [x for x in layers if x != "forces"]
             con = None
             if construction:
                 opts = {}
@@ -99,17 +104,16 @@ def register(app: typer.Typer) -> None:
                 written = []
                 for k in range(len(con.steps)):
                     fig = scene_figure(sc, layers, construction=con, step=k)
+                    if forces is not None:
+                        draw_forces(fig, sc, forces)
                     p = out.with_name(f"{out.stem}-{k + 1:02d}{out.suffix}")
                     fig.save(p, dpi=dpi)
                     written.append(p)
                 typer.echo(f"wrote {len(written)} drawings {written[0]} … {written[-1]}")
                 return
-            forces = "forces" in layers
-            fig = scene_figure(sc, [x for x in layers if x != "forces"], construction=con)
-            if forces:
-                from ..drawing.force_layers import draw_forces
-                from ..io import load_dynamics
-                draw_forces(fig, sc, load_dynamics(mechanism))
+            fig = scene_figure(sc, layers, construction=con)
+            if forces is not None:
+                draw_forces(fig, sc, forces)
             fig.save(out, dpi=dpi, animate=animate)
             typer.echo(f"wrote {out}")
 
