@@ -32,7 +32,7 @@ def register(app: typer.Typer) -> None:
     def draw(
         mechanism: str = typer.Argument(..., help="a mechanism file, or library:NAME"),
         at: Optional[list[str]] = typer.Option(None, "--at", help="input value: degrees (revolute) or the file's length unit (prismatic) unless a unit is written, or a time (0.5s); several drivers: NAME=V per driver (--at O2=30 --at O5=10); default: the design position"),
-        show: str = typer.Option("mechanism", "--show", help="layers, comma-separated: mechanism, paths, velocities, accelerations, poles, pole-lines, centrodes, inflection, return, bresse, gamma; higher pairs: contact (contact point, common normal), equivalent (equivalent linkage, dashed)"),
+        show: str = typer.Option("mechanism", "--show", help="layers, comma-separated: mechanism, paths, velocities, accelerations, poles, pole-lines, centrodes, inflection, return, bresse, gamma; forces (pair reactions and the driver's effort at scale, from the file's [masses]/[loads]); higher pairs: contact (contact point, common normal), equivalent (equivalent linkage, dashed)"),
         construction: Optional[str] = typer.Option(None, "--construction", help="rotated-velocities, velocity-plan, acceleration-plan, euler-savary, bobillier, hartmann, two-points, klein, kennedy, mohr"),
         point: Optional[str] = typer.Option(None, "--point", help="the point whose centre of curvature a curvature construction seeks"),
         link: Optional[str] = typer.Option(None, "--link", help="the link of a curvature construction (default: the coupler)"),
@@ -49,6 +49,8 @@ def register(app: typer.Typer) -> None:
 
         from ..constructions import construct
         from ..drawing import scene_figure
+        from ..drawing.force_layers import draw_forces
+        from ..io import load_dynamics
         from ..drawing.layers import Scene
         from ..kinematics import solve
         from .inputs import input_values
@@ -80,6 +82,9 @@ def register(app: typer.Typer) -> None:
                                            acceleration=acceleration_scale,
                                            plan_mm=70.0 if construction in ("velocity-plan", "acceleration-plan") else None)
             layers = _list(show)
+            # the force layer needs the file's mass data: drawn here, after the kinematic layers
+            forces = load_dynamics(mechanism) if "forces" in layers else None
+            layers = [x for x in layers if x != "forces"]
             con = None
             if construction:
                 opts = {}
@@ -99,6 +104,8 @@ def register(app: typer.Typer) -> None:
                 written = []
                 for k in range(len(con.steps)):
                     fig = scene_figure(sc, layers, construction=con, step=k)
+                    if forces is not None:
+                        draw_forces(fig, sc, forces)
                     p = out.with_name(f"{out.stem}-{k + 1:02d}{out.suffix}")
                     fig.save(p, dpi=dpi)
                     written.append(p)
@@ -112,6 +119,8 @@ def register(app: typer.Typer) -> None:
                 typer.echo(f"wrote {out}")
                 return
             fig = scene_figure(sc, layers, construction=con)
+            if forces is not None:
+                draw_forces(fig, sc, forces)
             fig.save(out, dpi=dpi, animate=animate)
             typer.echo(f"wrote {out}")
 

@@ -49,7 +49,7 @@ def _num(v: float) -> str:
 class Scale:
     """1 mm of paper represents ``per_mm`` ``unit`` of ``quantity``."""
 
-    quantity: str  # "length", "velocity", "acceleration"
+    quantity: str  # "length", "velocity", "acceleration", "force"
     unit: str
     per_mm: float
 
@@ -60,7 +60,7 @@ class Scale:
 
     @property
     def symbol(self) -> str:
-        return {"length": "M_l", "velocity": "M_v", "acceleration": "M_a"}.get(self.quantity, "M")
+        return {"length": "M_l", "velocity": "M_v", "acceleration": "M_a", "force": "M_F"}.get(self.quantity, "M")
 
     def to_paper(self, value):
         """Millimetres of paper for ``value`` (in ``unit``)."""

@@ -386,6 +386,7 @@ class Figure:
                  f'y2="{sym._f(y + 1)}" stroke="#999" stroke-width="0.2"/>']
         scales = [self.scales.length] + [s for s in (self.scales.velocity, self.scales.acceleration)
                                          if s is not None and s.quantity in self.used_scales]
+        scales += getattr(self, "extra_scales", [])  # e.g. the force scale of drawing.force_layers
         x = MARGIN
         yy = y + 5.5
         for s in scales:
