@@ -295,6 +295,13 @@ class Construction:
         return "\n".join(lines)
 
 
+def literal(name: str) -> str:
+    """A user's point or link name for a label, escaped so that the drawing prints it as written
+    (``link_j`` stays link_j; only the books' own notation, P_{13} or v_A, is set as sub- or
+    superscript)."""
+    return "".join("\\" + c if c in "\\_^{}" else c for c in name)
+
+
 def _fmt(v: Any) -> str:
     v = np.asarray(v, float)
     if v.ndim == 1 and v.size == 2 and np.isinf(v[0]):

@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..constructions.construction import literal
 from ..geometry import Circle
 from ..instant import (bresse_circle, centrodes, inflection_circle, instant, pole_schedule, poles,
                        return_circle)
@@ -55,7 +56,7 @@ def draw_instant(fig: Figure, sc, layer: str) -> None:
     if layer in ("poles", "pole-lines"):
         ps = poles(sol)
         if layer == "poles":
-            fig.note("poles: " + ps.legend())
+            fig.note("poles: " + ", ".join(f"{k + 1} = {literal(ln)}" for k, ln in enumerate(ps.links)))
         if layer == "pole-lines":
             sch = pole_schedule(mech)
             for st in sch.derived:
@@ -91,7 +92,7 @@ def draw_instant(fig: Figure, sc, layer: str) -> None:
         ins = instant(sol, ln)
         P = ins.pole[i]
         if not P.is_finite:
-            fig.note(f"{ln}: translating instantaneously (pole at infinity), no {layer} drawn")
+            fig.note(f"{literal(ln)}: translating instantaneously (pole at infinity), no {layer} drawn")
             continue
         span = [P.xy - ext * 0.3 * np.array([1, 0]), P.xy + ext * 0.3 * np.array([1, 0])]
         if layer == "centrodes":
@@ -110,9 +111,9 @@ def draw_instant(fig: Figure, sc, layer: str) -> None:
             R = np.array([[np.cos(th), -np.sin(th)], [np.sin(th), np.cos(th)]])
             fig.path(m @ R.T + x0, style=Style(stroke=COLOURS["centrode"], width=0.35, dash="3 1.5"),
                      layer="centrodes", ident=f"centrode-moving-{ln}")
-            fig.note(f"centrodes of {ln}: fixed solid, moving dashed")
+            fig.note(f"centrodes of {literal(ln)}: fixed solid, moving dashed")
         elif layer == "inflection":
-            _circle(fig, inflection_circle(sol, ln), i, "inflection", "inflection", f"inflection circle ({ln})", span)
+            _circle(fig, inflection_circle(sol, ln), i, "inflection", "inflection", f"inflection circle ({literal(ln)})", span)
             W = ins.inflection_pole[i]
             if W.is_finite:
                 fig.dot(W.xy, r=0.6, style=Style(stroke=COLOURS["inflection"]), layer="inflection")
@@ -126,9 +127,9 @@ def draw_instant(fig: Figure, sc, layer: str) -> None:
             fig.dot(P.xy, r=0.6, layer="inflection")
             fig.label(P.xy, "P", size=3.0)
         elif layer == "return":
-            _circle(fig, return_circle(sol, ln), i, "return", "return", f"return circle ({ln})", span)
+            _circle(fig, return_circle(sol, ln), i, "return", "return", f"return circle ({literal(ln)})", span)
         elif layer == "bresse":
-            _circle(fig, bresse_circle(sol, ln), i, "bresse", "bresse", f"Bresse circle ({ln})", span)
+            _circle(fig, bresse_circle(sol, ln), i, "bresse", "bresse", f"Bresse circle ({literal(ln)})", span)
         elif layer == "gamma":
             G = ins.acceleration_pole[i]
             if G.is_finite:

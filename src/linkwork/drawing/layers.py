@@ -33,9 +33,9 @@ from ..geometry import Circle, Line, Point
 from ..kinematics import Solution, solve, whole_motion
 from ..model import (CircularSlot, Gear, Mechanism, Prismatic, Revolute, Slot, indexing_schedule,
                      is_intermittent)
-from ..constructions.construction import Arrow, Construction, Element, Polygon, Segment
+from ..constructions.construction import Arrow, Construction, Element, Polygon, Segment, literal
 from ..constructions.scales import SHEET_MM, Scale, Scales, nice_ceil
-from .svg import COLOURS, Figure, Style, plain, style_for
+from .svg import COLOURS, Figure, Style, style_for
 
 MECHANISM_LAYERS = ("mechanism", "paths", "velocities", "accelerations")
 INSTANT_LAYERS = ("poles", "pole-lines", "centrodes", "inflection", "return", "bresse", "gamma")
@@ -224,7 +224,7 @@ def _point_label(name: str) -> str:
     """``O2`` → ``O_2``: trailing digits of a point name become a subscript, as in the books."""
     import re
     m = re.match(r"^([A-Za-z]+)(\d+)$", name)
-    return f"{m.group(1)}_{m.group(2)}" if m else name
+    return f"{m.group(1)}_{m.group(2)}" if m else literal(name)
 
 
 def _draw_slider(fig: Figure, sc: Scene, j, layer: str) -> None:
@@ -316,7 +316,7 @@ def draw_vectors(fig: Figure, sc: Scene, which: str, points: Sequence[str] | Non
         head = x + k * v
         fig.arrow(x, head, style=Style(stroke=COLOURS[which], width=0.4), layer=layer,
                   ident=f"{which}-{p}")
-        fig.label(head, f"{sym}_{plain(_point_label(p)).replace('_', '')}", colour=COLOURS[which],
+        fig.label(head, f"{sym}_{{{literal(p)}}}", colour=COLOURS[which],
                   size=3.0, prefer=np.array([v[0], -v[1]]), ident=f"{which}-{p}")
 
 
