@@ -357,6 +357,14 @@ class Builder:
         self.length: float | None = None  # the drawing's size, for tolerances (set by constructions)
         self._spans: dict[str, list[Point]] = {}
 
+    def key(self, letters: dict[str, str]) -> None:
+        """The book's letters of the steps against the file's point names, as a legend line
+        (drawn points carry the file's names; the key is needed only where the two differ)."""
+        pairs = [(book, name) for book, name in letters.items() if book.replace("_", "") != name]
+        if pairs:
+            self.legend.append("key, book's letters in the steps = the file's points: "
+                               + ", ".join(f"{book} = {literal(name)}" for book, name in pairs))
+
     # ------------------------------------------------------------------ bookkeeping
     def step(self, text: str) -> None:
         """Begin a new step with its sentence."""

@@ -137,8 +137,11 @@ def scene_at(mech: Mechanism, value: float, *, kind: str = "input") -> Scene:
 
 
 # ---------------------------------------------------------------------------- mechanism
-def draw_mechanism(fig: Figure, sc: Scene, *, layer: str = "mechanism", labels: bool = True) -> None:
-    """Links, joints and frame in ISO 3952 symbols at the scene's position."""
+def draw_mechanism(fig: Figure, sc: Scene, *, layer: str = "mechanism", labels: bool = True,
+                   labelled: Iterable[str] = ()) -> None:
+    """Links, joints and frame in ISO 3952 symbols at the scene's position; ``labelled``: points
+    that something else (a construction) already labels."""
+    labelled = set(labelled)
     mech = sc.mech
     frame = mech.frame
     P = {p: sc.pos(p) for p in mech.points}
@@ -193,7 +196,7 @@ def draw_mechanism(fig: Figure, sc: Scene, *, layer: str = "mechanism", labels: 
     for p, xy in P.items():
         if p not in joint_points:
             fig.dot(xy, r=0.6, layer=layer, ident=f"point-{p}")
-        if labels:
+        if labels and p not in labelled:
             prefer = np.array([1.0, -1.0]) if np.allclose(xy, centroid) else (xy - centroid) * np.array([1, -1])
             if p in ground_points:
                 prefer = np.array([1.0, 0.6])
@@ -461,6 +464,15 @@ def construction_spaces(con: Construction, scales: Scales) -> dict[str, Scale]:
     return out
 
 
+def _points_labelled_by(con: Construction, sc: Scene) -> set[str]:
+    """The mechanism's points at which the (sampled) construction puts a labelled point."""
+    tol = 1e-9 * sc.mech.length_scale
+    at = [el.obj.xy for el in con.elements.values()
+          if el.space == "mechanism" and el.label and isinstance(el.obj, Point) and el.obj.is_finite]
+    return {p for p in sc.mech.points
+            if any(np.all(np.abs(np.asarray(q).reshape(2) - sc.pos(p)) <= tol) for q in at)}
+
+
 def scene_figure(sc: Scene, show: Iterable[str] = ("mechanism",), *,
                  construction: Construction | None = None, step: int | None = None,
                  title: str | None = None) -> Figure:
@@ -502,7 +514,7 @@ def scene_figure(sc: Scene, show: Iterable[str] = ("mechanism",), *,
             # a construction that labels the mechanism's points in its own notation hides the
             # file's point names
             own = construction is not None and construction.own_labels
-            draw_mechanism(fig, sc, labels=not own)
+            draw_mechanism(fig, sc, labelled=_points_labelled_by(con, sc) if own else ())
         elif layer == "paths":
             draw_paths(fig, sc)
         elif layer == "velocities":
