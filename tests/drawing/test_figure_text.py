@@ -34,6 +34,8 @@ def test_user_names_are_printed_as_written():
     assert segments("P_{13}") == segments("P_13") == [("P", 0), ("13", SUB)]
     assert segments("b_B^(n)") == [("b", 0), ("B", SUB), ("(n)", SUP)]
     assert segments("v_{" + literal("p_1") + "}") == [("v", 0), ("p_1", SUB)]
+    # the books' O_4 inside a subscript, and a superscript before the subscript
+    assert segments("a^n_BO_4") == [("a", 0), ("n", SUP), ("BO4", SUB)]
     m = label_markup("b_B^(n)", 3.0)
     assert "^" not in m and ">(n)</tspan>" in m and ">B</tspan>" in m
 

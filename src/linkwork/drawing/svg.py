@@ -116,9 +116,9 @@ def _esc(text: str) -> str:
     return t.replace("\u2259", '<tspan font-family="DejaVu Sans, sans-serif">\u2259</tspan>')
 
 
-#: what follows ``_`` or ``^`` unbraced: letters, digits, Greek and underscores (a subscript is
-#: never nested, so ``v_p_1`` is v with the subscript p_1)
-_RUN = re.compile(r"[0-9A-Za-z\u0370-\u03ff_]+")
+#: what follows ``_`` or ``^`` unbraced: letters, digits, Greek (``a^n_BO_4``, the books' name
+#: O_4 in a subscript, sets BO4 as one subscript)
+_RUN = re.compile(r"[0-9A-Za-z\u0370-\u03ff]+")
 SUB, SUP = -1, 1
 SCRIPT = 0.7  # size of sub- and superscripts relative to the label
 _SHIFT = {SUB: 0.32, SUP: -0.42}  # baseline shift (em, y down)
@@ -129,14 +129,14 @@ def segments(text: str) -> list[tuple[str, int]]:
     or ``SUP``. ``P_{13}``, ``P_13`` and ``v_A`` are subscripts, ``v^2``, ``b_B^(n)`` and
     ``x^{(n)}`` superscripts; a backslash takes the next character literally (user names are
     escaped with :func:`~linkwork.constructions.construction.literal`, so ``link_j`` is printed
-    as written)."""
+    as written; a braced script is taken as written: ``v_{p_1}``)."""
     out: list[tuple[str, int]] = []
 
     def put(t: str, level: int) -> None:
         if not t:
             return
-        if out and out[-1][1] == level and level == 0:
-            out[-1] = (out[-1][0] + t, 0)
+        if out and out[-1][1] == level:
+            out[-1] = (out[-1][0] + t, level)
         else:
             out.append((t, level))
     i, n = 0, len(text)
@@ -183,22 +183,23 @@ def _face(family: str, italic: bool):
 def _advance(text: str, size: float, italic: bool) -> float:
     """Advance width (mm) of ``text`` set at ``size`` mm, from the glyph metrics of the label
     face; glyphs the serif face lacks (≙) are measured in DejaVu Sans, where :func:`_esc` sets them."""
-    serif = _face("DejaVu Serif", italic)
+    faces = (_face("DejaVu Serif", italic), _face("DejaVu Sans", False))
     px = 0.0
     for ch in text:
-        face = serif if serif.get_char_index(ord(ch)) else _face("DejaVu Sans", False)
-        px += face.load_char(ord(ch)).linearHoriAdvance / 65536.0
+        face = next((f for f in faces if f.get_char_index(ord(ch))), None)
+        # a glyph neither face has is set by the viewer's fallback font: about an em wide
+        px += face.load_char(ord(ch)).linearHoriAdvance / 65536.0 if face else 100.0
     return px / 100.0 * size
 
 
 def _layout_runs(text: str, size: float, italic: bool) -> list[tuple[str, int, float, float, float]]:
-    """(text, level, x, width, font size) of each run; a superscript right after a subscript is
-    stacked above it, as the books set b_B^(n)."""
+    """(text, level, x, width, font size) of each run; a superscript right after a subscript (or
+    the other way round) is stacked on it, as the books set b_B^(n) and a^n_A."""
     runs, x, last = [], 0.0, None
     for t, level in segments(text):
         fs = size if level == 0 else SCRIPT * size
         w = _advance(t, fs, italic)
-        if level == SUP and last is not None and last[1] == SUB:
+        if level and last is not None and last[1] == -level:
             x0 = last[2]
             runs.append((t, level, x0, w, fs))
             x = max(x, x0 + w)
