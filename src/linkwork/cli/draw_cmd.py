@@ -41,6 +41,7 @@ def register(app: typer.Typer) -> None:
         length_scale: Optional[float] = typer.Option(None, "--length-scale", help="mechanism units per mm of paper"),
         velocity_scale: Optional[float] = typer.Option(None, "--velocity-scale", help="velocity units per mm of paper"),
         acceleration_scale: Optional[float] = typer.Option(None, "--acceleration-scale", help="acceleration units per mm of paper"),
+        frame: str = typer.Option("mechanism", "--frame", help="mechanism: the mechanism stays the subject, larger layers are cut at a frame around it (arrows to centres off the sheet); all: everything drawn fits the sheet"),
         dpi: float = typer.Option(200.0, "--dpi", help="resolution of PNG output"),
         output: str = typer.Option(..., "-o", "--output", help="FILE.svg, FILE.png or FILE.pdf"),
     ) -> None:
@@ -98,13 +99,13 @@ def register(app: typer.Typer) -> None:
             if con is not None and steps:
                 written = []
                 for k in range(len(con.steps)):
-                    fig = scene_figure(sc, layers, construction=con, step=k)
+                    fig = scene_figure(sc, layers, construction=con, step=k, frame=frame)
                     p = out.with_name(f"{out.stem}-{k + 1:02d}{out.suffix}")
                     fig.save(p, dpi=dpi)
                     written.append(p)
                 typer.echo(f"wrote {len(written)} drawings {written[0]} … {written[-1]}")
                 return
-            fig = scene_figure(sc, layers, construction=con)
+            fig = scene_figure(sc, layers, construction=con, frame=frame)
             fig.save(out, dpi=dpi, animate=animate)
             typer.echo(f"wrote {out}")
 

@@ -19,7 +19,7 @@ from ..geometry import Circle
 from ..instant import (bresse_circle, centrodes, inflection_circle, instant, pole_schedule, poles,
                        return_circle)
 from ..model import Revolute
-from .svg import COLOURS, Figure, Style
+from .svg import COLOURS, DASHES, Figure, Style
 
 
 def curvature_links(sc) -> list[str]:
@@ -34,9 +34,49 @@ def _label(t: str) -> str:
     return "P_{" + t[1:] + "}" if t.startswith("P") else t
 
 
+def _inside(fig: Figure, xy: np.ndarray) -> np.ndarray:
+    """Which of the world points ``xy`` lie inside the mechanism panel's clip box (all when the
+    figure is not clipped), a little in from its edges so that a label there stays on the sheet."""
+    xy = np.asarray(xy, float).reshape(-1, 2)
+    ok = np.all(np.isfinite(xy), axis=1)
+    if "mechanism" not in fig.clip:
+        return ok
+    lo, hi = (np.asarray(v, float) for v in fig.clip["mechanism"])
+    pad = 0.06 * (hi - lo)
+    return ok & np.all((xy >= lo + pad) & (xy <= hi - pad), axis=1)
+
+
+def _label_on_curve(fig: Figure, xy: np.ndarray, text: str, colour: str, at: float = 0.3) -> bool:
+    """Label a curve where it is: at the drawn point of ``xy`` nearest the fraction ``at`` of its
+    length that lies inside the frame; False if none does."""
+    xy = np.asarray(xy, float).reshape(-1, 2)
+    ok = np.flatnonzero(_inside(fig, xy))
+    if not len(ok):
+        return False
+    k = ok[np.argmin(abs(ok - at * (len(xy) - 1)))]
+    fig.label(xy[k], text, colour=colour, size=2.8, italic=False)
+    return True
+
+
+def _towards(fig: Figure, centre: np.ndarray, text: str, colour: str, layer: str) -> None:
+    """An arrow at the frame's edge pointing to a centre off the sheet, labelled with it."""
+    if "mechanism" not in fig.clip or _inside(fig, centre)[0]:
+        return
+    lo, hi = (np.asarray(v, float) for v in fig.clip["mechanism"])
+    mid = (lo + hi) / 2
+    d = centre - mid
+    # where the ray from the box's middle to the centre leaves the box (a little inside it)
+    t = min(abs((hi - mid)[k] / d[k]) if d[k] else np.inf for k in range(2)) * 0.92
+    head = mid + t * d
+    u = d / np.linalg.norm(d)
+    tail = head - 9.0 * fig.spaces["mechanism"].per_mm * u
+    fig.arrow(tail, head, style=Style(stroke=colour, width=0.3), layer=layer)
+    fig.label(tail, text, colour=colour, size=2.6, italic=False, prefer=np.array([-u[0], u[1]]))
+
+
 def _circle(fig: Figure, c: Circle, i: int, layer: str, kind: str, label: str, span) -> None:
     c = c[i]
-    st = Style(stroke=COLOURS[kind], width=0.35, dash="2.2 1.2" if kind == "return" else None)
+    st = Style(stroke=COLOURS[kind], width=0.35, dash=DASHES.get(kind))
     if bool(c.is_line):
         line = c.tangent_line
         a, b, k = line.coords
@@ -48,7 +88,11 @@ def _circle(fig: Figure, c: Circle, i: int, layer: str, kind: str, label: str, s
     if not (np.all(np.isfinite(ctr)) and np.isfinite(r)):
         return
     fig.circle(ctr, r, style=st, layer=layer, ident=f"{layer}-circle")
-    fig.label(ctr + r * np.array([np.cos(0.6), np.sin(0.6)]), label, colour=COLOURS[kind], size=2.8)
+    t = np.linspace(0.0, 2 * np.pi, 145)[:-1]
+    on = ctr + r * np.stack([np.cos(t), np.sin(t)], -1)
+    if not _label_on_curve(fig, on, label, COLOURS[kind], at=0.6 / (2 * np.pi)):
+        fig.note(f"{label}: centre ({ctr[0]:.4g}, {ctr[1]:.4g}), radius {r:.4g}; off the frame")
+    _towards(fig, ctr, f"centre of the {label}", COLOURS[kind], layer)
 
 
 def draw_instant(fig: Figure, sc, layer: str) -> None:
@@ -104,13 +148,16 @@ def draw_instant(fig: Figure, sc, layer: str) -> None:
             cen = centrodes(full, ln, curvature=False)
             fig.path(cen.fixed_xy, style=Style(stroke=COLOURS["centrode"], width=0.35), layer="centrodes",
                      ident=f"centrode-fixed-{ln}")
+            _label_on_curve(fig, cen.fixed_xy, f"fixed centrode ({literal(ln)})", COLOURS["centrode"], 0.25)
             # the moving centrode, carried into the drawn position of the link
             th = float(sol.pose_derivatives(ln)[0, i, 2])
             x0 = sol.pose_derivatives(ln)[0, i, :2]
             m = cen.moving_xy
             R = np.array([[np.cos(th), -np.sin(th)], [np.sin(th), np.cos(th)]])
-            fig.path(m @ R.T + x0, style=Style(stroke=COLOURS["centrode"], width=0.35, dash="3 1.5"),
+            moving = m @ R.T + x0
+            fig.path(moving, style=Style(stroke=COLOURS["centrode"], width=0.35, dash=DASHES["moving-centrode"]),
                      layer="centrodes", ident=f"centrode-moving-{ln}")
+            _label_on_curve(fig, moving, f"moving centrode ({literal(ln)})", COLOURS["centrode"], 0.75)
             fig.note(f"centrodes of {literal(ln)}: fixed solid, moving dashed")
         elif layer == "inflection":
             _circle(fig, inflection_circle(sol, ln), i, "inflection", "inflection", f"inflection circle ({literal(ln)})", span)
@@ -135,3 +182,4 @@ def draw_instant(fig: Figure, sc, layer: str) -> None:
             if G.is_finite:
                 fig.dot(G.xy, r=0.7, style=Style(stroke=COLOURS["gamma"]), layer="gamma", ident=f"gamma-{ln}")
                 fig.label(G.xy, "\u0393", colour=COLOURS["gamma"], size=3.2)
+                _towards(fig, G.xy, f"\u0393 ({literal(ln)})", COLOURS["gamma"], "gamma")

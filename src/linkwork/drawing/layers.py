@@ -473,10 +473,19 @@ def _points_labelled_by(con: Construction, sc: Scene) -> set[str]:
             if any(np.all(np.abs(np.asarray(q).reshape(2) - sc.pos(p)) <= tol) for q in at)}
 
 
+#: how a figure is framed: ``mechanism`` keeps the mechanism the subject (layers larger than
+#: the sheet are cut at a frame around it, arrows point to centres off the sheet); ``all`` fits
+#: everything drawn on the sheet, however small the mechanism becomes
+FRAMES = ("mechanism", "all")
+
+
 def scene_figure(sc: Scene, show: Iterable[str] = ("mechanism",), *,
                  construction: Construction | None = None, step: int | None = None,
-                 title: str | None = None) -> Figure:
-    """A figure of the scene with the named layers (and a construction, up to ``step``)."""
+                 title: str | None = None, frame: str = "mechanism") -> Figure:
+    """A figure of the scene with the named layers (and a construction, up to ``step``), framed
+    as ``frame`` says (:data:`FRAMES`)."""
+    if frame not in FRAMES:
+        raise InputError(f"unknown frame '{frame}'; the frames are {', '.join(FRAMES)}")
     show = list(show)
     unknown = [s for s in show if s not in LAYERS]
     if unknown:
@@ -508,7 +517,9 @@ def scene_figure(sc: Scene, show: Iterable[str] = ("mechanism",), *,
         cb = construction_box(con)
         if cb is not None:
             box = (np.minimum(box[0], cb[0]), np.maximum(box[1], cb[1]))
-    fig.clip["mechanism"] = box
+    if frame == "mechanism":
+        fig.clip["mechanism"] = box
+        fig.framed.add("mechanism")
     for layer in show:
         if layer == "mechanism":
             # a construction that labels the mechanism's points in its own notation hides the

@@ -34,6 +34,7 @@ SMALL = 2.6
 MARGIN = 9.0  # mm around a panel's content
 GAP = 10.0  # mm between panels
 TITLE_H = 9.0
+FRAME_PAD = 6.0  # mm between a framed panel's content and its frame
 SCALE_BAR = 20.0  # mm, the length of a scale bar
 SCALE_TEXT_SIZE, SCALE_VALUE_SIZE = 2.8, 2.5
 LEGEND_SIZE, LEGEND_LINE = 3.0, 4.2  # legend lines: font size and baseline distance (mm)
@@ -65,6 +66,9 @@ class Style:
 COLOURS = {"velocity": "#1f4e9c", "acceleration": "#1b7a3a", "coriolis": "#8a2be2",
            "pole": "#000", "inflection": "#b3001b", "return": "#b36b00", "bresse": "#006d77",
            "centrode": "#5a5a5a", "path": "#7a7a7a", "gamma": "#006d77", "highlight": "#e06c00"}
+#: dash patterns, one per kind of curve that shares a figure with others: the return circle
+#: dash-dotted, the moving centrode dashed (the fixed one solid)
+DASHES = {"return": "3 1 0.6 1", "moving-centrode": "3 1.5"}
 WEIGHTS = {"given": 0.5, "auxiliary": 0.18, "result": 0.6}
 RESULT_COLOUR = "#b3001b"
 AUX_COLOUR = "#555"
@@ -78,8 +82,7 @@ def style_for(role: str, kind: str = "") -> Style:
         colour = RESULT_COLOUR if role == "result" else (AUX_COLOUR if role == "auxiliary" else "#000")
     elif role == "auxiliary":
         w = max(w, 0.25)
-    dash = "2.2 1.2" if kind in ("return",) else None
-    return Style(stroke=colour, width=w, dash=dash)
+    return Style(stroke=colour, width=w, dash=DASHES.get(kind))
 
 
 # ---------------------------------------------------------------------------- primitives
@@ -271,6 +274,9 @@ class Figure:
         # keep one layout)
         self.view: dict[str, tuple[np.ndarray, np.ndarray]] = {}
         self.scales_declared = True  # vectors on the mechanism are at self.scales
+        # spaces drawn inside a visible frame (``--frame mechanism``): what runs past the clip
+        # box is cut at the frame, not at the sheet's edge
+        self.framed: set[str] = set()
 
     # ------------------------------------------------------------------ adding
     def space(self, name: str, scale: Scale, title: str = "") -> None:
@@ -377,6 +383,8 @@ class Figure:
         x = MARGIN
         panels = {}
         top = TITLE_H + (6.0 if any(self.titles.get(n) for n in boxes) else 0.0) + MARGIN * 0.5
+        if self.framed:
+            top += FRAME_PAD - MARGIN * 0.5 + 1.5  # the frame clear of the title
         height = 0.0
         for name, (lo, hi, size, scale) in boxes.items():
             w, h = max(size[0], 20.0), max(size[1], 15.0)
@@ -475,11 +483,30 @@ class Figure:
                 f'<title>{html.escape(plain(self.title))}</title>',
                 f'<rect x="0" y="0" width="{sym._f(width)}" height="{sym._f(height)}" fill="#fff"/>',
                 "<defs>" + "".join(
-                    f'<clipPath id="clip-{_ident(n)}"><rect x="{sym._f(p["x"] - MARGIN)}" '
-                    f'y="{sym._f(p["y"] - MARGIN)}" width="{sym._f(p["w"] + 2 * MARGIN)}" '
-                    f'height="{sym._f(p["h"] + 2 * MARGIN)}"/></clipPath>' for n, p in panels.items())
-                + "</defs>"]
+                    f'<clipPath id="clip-{_ident(n)}">{self._clip_rect(n, p)}</clipPath>'
+                    for n, p in panels.items()) + "</defs>"]
+        frames = [f'<g id="frame-{_ident(n)}" class="frame">'
+                  + self._clip_rect(n, p).replace("/>", ' fill="none" stroke="#000" stroke-width="0.35"/>')
+                  + "</g>" for n, p in panels.items() if self._cut(n)]
+        out = frames + out
         return "\n".join(head + out + ["</svg>"]) + "\n"
+
+    def _cut(self, name: str) -> bool:
+        """Whether something drawn in the framed space ``name`` runs past its clip box (then the
+        frame is drawn, and cuts it)."""
+        if name not in self.framed or name not in self.clip:
+            return False
+        lo, hi = (np.asarray(v, float) for v in self.clip[name])
+        pts = np.array([q for p in self.prims if p.space == name for q in self._world_points(p)]).reshape(-1, 2)
+        pts = pts[np.all(np.isfinite(pts), axis=1)]
+        return bool(np.any((pts < lo) | (pts > hi)))
+
+    def _clip_rect(self, name: str, p: dict) -> str:
+        """The rectangle drawing is cut at: the frame (FRAME_PAD around the panel) where the
+        space's layers run past the sheet, else the panel with its margin."""
+        pad = FRAME_PAD if self._cut(name) else MARGIN
+        return (f'<rect x="{sym._f(p["x"] - pad)}" y="{sym._f(p["y"] - pad)}" '
+                f'width="{sym._f(p["w"] + 2 * pad)}" height="{sym._f(p["h"] + 2 * pad)}"/>')
 
     def _legend(self, y: float, width: float, extra: list[str]) -> tuple[str, float]:
         parts = ['<g id="legend" font-size="3">',
@@ -648,12 +675,20 @@ class Figure:
         grid = _Grid(samples)
         placed: list[tuple[float, float, float, float]] = []
         out = []
+        cut = {n: self._cut(n) for n in panels}
         for lab in self.labels:
             if lab.space not in tfs:
                 continue
             if self.current_step is not None and lab.step is not None and lab.step > self.current_step and not animate:
                 continue
             a = tfs[lab.space](lab.xy)
+            frame = None
+            if cut.get(lab.space):
+                pn = panels[lab.space]
+                frame = (pn["x"] - FRAME_PAD, pn["y"] - FRAME_PAD, pn["x"] + pn["w"] + FRAME_PAD,
+                         pn["y"] + pn["h"] + FRAME_PAD)
+                if not (frame[0] <= a[0] <= frame[2] and frame[1] <= a[1] <= frame[3]):
+                    continue  # its point is cut off with the drawing at the frame
             w, h = text_width(lab.text, lab.size, lab.italic) + 0.4, lab.size * 0.95
             best, best_score = None, math.inf
             cands = _candidates(lab.prefer)
@@ -665,6 +700,9 @@ class Figure:
                     box = (cx - w / 2, cy - h / 2, cx + w / 2, cy + h / 2)
                     score = 40.0 * sum(_overlap(box, q) for q in placed) / (w * h)
                     score += grid.count(box) * 1.0 + 0.15 * k + 0.6 * dist
+                    if frame is not None and not (frame[0] <= box[0] and box[2] <= frame[2]
+                                                  and frame[1] <= box[1] and box[3] <= frame[3]):
+                        score += 1e4  # across the frame
                     if score < best_score:
                         best, best_score = box, score
             placed.append(best)
