@@ -11,12 +11,14 @@ from __future__ import annotations
 
 import argparse
 import sys
+import warnings
 from pathlib import Path
 
 import numpy as np
 
 import linkwork
 from linkwork.drawing.layers import Scene, scene_figure
+from linkwork.errors import LinkworkWarning
 from linkwork.io.library import library_entries
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -28,8 +30,10 @@ def drawing(name: str) -> str:
     """The SVG of `library:NAME` at its design position, with the paths of its points."""
     mech = linkwork.load(f"library:{name}")
     value = np.array([mech.driver_input_at_design(d) for d in mech.drivers])[None, :]
-    sc = Scene(mech, linkwork.solve(mech, value))
-    return scene_figure(sc, ("mechanism", "paths"), title=mech.name).to_svg()
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", LinkworkWarning)  # over-closed chains say so
+        sc = Scene(mech, linkwork.solve(mech, value))
+        return scene_figure(sc, ("mechanism", "paths"), title=mech.name).to_svg()
 
 
 def page(entries: list[dict], failed: dict[str, str]) -> str:

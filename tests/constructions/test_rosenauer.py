@@ -335,3 +335,188 @@ def test_roemer_coupler_pole_lies_on_the_normal_to_the_slide_at_b():
     slide = np.array([0.0, 1.0])  # the guide of BL (frame, not turning)
     assert np.allclose((P - B) @ slide, 0.0, atol=1e-9 * mech.length_scale)
     assert np.allclose(P, pole(sol, "coupler"), atol=1e-9 * mech.length_scale)
+
+
+# ------------------------------------------------------------------ the free chains of paper 2
+def _reference_velocities(chain, pos, given, directions, omega):
+    """The velocity state of a free chain from its given data by linear algebra (the second,
+    independent method): per link (v_x, v_y at its first point, ω), hinges equal, given point
+    velocities, given directions (v × d = 0), known links at rest, drivers at their rate."""
+    links = list(chain.links)
+    col = {ln: 3 * i for i, ln in enumerate(links)}
+    rows, rhs = [], []
+
+    def field(ln, p):
+        """Rows giving v_ln(p) (2 × 3n)."""
+        M = np.zeros((2, 3 * len(links)))
+        P0 = pos[chain.links[ln][0]]
+        d = pos[p] - P0
+        c = col[ln]
+        M[:, c:c + 2] = np.eye(2)
+        M[:, c + 2] = [-d[1], d[0]]
+        return M
+
+    for p, a, b in chain.hinges:
+        rows.append(field(a, p) - field(b, p)); rhs.append(np.zeros(2))
+    for p in given:
+        for ln, pts in chain.links.items():
+            if p in pts:
+                rows.append(field(ln, p)); rhs.append(given[p])
+    for p, d in directions.items():
+        for ln, pts in chain.links.items():
+            if p in pts:
+                F = field(ln, p)
+                rows.append((d[0] * F[1] - d[1] * F[0])[None]); rhs.append(np.zeros(1))
+    for ln in chain.known:
+        M = np.zeros((3, 3 * len(links))); M[:, col[ln]:col[ln] + 3] = np.eye(3)
+        rows.append(M); rhs.append(np.zeros(3))
+    for ln, pivot, ref in chain.drivers:
+        rows.append(field(ln, pivot)); rhs.append(np.zeros(2))
+        M = np.zeros((1, 3 * len(links))); M[0, col[ln] + 2] = 1
+        rows.append(M); rhs.append(np.array([omega]))
+    A, y = np.vstack(rows), np.concatenate(rhs)
+    x, *_ = np.linalg.lstsq(A, y, rcond=None)
+    assert np.linalg.matrix_rank(A) == 3 * len(links)
+    assert np.allclose(A @ x, y, atol=1e-9)
+    return lambda ln, P: x[col[ln]:col[ln] + 2] + x[col[ln] + 2] * np.array(
+        [-(P - pos[chain.links[ln][0]])[1], (P - pos[chain.links[ln][0]])[0]])
+
+
+def _run_script(script, chain, pos, given, directions, omega):
+    """Carry out the script numerically, as a ruler would: each image where its two plan lines
+    meet (plan lines through an image, perpendicular to a mechanism line)."""
+    pos = dict(pos)
+    img: dict = {}
+    root, fixed = {}, set()
+    for k, others in script.shared.items():
+        root[k] = min((k,) + tuple(others))
+        if any(ln in chain.known for ln, _ in (k,) + tuple(others)):
+            fixed.add(k)
+
+    def get(key):
+        r = root.get(key, key)
+        if key[0] == "o" or key[0] in chain.known or key in fixed:
+            return np.zeros(2)  # the pole o: the known (fixed) link's points
+        return img[r]
+
+    def put(key, v):
+        img[root.get(key, key)] = v
+
+    def line_dir(line):
+        if line.kind == "join":
+            p, q = line.points
+            return pos[q] - pos[p]
+        d = directions[line.points[0]]
+        return np.array([-d[1], d[0]])  # the normal to the given direction
+
+    def where(aux):
+        (l1, l2) = aux.lines
+        p1, d1 = pos[l1.points[0]], line_dir(l1)
+        p2, d2 = pos[l2.points[0]], line_dir(l2)
+        t = np.linalg.solve(np.column_stack([d1, -d2]), p2 - p1)
+        return p1 + t[0] * d1
+
+    for st in script.steps:
+        if st.aux is not None:
+            pos[st.point] = where(st.aux)
+        if st.kind == "given":
+            v = given[st.point]
+        elif st.kind == "driver":
+            ln, pivot, ref = chain.drivers[0]
+            d = pos[ref] - pos[pivot]
+            v = omega * np.array([-d[1], d[0]])
+        elif st.kind == "meet":
+            (a, b) = st.lines
+            da, db = (line_dir(pl.line) for pl in (a, b))
+            # the image x with (x − anchor) ⟂ the mechanism line: x·d = anchor·d
+            v = np.linalg.solve(np.vstack([da, db]), [get(a.anchor) @ da, get(b.anchor) @ db])
+        elif st.kind == "divide":
+            X, Y = (pos[n] for n in st.base)
+            t = (pos[st.point] - X) @ (Y - X) / ((Y - X) @ (Y - X))
+            x, y = (get((st.link, n)) for n in st.base)
+            v = x + t * (y - x)
+        else:
+            raise AssertionError(st.kind)
+        put((st.link, st.point), v)
+    return pos, get
+
+
+FREE_EXAMPLES = {
+    "Ex I, Watt chain, v_A v_B": (WATT, ("A", "B"), (), (), ()),
+    "Ex II, triad, v_K v_L v_M": (TRIAD, ("K", "L", "M"), (), (), ()),
+    "Ex III, serial chain, v_A v_D, directions B C": (SERIAL, ("A", "D"), ("B", "C"), (), ()),
+    "Ex IV, Dreispann, v_A v_F": (DREISPANN, ("A", "F"), (), (), ()),
+    "Ex IV, Dreispann, v_A v_E": (DREISPANN, ("A", "E"), (), (), ()),
+    "Ex IV, Dreispann on AC, AGH driving": (DREISPANN, (), (), ("AC",), (("AGH", "A", "G"),)),
+    "Ex V, Heusinger, 1AB driving": (HEUSINGER, (), (), ("XII",), (("1AB", "1", "A"),)),
+    "Ex V, free Heusinger, v_A v_3": (HEUSINGER, ("A", "3"), (), (), ()),
+    "Ex V, free Heusinger, v_I v_1": (HEUSINGER, ("I", "1"), (), (), ()),
+    "Ex V, free Heusinger, v_B v_2": (HEUSINGER, ("B", "2"), (), (), ()),
+    "Ex V, free Heusinger, v_C v_1": (HEUSINGER, ("C", "1"), (), (), ()),
+}
+
+
+@pytest.mark.parametrize("example", list(FREE_EXAMPLES))
+@pytest.mark.parametrize("seed", [1, 2, 3])
+def test_papers_free_chain_scripts_give_the_velocities(example, seed):
+    """Each example of paper 2 at random positions and given data: every image the script
+    constructs (auxiliary points included) equals the velocity from the linear solve."""
+    links, given, dirs, known, drivers = FREE_EXAMPLES[example]
+    chain = Chain.free(links, given=given, directions=dirs, known=known, drivers=drivers)
+    rng = np.random.default_rng(seed)
+    names = sorted({p for pts in chain.links.values() for p in pts})
+    pos = {p: rng.uniform(-100, 100, 2) for p in names}
+    gv = {p: rng.uniform(-50, 50, 2) for p in given}
+    dv = {p: (lambda a: np.array([np.cos(a), np.sin(a)]))(rng.uniform(0, np.pi)) for p in dirs}
+    script = plan_velocities(chain)
+    assert script.direct
+    pos, image = _run_script(script, chain, pos, gv, dv, 2.0)
+    ref = _reference_velocities(chain, pos, gv, dv, 2.0)
+    scale = max(np.linalg.norm(ref(ln, pos[p])) for ln, pts in chain.links.items() for p in pts)
+    for (ln, p) in script.labels:
+        if ln in chain.known or ln == "o":
+            continue
+        assert np.linalg.norm(image((ln, p)) - ref(ln, pos[p])) <= 1e-9 * scale, (ln, p)
+
+
+# ------------------------------------------------------------------ curved slots, the library's valve gears
+@pytest.mark.parametrize("name", ["stephenson-link-motion", "heusinger-valve-gear", "heusinger-hinge-chain"])
+@pytest.mark.parametrize("build", [velocity_plan, rotated_velocities, acceleration_plan],
+                         ids=["plan", "rotated", "acceleration"])
+def test_valve_gears_of_the_library(name, build):
+    """A pin in a curved slot (the die in the Kulisse): the relative velocity is tangent to the arc,
+    so both links project equally on its radius; for accelerations the relative normal v²/r
+    towards the arc's centre and the Coriolis term are transferred. The library's Heusinger gear
+    has two drivers (crank and reversing arm): sampled in time."""
+    mech = linkwork.load(f"library:{name}")
+    if len(mech.drivers) > 1:
+        sol = solve(mech, times=np.array([0.05, 0.2, 0.4, 0.7]))
+    else:
+        # away from the drawn position: the Stephenson gear is drawn where Q, E and K fall on one
+        # line (the step k = (q ⟂ QK) ∩ (e ⟂ EK) degenerates there, and says so)
+        sol = solve(mech, mech.driver_input_at_design(mech.drivers[0]) + np.array([0.3, 0.9, 2.0, 4.0]))
+    assert (np.asarray(sol.status) == Status.OK).all()
+    con = build(mech, sol)
+    con.check()
+    assert con.max_error() <= 1e-9 and not con.degenerate.any()
+    assert plan_velocities(mech).direct
+
+
+@pytest.mark.parametrize("name", ["roberval-balance", "conchoidograph", "heusinger-valve-gear"])
+@pytest.mark.parametrize("kind", ["velocity-plan", "rotated-velocities"])
+def test_a_mechanism_at_rest_checks_its_plan(name, kind):
+    """At input values without a speed every rate is zero: the constructed images must be zero
+    too (the check no longer divides zero by a zero scale)."""
+    import warnings
+
+    from linkwork.constructions import construct
+    from linkwork.errors import LinkworkWarning
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", LinkworkWarning)  # Roberval is over-closed
+        mech = linkwork.load(f"library:{name}")
+        sol = linkwork.solve(mech)
+    assert np.all(sol.link(mech.moving_links[0]).omega == 0)
+    con = construct(kind, mech, sol)
+    con.check()
+    assert con.max_error() == 0.0

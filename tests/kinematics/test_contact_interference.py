@@ -116,3 +116,41 @@ def test_the_motion_goes_on_past_the_two_point_contact():
     np.testing.assert_allclose(sol.point("C").position[:, 1], want, atol=1e-7)
     # where ok, the track is at least as flat as the roller at the contact
     assert (rho(sol.joint("K")["u"]) >= R - 1e-9).all()
+
+
+def _distance_to_track(p: np.ndarray) -> float:
+    """Distance from p (track coordinates) to the ellipse: a grid, then Newton's method on the
+    foot of the perpendicular."""
+    grid = np.linspace(0, 2 * np.pi, 4001)[:-1]
+    t = grid[np.argmin(np.hypot(A * np.cos(grid) - p[0], B * np.sin(grid) - p[1]))]
+    for _ in range(30):
+        c, d1 = np.array([A * np.cos(t), B * np.sin(t)]), np.array([-A * np.sin(t), B * np.cos(t)])
+        t -= ((c - p) @ d1) / (d1 @ d1 - (c - p) @ c)
+    return float(np.hypot(A * np.cos(t) - p[0], B * np.sin(t) - p[1]))
+
+
+def test_a_rocker_in_the_track_goes_on_past_the_two_point_contact():
+    """The follower a lever hinged off the track's centre (its roller's centre on a circle): the
+    contact is sought afresh past each two-point contact too. Every sample solved is a place
+    the roller can be (inside the track, R from it, on its circle about the hinge), and the
+    lever swings without jumps."""
+    H = np.array([-60.0, B - R])
+    m = Mechanism.build(
+        name="rocker in an elliptical track",
+        points={"O": [0, 0], "M": [10.0, 0.0], "C": [0.0, B - R], "H": H},
+        links={"frame": ["O", "H"], "track": ["O", "M"], "lever": ["C", "H"]},
+        joints=[Revolute("O", "O", ("frame", "track")), Revolute("H", "H", ("frame", "lever")),
+                CamContact("K", ("track", "lever"), "ellipse", "roller", point="C", radius=R)],
+        drivers=[{"joint": "O"}], profiles={"ellipse": EllipseProfile((0.0, 0.0), (A, B))})
+    phi = np.radians(np.arange(0.0, 360.0, 5.0))
+    sol = linkwork.solve(m, phi)
+    assert (sol.status == Status.OK).mean() > 0.9
+    ok = sol.status == Status.OK
+    C = sol.point("C").position
+    np.testing.assert_allclose(np.hypot(*(C[ok] - H).T), 60.0, atol=1e-9)
+    for p, f in zip(C[ok], phi[ok]):
+        local = np.array([[np.cos(f), np.sin(f)], [-np.sin(f), np.cos(f)]]) @ p
+        assert local[0] ** 2 / A**2 + local[1] ** 2 / B**2 < 1  # inside the track
+        assert _distance_to_track(local) == pytest.approx(R, abs=1e-7)
+    swing = np.degrees(np.abs(np.diff(sol.pose_derivatives("lever")[0, ok, 2])))
+    assert swing.max() < 10.0

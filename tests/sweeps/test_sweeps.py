@@ -218,3 +218,42 @@ def test_unreachable_scheduler_is_a_clear_error():
     p = sweeps.plan(CR, ["O4.x=36:36:1"], ["grashof"])
     with pytest.raises(InputError, match="cannot reach the Dask scheduler at tcp://127.0.0.1:9"):
         sweeps.execute(p, scheduler="tcp://127.0.0.1:9")
+
+
+def test_parameters_named_in_the_file(tmp_path):
+    """crank-rocker.toml names crank = "O2-A" and frame = "O2-O4": sweeping by those names is
+    sweeping the distances; a [parameters] entry naming an unknown point is refused on loading,
+    with its key and line."""
+    by_name = sweeps.plan(CR, ["crank=8:12:2", "frame=38:42:4"], ["transmission-min:B"])
+    by_expr = sweeps.plan(CR, ["O2-A=8:12:2", "O2-O4=38:42:4"], ["transmission-min:B"])
+    assert [p.name for p in by_name.params] == ["crank", "frame"]
+    assert [r[2:] for r in sweeps.execute(by_name, workers=1)] == [r[2:] for r in sweeps.execute(by_expr, workers=1)]
+    with pytest.raises(InputError, match=r"parameter of the file's \[parameters\] \(coupler, crank, frame, rocker\)"):
+        sweeps.plan(CR, ["crankk=1:2:1"], ["grashof"])
+    from linkwork.errors import MechanismFileError
+    text = linkwork.io.files.resolve(CR)[1].replace('rocker  = "O4-B"', 'rocker  = "O4-X"')
+    bad = tmp_path / "bad.toml"
+    bad.write_text(text)
+    with pytest.raises(MechanismFileError, match=r"bad.toml:\d+, key 'parameters.rocker': parameter 'rocker' "
+                                                 r"names point 'X', which is not in \[points\]"):
+        linkwork.load(str(bad))
+
+
+def test_direction_parameters_turn_a_point_about_another():
+    """`O2-A.angle` turns the crank pin about O2 (radius kept); swept over the circle, the crank
+    of length 10 stays a crank (Grashof) while the coupler |AB| follows the cosine rule."""
+    m = linkwork.load(CR)
+    prm = sweeps.parameter(m, "O2-A.angle")
+    assert prm.value(m) == pytest.approx(90.0)
+    q = sweeps.apply(m, [prm], [30.0])
+    np.testing.assert_allclose(q.points["A"], [10 * np.cos(np.radians(30)), 10 * np.sin(np.radians(30))])
+    p = sweeps.plan(CR, ["O2-A.angle=0:180:60"], ["A.y:max", "grashof"], inputs=np.radians([0.0]))
+    df = frame(p, sweeps.execute(p, workers=1))
+    # the crank is turned back to 0° by the input; its drawn angle does not matter for A,
+    # but the coupler length |AB| = |(30, 30) − 10·(cos φ, sin φ)| does for the class
+    for _, r in df.iterrows():
+        phi = math.radians(r["O2-A.angle"])
+        b = math.hypot(30 - 10 * math.cos(phi), 30 - 10 * math.sin(phi))
+        L = sorted([40.0, 10.0, b, math.hypot(10, 30)])
+        assert r["grashof"].startswith("Grashof" if L[0] + L[3] < L[1] + L[2] else "non-Grashof")
+        assert r["A.y:max"] == pytest.approx(0.0, abs=1e-12)

@@ -133,3 +133,13 @@ def test_bad_pairs_are_refused():
         Linkage(slider, dyad(FIVE.subset([0, 1, 2, 3]), O2))
     with pytest.raises(SynthesisError, match="different positions"):
         Linkage(d, dyad(FIVE.subset([0, 1, 2, 3]), O4))
+
+
+def test_four_positions_without_chosen_pivots(tmp_path):
+    from linkwork.synthesis.linkages import four_position_linkages
+
+    pos, A, B = generated([10, 45, 80, 120])
+    found = four_position_linkages(pos, candidates=8)
+    assert found and found[0].check.usable()
+    for lk in found[:3]:
+        assert engine_reproduces(lk, tmp_path) <= 1e-9

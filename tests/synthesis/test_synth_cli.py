@@ -145,3 +145,59 @@ def test_dwell_and_substitute_commands(tmp_path):
     r = run("synth", "substitute", "library:crank-rocker", "--at", "60", "--pivot", "5,-8", "--replace", "frame",
             "-o", sub)
     assert r.exit_code == 2 and "replace" in r.output
+
+
+def test_path_command_meets_points_of_a_coupler_curve(tmp_path):
+    import linkwork
+    from linkwork.kinematics import solve
+    from four_bar_by_hand import B_LEN, four_bar
+
+    A, B = four_bar(np.radians([0, 40, 80, 130, 180, 230]))
+    e = (B - A) / B_LEN
+    T = A + e + 1.2 * np.column_stack([-e[:, 1], e[:, 0]])
+    out = tmp_path / "path.toml"
+    r = run("synth", "path", *[a for x, y in T.tolist() for a in ("--point", f"{x!r},{y!r}")], "-o", out)
+    assert r.exit_code == 0, r.output
+    mech = linkwork.load(out)
+    # the file is drawn at the first target: the coupler point P is there
+    assert np.allclose(mech.points["P"], T[0], atol=1e-9)
+    r = run("synth", "path", "--point", "0,0", "--point", "1,1", "-o", out)
+    assert r.exit_code == 2 and "at least three" in r.output
+
+
+def test_cognates_command(tmp_path):
+    import linkwork
+
+    out = tmp_path / "cg.toml"
+    r = run("synth", "cognates", "library:crank-rocker", "--point", "C", "-o", out)
+    assert r.exit_code == 0, r.output
+    orig = linkwork.load("library:crank-rocker")
+    for k in (1, 2):
+        m = linkwork.load(tmp_path / f"cg-{k}.toml")
+        assert np.allclose(m.points["C"], orig.points["C"])  # drawn where the original has C
+
+
+def test_five_positions_without_two_real_burmester_points(tmp_path):
+    """Five random positions (seed 1008 of test_burmester, where the sign changes of the second
+    cubic along the first count none) have no real Burmester point: one clear message."""
+    rng = np.random.default_rng(1008)
+    P = np.column_stack([rng.uniform(-3, 3, (5, 2)), rng.uniform(-1.2, 1.2, 5)])
+    args = [a for x, y, t in P.tolist() for a in ("--pose", f"{x!r},{y!r},{float(np.degrees(t))!r}")]
+    r = run("synth", "poses", *args, "-o", tmp_path / "none.toml")
+    assert r.exit_code == 2
+    assert "only 0 real Burmester points (4 complex)" in r.output and "no four-bar" in r.output
+    assert not (tmp_path / "none.toml").exists()
+
+
+def test_four_positions_without_pivots_pick_pairs_along_the_curve(tmp_path):
+    pos, A, B = generated([10, 45, 80, 120])
+    out, rep = tmp_path / "four.toml", tmp_path / "four.json"
+    r = run("synth", "poses", *pose_args(pos), "--best", "2", "-o", out, "--report", rep)
+    assert r.exit_code == 0, r.output
+    doc = json.loads(rep.read_text())
+    assert len(doc["linkages"]) == 2
+    for lk in doc["linkages"]:
+        assert not (lk["order_defect"] or lk["circuit_defect"] or lk["branch_defect"])
+        assert lk["min_transmission_deg"] >= 30
+        for s, (x, y, t) in zip(analyze_at(lk["file"], lk["input_angles_deg"]), pos.poses):
+            assert s["points"]["P"]["position"] == pytest.approx([x, y], abs=1e-9)

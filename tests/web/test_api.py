@@ -268,7 +268,8 @@ def test_a_bad_file_gives_its_message(client):
     assert r.status_code == 400
     err = r.json()
     assert err["kind"] == "MechanismFileError"
-    assert err["error"].startswith("bad.toml:15, key 'links.coupler'") and "'X'" in err["error"]
+    line = next(i for i, t in enumerate(text.splitlines(), 1) if t.startswith("coupler"))
+    assert err["error"].startswith(f"bad.toml:{line}, key 'links.coupler'") and "'X'" in err["error"]
     r = post(client, "/api/mechanism", source={"text": "name = [", "name": "x.toml"})
     assert r.status_code == 400 and "not valid TOML" in r.json()["error"]
 

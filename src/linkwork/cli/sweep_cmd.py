@@ -47,8 +47,9 @@ def register(app: typer.Typer) -> None:
     def sweep_cmd(
         mechanism: str = typer.Argument(..., help="a mechanism file, or library:NAME"),
         vary: list[str] = typer.Option(..., "--vary", help="NAME=START:STOP:STEP (grid) or, with --samples, "
-                                       "NAME=LOW:HIGH; NAME is a point coordinate P.x, P.y or a distance A-B "
-                                       "(B moves along the line from A)"),
+                                       "NAME=LOW:HIGH; NAME is a point coordinate P.x, P.y, a distance A-B "
+                                       "(B moves along the line from A), a direction A-B.angle (B turns about A, "
+                                       "degrees) or a name of the file's [parameters]"),
         metric: list[str] = typer.Option(..., "--metric", help="grashof, transmission-min:JOINT, "
                                          "transmission-max:JOINT, input-range, stroke:P, time-ratio:P, "
                                          "straightness:P, circularity:P, max-speed:P, max-acceleration:P, or "

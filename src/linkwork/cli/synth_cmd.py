@@ -8,11 +8,13 @@
 `poses` guides a plane (a coupler) through prescribed positions x, y, angle (degrees): three
 positions with two chosen pivots (--centre for a fixed pivot, --circle for a moving pivot
 drawn in the first position), four with two fixed pivots on the centre-point curve (or
---slider for the curve's point at infinity), five from the Burmester points (every four-bar
-they make, best first). `function` designs a four-bar (or --slider: a slider-crank) whose output
+--slider for the curve's point at infinity) or, without them, the best pairs of points along
+that curve, five from the Burmester points (every four-bar they make, best first). `function` designs a four-bar (or --slider: a slider-crank) whose output
 follows y = f(x) through precision points by Freudenstein's equation. `dwell` adds Alt's dwell
 dyad to a four-bar at a coupler point (Pöschl §37); `substitute` replaces a crank of a four-bar
-by Pröll's (Rosenauer §29), keeping the coupler's motion to second order.
+by Pröll's (Rosenauer §29), keeping the coupler's motion to second order. `path` finds a
+four-bar whose coupler point passes through target points (least squares from several starts);
+`cognates` writes the Roberts–Chebyshev cognates of a four-bar's coupler point.
 
 Every file written is loaded again and solved by the engine at the positions' (or precision
 points') inputs; the deviation is reported and must stay within 1e-9, else the command stops
@@ -35,7 +37,7 @@ from rich.table import Table
 from ..errors import InputError
 from ..outputs import write_output_file
 from .cam_cmd import _number, _pair
-from .common import user_errors
+from .common import err_console, user_errors
 
 TOLERANCE = 1e-9
 
@@ -193,7 +195,8 @@ def register(app: typer.Typer) -> None:
         slider: bool = typer.Option(False, "--slider", help="four positions: a slider whose pin's homologous points lie on a line (the centre-point curve's point at infinity)"),
         unit: str = typer.Option("mm", "--unit", help="length unit of the files"),
         name: str = typer.Option("Synthesized linkage", "--name", help="the mechanisms' name"),
-        all_: bool = typer.Option(False, "--all", help="five positions: write every linkage, also those with defects"),
+        all_: bool = typer.Option(False, "--all", help="write every linkage found, also those with defects (five positions, or four without pivots)"),
+        best: Optional[int] = typer.Option(None, "--best", help="write at most this many of the usable linkages, best first (default: all for five positions, 3 for four without pivots)"),
         min_transmission: float = typer.Option(30.0, "--min-transmission", help="DEG: a linkage is usable from this least transmission angle on"),
         output: str = typer.Option(..., "-o", "--output", help="the mechanism file to write (several: NAME-1.toml, NAME-2.toml, …)"),
         report: Optional[str] = typer.Option(None, "--report", help="FILE.json: poles, Burmester points, linkages and their checks"),
@@ -210,31 +213,45 @@ def register(app: typer.Typer) -> None:
                          "poles": {f"P{i + 1}{j + 1}": {"point": _point_json(p),
                                                          "rotation_deg": math.degrees(pos.rotation(i, j))}
                                    for (i, j), p in pos.poles().items()}}
-            if n == 5:
-                if centre or circle or slider:
-                    raise InputError("five positions: the pivots are the Burmester points (drop --centre, "
-                                     "--circle, --slider)")
-                bp = burmester_points(pos)
-                doc["burmester"] = {"real": [{"centre": _point_json(d.centre), "circle": _point_json(d.circle)}
-                                             for d in bp.dyads], "complex": bp.complex_count}
-                if len(bp.dyads) < 2:
-                    raise InputError(bp.message)
-                found = linkages(bp.dyads, name)
-                usable = [lk for lk in found if lk.check.usable(math.radians(min_transmission))]
+            auto = n == 5 or (n == 4 and not (centre or circle or slider))
+            if best is not None and best < 1:
+                raise InputError(f"--best {best}: give at least 1")
+            if n == 5 and (centre or circle or slider):
+                raise InputError("five positions: the pivots are the Burmester points (drop --centre, "
+                                 "--circle, --slider)")
+            if n == 4:  # the curves to choose the pivots from, sampled for drawing
+                from ..synthesis import centre_point_curve, circle_point_curve, curve_samples
+
+                for key, curve in (("centre_point_curve", centre_point_curve(pos)),
+                                   ("circle_point_curve", circle_point_curve(pos))):
+                    pts = curve_samples(curve, samples=360)
+                    doc[key] = {"coefficients": curve.coefficients.tolist(),
+                                "points": [None if not np.isfinite(p).all() else p.tolist() for p in pts]}
+            if auto:
+                if n == 5:
+                    bp = burmester_points(pos)
+                    doc["burmester"] = {"real": [{"centre": _point_json(d.centre), "circle": _point_json(d.circle)}
+                                                 for d in bp.dyads], "complex": bp.complex_count}
+                    if len(bp.dyads) < 2:
+                        raise InputError(bp.message)
+                    found, what = linkages(bp.dyads, name), bp.message
+                else:
+                    from ..synthesis.linkages import four_position_linkages
+
+                    with err_console.status("trying pairs of centre points along the centre-point curve …"):
+                        found = four_position_linkages(pos, name=name)
+                    what = f"{len(found)} linkages from points of the centre-point curve"
+                usable = [lk for lk in found if lk.geometry_ok and lk.check.usable(math.radians(min_transmission))]
                 chosen = found if all_ else usable
+                limit = best if best is not None else (None if n == 5 else 3)
+                chosen = chosen[:limit]
                 if not chosen:
-                    Console().print(_linkage_table(found, [None] * len(found)))
-                    raise InputError(f"{bp.message}, but none is usable (no defect, least transmission angle "
+                    shown = [lk for lk in found if lk.geometry_ok][:10]
+                    if shown:
+                        Console().print(_linkage_table(shown, [None] * len(shown)))
+                    raise InputError(f"{what}, but none is usable (no defect, least transmission angle "
                                      f"≥ {min_transmission:g}°); --all writes them anyway")
             else:
-                if n == 4:  # the curves to choose the pivots from, sampled for drawing
-                    from ..synthesis import centre_point_curve, circle_point_curve, curve_samples
-
-                    for key, curve in (("centre_point_curve", centre_point_curve(pos)),
-                                       ("circle_point_curve", circle_point_curve(pos))):
-                        pts = curve_samples(curve, samples=360)
-                        doc[key] = {"coefficients": curve.coefficients.tolist(),
-                                    "points": [None if not np.isfinite(p).all() else p.tolist() for p in pts]}
                 ds = _dyads(pos, centre, circle, slider)
                 if len(ds) != 2:
                     raise InputError(f"{n} positions: give two pivots (--centre X,Y or --circle X,Y"
@@ -289,6 +306,8 @@ def register(app: typer.Typer) -> None:
             if report is not None and Path(report).suffix.lower() not in (".json", ".csv"):
                 raise InputError(f"--report {report}: write .json or .csv")
             kind = "slider-crank" if slider else "four-bar"
+            if samples < 2:
+                raise InputError(f"--samples {samples}: give at least 2")
             task = FunctionTask(_function(function), _range(x, "--x", False), _range(input_, "--input-range", True),
                                 _range(output_, "--output-range", not slider))
             precision = points if at is None else [_number(v, f"--at {at}") for v in at.split(",")]
@@ -364,6 +383,62 @@ def register_curvature_designs(synth: typer.Typer) -> None:
                 ("output pivot E", _xy_text(d.pivot)),
                 ("output ω, α, jerk at the dwell", f"{out.omega[0]:.2e}, {out.alpha[0]:.2e}, {out.jerk[0]:.2e}")]))
             Console().print(f"wrote {output}")
+
+    @synth.command("path")
+    def path_command(
+        point: Optional[list[str]] = typer.Option(None, "--point", help="X,Y: a target point of the coupler curve; repeat (at least 3), in order"),
+        timing: Optional[str] = typer.Option(None, "--timing", help="DEG,DEG,…: the crank angle at each target (prescribed timing), relative to the first"),
+        starts: int = typer.Option(24, "--starts", help="starting points of the search"),
+        unit: str = typer.Option("mm", "--unit", help="length unit of the file"),
+        name: str = typer.Option("Path generator", "--name", help="the mechanism's name"),
+        output: str = typer.Option(..., "-o", "--output", help="the four-bar's mechanism file"),
+    ) -> None:
+        """A four-bar whose coupler point passes through target points (least squares)."""
+        with user_errors():
+            from ..io import load
+            from ..kinematics import solve
+            from ..synthesis.path import path_generator
+            from ..units import check_length_unit
+
+            check_length_unit(unit)
+            targets = np.array([_pair(p, "--point") for p in point or []])
+            if len(targets) < 3:
+                raise InputError(f"give at least three target points (--point X,Y), got {len(targets)}")
+            tm = None if timing is None else np.radians([_number(v, f"--timing {timing}") for v in timing.split(",")])
+            if starts < 1:
+                raise InputError(f"--starts {starts}: give at least 1")
+            gen = path_generator(targets, timing=tm, starts=starts, name=name)
+            write_output_file(output, gen.linkage.mechanism_text(length_unit=unit))
+            sol = solve(load(output), gen.linkage.input_angles(), order=1)
+            engine = float(np.nanmax(np.hypot(*(sol.point("P").position - targets).T)))
+            c = gen.linkage.check
+            Console().print(_summary("path generator (four-bar)", [
+                *((k, f"{v:.9g} {unit}") for k, v in gen.linkage.lengths.items()),
+                ("fixed pivots A0, B0", f"{_xy_text(gen.linkage.input.centre.xy)}; {_xy_text(gen.linkage.output.centre.xy)}"),
+                ("Grashof type", c.name), ("defects", ", ".join(n.split(" (")[0] for n in c.notes) or "none"),
+                ("least transmission angle", f"{math.degrees(c.min_transmission):.2f}°"),
+                ("largest distance from the targets (engine)", f"{engine:.3g} {unit}")]))
+            Console().print(f"wrote {output}")
+
+    @synth.command("cognates")
+    def cognates_command(
+        mechanism: str = typer.Argument(..., help="a four-bar: a mechanism file, or library:NAME"),
+        point: str = typer.Option(..., "--point", help="the coupler point: its name, or X,Y design coordinates"),
+        output: str = typer.Option(..., "-o", "--output", help="NAME.toml: the cognates go to NAME-1.toml and NAME-2.toml"),
+    ) -> None:
+        """The Roberts–Chebyshev cognates: two more four-bars tracing the same coupler curve."""
+        with user_errors():
+            from ..io import load
+            from ..synthesis.cognates import cognates
+
+            mech = load(mechanism)
+            cg = cognates(mech, point if "," not in point else _pair(point, "--point"))
+            paths = _paths(output, 2)
+            for path, text in zip(paths, (cg.first, cg.second)):
+                write_output_file(path, text)
+                load(path)
+            Console().print(f"third fixed pivot: {_xy_text(cg.third_pivot)}")
+            Console().print("wrote " + ", ".join(str(p) for p in paths))
 
     @synth.command("substitute")
     def substitute_command(

@@ -12,8 +12,10 @@ in radians (or the length unit for a prismatic driver), or a ready `Solution` �
 name                construction
 ==================  ========================================================================
 rotated-velocities  Rosenauer's rotated (orthogonal) velocities on the mechanism (§38–39, §68)
-velocity-plan       polar velocity plan with velocity images (§40–42)
-acceleration-plan   velocity and acceleration plans, normal/tangential/Coriolis components
+velocity-plan       polar velocity plan with velocity images (§40–42); groups beyond the dyads
+                    by Rosenauer's auxiliary points (1937, papers 1, 2, 7) or false position
+acceleration-plan   velocity and acceleration plans, normal/tangential/Coriolis components;
+                    groups beyond the dyads by the plan of relative normal accelerations
 euler-savary        Euler–Savary by ruler, Rosenauer §19 Tasks I–III
 bobillier           Bobillier's construction, collineation axis, Aronhold's transfer (§21–25)
 hartmann            Hartmann's construction: pole-transfer velocity, centres of curvature

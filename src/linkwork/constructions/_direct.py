@@ -103,6 +103,11 @@ class ScriptDrawer:
         self.vc._point(key, image, lab, lines=lines)
 
     def text(self, st) -> str:
+        if getattr(self.vc, "mode", "plan") == "rotated":
+            # the script is written for the polar plan; on the mechanism the tips X' of the
+            # rotated velocities lie on the parallels where the plan has the perpendiculars
+            return (st.text + "  [rotated velocities: x is the tip X', a line \u27c2 XY in the plan "
+                    "is the parallel to XY through the tip]")
         return st.text
 
     def _one(self, st) -> None:
@@ -184,7 +189,7 @@ def _pt(xy):
 
 
 #: the pairs the direct construction knows (a gear pair: external or internal wheels)
-KNOWN_PAIRS = ("revolute", "prismatic", "slot", "gear", "cam", "rolling")
+KNOWN_PAIRS = ("revolute", "prismatic", "slot", "circular-slot", "gear", "cam", "rolling")
 
 
 class TrialDrawer(ScriptDrawer):
@@ -342,11 +347,16 @@ class AccelerationDrawer(ScriptDrawer):
         """a_T − a_L at the crossing x (a hinge point or a pair's name), less what lies along a
         guide (the sliding acceleration, along the plan line)."""
         pairs = {e[0]: e for e in self.chain.slides + self.chain.slots}
-        if x in pairs:
-            pair, G, S, X = pairs[x]
+        arcs = {e[0]: e for e in self.chain.arcs}
+        if x in pairs or x in arcs:
+            pair, G, S, X = (pairs.get(x) or arcs[x])[:4]
             v_rel = self._v(S, X) - self._v(G, X)
-            cor = 2 * self.vcv.measured_omega(G)[:, None] * perp(v_rel)
-            return cor if T == S else -cor
+            jump = 2 * self.vcv.measured_omega(G)[:, None] * perp(v_rel)  # Coriolis
+            if x in arcs:
+                # along the arc about the guide's centre C: the normal part v_rel²/r towards C
+                r = self.where(arcs[x][4]) - self.where(X)
+                jump = jump + (dot(v_rel, v_rel) / dot(r, r))[:, None] * r
+            return jump if T == S else -jump
         for pair, g1, g2, t, c1, c2 in self.chain.meshes:
             if x == t and {L, T} == {g1, g2}:
                 gear = self.mech.joint(pair)
@@ -360,7 +370,7 @@ class AccelerationDrawer(ScriptDrawer):
 
     def transfer(self, L: str, T: str, x: str) -> np.ndarray:
         """E_T − E_L at the crossing x."""
-        pairs = {e[0]: e for e in self.chain.slides + self.chain.slots}
+        pairs = {e[0]: e for e in self.chain.slides + self.chain.slots + self.chain.arcs}
         P = self.where(pairs[x][3] if x in pairs else x)
         return (self.w2(T) - self.w2(L)) * (P - self.O) + self._pair_jump(L, T, x)
 

@@ -138,6 +138,11 @@ class Step:
     keys: tuple[str, ...]
 
 
+#: the largest constructed value taken as zero where the analytic values are all zero (the
+#: rounding of coordinates of a few hundred units)
+AT_REST = 1e-9
+
+
 @dataclass(frozen=True)
 class Result:
     """A number (or vector) read off the construction, next to the analytic value it must equal.
@@ -158,14 +163,17 @@ class Result:
 
     @property
     def error(self) -> np.ndarray:
-        """Relative error per sample: |constructed − analytic| / scale (NaN where undefined)."""
+        """Relative error per sample: |constructed − analytic| / scale (NaN where undefined).
+        Where the scale is zero (a mechanism at rest: every analytic value zero) the constructed
+        value must be zero to rounding: error 0 within AT_REST of the drawing's units, else ∞."""
         d = np.asarray(self.constructed, float) - np.asarray(self.analytic, float)
         if d.ndim > np.ndim(self.scale):
             d = np.linalg.norm(d, axis=-1)
         else:
             d = abs(d)
         with np.errstate(divide="ignore", invalid="ignore"):
-            return d / self.scale
+            rel = d / self.scale
+        return np.where(np.asarray(self.scale) == 0.0, np.where(d <= AT_REST, 0.0, np.inf), rel)
 
 
 @dataclass(frozen=True)

@@ -241,6 +241,14 @@ def check_references(spec: schema.MechanismFile, text: str, source: str) -> None
         if isinstance(j, schema.RollingSpec):
             for name in j.profiles:
                 need(("joints", jn, "profiles"), f"joint '{jn}' names profile", name, "profiles", profiles)
+    for pn, expr in spec.parameters.items():
+        m = re.fullmatch(r"(?P<a>[^\s=:-]+)-(?P<b>[^\s=:.-]+)(\.angle)?|(?P<p>[^\s.=:-][^\s=:]*?)\.[xy]",
+                         expr.strip())
+        if m is None:
+            fail(("parameters", pn), f"parameter '{pn}' = '{expr}': write a point's coordinate (P.x, P.y), "
+                                     "a distance (A-B) or a direction (A-B.angle)")
+        for name in filter(None, (m.group("p"), m.group("a"), m.group("b"))):
+            need(("parameters", pn), f"parameter '{pn}' names point", name, "points", points)
     driven: dict[str, tuple] = {}
     for loc, d in _driver_keys(spec):
         need(loc + ("joint",), "the driver names joint", d.joint, "joints", spec.joints)

@@ -245,6 +245,10 @@ class MechanismFile(_Strict):
     category: str = Field("", description="the library's group for this mechanism (four-bars, "
                           "slider mechanisms, valve gears, straight-line linkages, governors, ...)")
     units: Units = Units()
+    parameters: dict[str, str] = Field(
+        default_factory=dict, description="named design parameters for sweeps: NAME = \"P.x\", "
+        "\"P.y\" (a point's coordinate), \"A-B\" (the distance from A to B, B moving along it) or "
+        "\"A-B.angle\" (the direction of B from A in degrees, B turning about A)")
     frame: str = "frame"
     points: dict[str, Coordinates]
     profiles: dict[str, ProfileSpec] = Field(

@@ -1,8 +1,9 @@
 """Design parameters of a mechanism and the designs of a sweep.
 
 A parameter is a dimension of the drawing (the design position defines everything, README):
-`P.x` / `P.y` a point's coordinate, or `A-B` the distance from point A to point B, changed by
-moving B along the line from A (nothing else moves). A design is one value per parameter;
+`P.x` / `P.y` a point's coordinate, `A-B` the distance from point A to point B, changed by
+moving B along the line from A, or `A-B.angle` the direction of B from A (degrees,
+counter-clockwise from the x-axis), changed by turning B about A (nothing else moves). A design is one value per parameter;
 `apply` builds the mechanism of a design (`Mechanism.build` again: lengths, slot radii and the
 assembly branch follow from the new drawing, as they do from a file).
 """
@@ -17,13 +18,15 @@ import numpy as np
 from ..errors import InputError
 from ..model import Mechanism
 
-_NAME = re.compile(r"^(?P<p>[^\s.=:-][^\s=:]*?)\.(?P<c>[xy])$|^(?P<a>[^\s=:-]+)-(?P<b>[^\s=:-]+)$")
+_NAME = re.compile(r"^(?P<a2>[^\s=:-]+)-(?P<b2>[^\s=:-]+)\.angle$|^(?P<p>[^\s.=:-][^\s=:]*?)\.(?P<c>[xy])$"
+                   r"|^(?P<a>[^\s=:-]+)-(?P<b>[^\s=:-]+)$")
 
 
 @dataclass(frozen=True)
 class Parameter:
-    """One design parameter: `kind` "x", "y" (a coordinate of `point`) or "length" (the
-    distance from `base` to `point`, along which `point` moves)."""
+    """One design parameter: `kind` "x", "y" (a coordinate of `point`), "length" (the
+    distance from `base` to `point`, along which `point` moves) or "angle" (the direction of
+    `point` from `base` in degrees, about which `point` turns)."""
 
     name: str
     kind: str
@@ -34,29 +37,37 @@ class Parameter:
         p = np.asarray(mech.points[self.point], dtype=float)
         if self.kind == "length":
             return float(np.linalg.norm(p - mech.points[self.base]))
+        if self.kind == "angle":
+            d = p - mech.points[self.base]
+            return float(np.degrees(np.arctan2(d[1], d[0])))
         return float(p[0 if self.kind == "x" else 1])
 
 
-def parameter(mech: Mechanism, name: str) -> Parameter:
-    """The parameter `name` of `mech` (`P.x`, `P.y` or `A-B`), or an `InputError` naming what
-    is wrong with it."""
+def parameter(mech: Mechanism, name: str, named: dict[str, str] | None = None) -> Parameter:
+    """The parameter `name` of `mech` (`P.x`, `P.y` or `A-B`, or a name the file's
+    `[parameters]` table, `named`, gives one of those), or an `InputError` naming what is wrong
+    with it."""
+    if named and name.strip() in named:
+        p = parameter(mech, named[name.strip()])
+        return Parameter(name.strip(), p.kind, p.point, p.base)
     m = _NAME.match(name.strip())
     if m is None:
-        raise InputError(f"--vary {name}: name a coordinate (P.x, P.y) or a distance (A-B) of the "
-                         "drawing's points")
+        raise InputError(f"--vary {name}: name a coordinate (P.x, P.y), a distance (A-B) or a direction (A-B.angle) of the "
+                         "drawing's points, or a parameter of the file's [parameters]"
+                         + (f" ({', '.join(sorted(named))})" if named else ""))
     known = sorted(mech.points)
     if m.group("p"):
         if m.group("p") not in mech.points:
             raise InputError(f"--vary {name}: there is no point '{m.group('p')}' (points: {', '.join(known)})")
         return Parameter(name, m.group("c"), m.group("p"))
-    a, b = m.group("a"), m.group("b")
+    a, b = (m.group("a"), m.group("b")) if m.group("a") else (m.group("a2"), m.group("b2"))
     for p in (a, b):
         if p not in mech.points:
             raise InputError(f"--vary {name}: there is no point '{p}' (points: {', '.join(known)})")
     if np.linalg.norm(np.asarray(mech.points[b], float) - mech.points[a]) == 0:
         raise InputError(f"--vary {name}: the points {a} and {b} coincide, so the line along which "
                          f"{b} moves is undefined")
-    return Parameter(name, "length", b, a)
+    return Parameter(name, "length" if m.group("a") else "angle", b, a)
 
 
 def apply(mech: Mechanism, params: list[Parameter], values) -> Mechanism:
@@ -73,6 +84,9 @@ def apply(mech: Mechanism, params: list[Parameter], values) -> Mechanism:
             base = pts[prm.base]
             d = np.asarray(mech.points[prm.point], float) - mech.points[prm.base]
             pts[prm.point] = base + v * d / np.linalg.norm(d)
+        elif prm.kind == "angle":
+            r = np.linalg.norm(pts[prm.point] - pts[prm.base])
+            pts[prm.point] = pts[prm.base] + r * np.array([np.cos(np.radians(v)), np.sin(np.radians(v))])
         else:
             pts[prm.point][0 if prm.kind == "x" else 1] = v
     return Mechanism.build(name=mech.name, points=pts, links={l.name: list(l.points) for l in mech.links},

@@ -57,18 +57,20 @@ def plan(spec: str, vary: list[str], metrics: list[str], *, samples: int | None 
          seed: int = 0, inputs: np.ndarray | None = None) -> SweepPlan:
     """Parse a sweep's arguments: `vary` as NAME=START:STOP:STEP (a grid of every combination)
     or, with `samples`, NAME=LOW:HIGH (a uniform random sample of that many designs)."""
+    import tomllib
     mech = load(spec)
+    named = tomllib.loads(resolve(spec)[1]).get("parameters", {})
     if not vary:
         raise InputError("give at least one --vary NAME=… (a point coordinate P.x, P.y or a distance A-B)")
     if not metrics:
         raise InputError("give at least one --metric (see `linkwork sweep --help`)")
     if samples is None:
-        named = [D.grid_values(v) for v in vary]
-        params = [D.parameter(mech, n) for n, _ in named]
-        rows = D.grid([vals for _, vals in named])
+        axes = [D.grid_values(v) for v in vary]
+        params = [D.parameter(mech, n, named) for n, _ in axes]
+        rows = D.grid([vals for _, vals in axes])
     else:
         ranges = [D.random_range(v) for v in vary]
-        params = [D.parameter(mech, n) for n, *_ in ranges]
+        params = [D.parameter(mech, n, named) for n, *_ in ranges]
         rows = D.random_designs([r[1] for r in ranges], [r[2] for r in ranges], samples, seed)
     names = [p.name for p in params]
     if len(set(names)) != len(names):

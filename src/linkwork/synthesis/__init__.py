@@ -14,10 +14,12 @@
 - `path`: path generation: a four-bar's coupler point through target points (least squares
   from several starts, with or without prescribed timing).
 - `second_order`: Alt's dwell linkage and Pröll's substitution, from curvature theory.
+- `cognates`: the Roberts–Chebyshev cognates of a four-bar's coupler point.
 """
 
 from .burmester import (BurmesterPoints, Cubic, Dyad, burmester_points, centre_point_curve,
                         circle_point_curve, curve_samples, dyad)
+from .cognates import Cognates, cognates
 from .cams import (CamReport, analyse, corners, cusps, follower_diagrams, mechanism_text,
                    pressure_angle, radius_of_curvature, smallest_base_radius, with_base_radius)
 from .function import FunctionGenerator, FunctionTask, chebyshev_spacing, freudenstein, function_generator
@@ -27,7 +29,7 @@ from .second_order import DwellLinkage, Substitution, alt_dwell, proell_substitu
 from .positions import (Positions, SynthesisError, centre_points, circle_points, image_point,
                         image_pole, pole_triangle)
 
-__all__ = ["BurmesterPoints", "CamReport", "Cubic", "DwellLinkage", "Dyad", "FunctionGenerator",
+__all__ = ["BurmesterPoints", "CamReport", "Cognates", "cognates", "Cubic", "DwellLinkage", "Dyad", "FunctionGenerator",
            "FunctionTask", "Linkage", "LinkageCheck", "PathGenerator", "Positions", "Substitution",
            "SynthesisError", "alt_dwell", "chebyshev_spacing", "freudenstein", "function_generator",
            "path_generator", "proell_substitution", "analyse", "burmester_points", "centre_point_curve", "centre_points",

@@ -274,7 +274,7 @@ def _direction_parameter(v: np.ndarray, e1: np.ndarray, e2: np.ndarray) -> float
     return float(np.dot(v, e2) / np.dot(v, e1))
 
 
-def _pencil_frame(P: np.ndarray, specials: list[np.ndarray]) -> tuple[np.ndarray, np.ndarray]:
+def _pencil_frame(specials: list[np.ndarray]) -> tuple[np.ndarray, np.ndarray]:
     """Axes (e₁, e₂) for the pencil M = P + t(e₁ + s e₂): the special directions (to the other
     shared poles) kept well away from s = ∞."""
     best, frame = -1.0, None
@@ -286,11 +286,11 @@ def _pencil_frame(P: np.ndarray, specials: list[np.ndarray]) -> tuple[np.ndarray
     return frame
 
 
-def _pole_vector(p: Point, centre: np.ndarray, scale: float, P: np.ndarray) -> np.ndarray:
-    """The direction from P to the pole p (normalised frame); p may be at infinity."""
+def _pole_vector(p: Point, P: np.ndarray) -> np.ndarray:
+    """The direction from P to the pole p; p may be at infinity."""
     if p.is_infinite:
         return p.direction.xy
-    return (p.xy - centre) / scale - P
+    return p.xy - P
 
 
 def _refine(B: np.ndarray, M: np.ndarray, Z: np.ndarray, iterations: int = 30):
@@ -335,11 +335,11 @@ def burmester_points(pos: Positions, ref: int = 0, *, tol: float = 1e-9) -> Burm
                              f"{ref + 1}, {a + 1}, {b + 1} are all at infinity (translations)")
     centre_pole = min(finite, key=lambda p: float(np.hypot(*p.xy)))
     P = centre_pole.xy
-    specials = [_pole_vector(p, np.zeros(2), 1.0, P) for p in shared if p is not centre_pole]
+    specials = [_pole_vector(p, P) for p in shared if p is not centre_pole]
     if min(np.hypot(*d) for d in specials) <= 1e-12:
         raise SynthesisError("two poles of these positions coincide: the Burmester points are not "
                              "isolated")
-    e1, e2 = _pencil_frame(P, specials)
+    e1, e2 = _pencil_frame(specials)
     # the line through P as bivariate polynomials in (t, s): x = P_x + t e1_x + t s e2_x
     X = np.array([[P[0], 0.0], [e1[0], e2[0]]])
     Y = np.array([[P[1], 0.0], [e1[1], e2[1]]])

@@ -53,7 +53,8 @@ def chebyshev_spacing(x_start: float, x_final: float, n: int) -> np.ndarray:
     if n < 1:
         raise InputError(f"give at least one precision point, got {n}")
     j = np.arange(1, n + 1)
-    return (x_start + x_final) / 2 - (x_final - x_start) / 2 * np.cos((2 * j - 1) * np.pi / (2 * n))
+    # cos((2j − 1)π/2n) written as sin((n − 2j + 1)π/2n): the middle point of an odd n is exact
+    return (x_start + x_final) / 2 - (x_final - x_start) / 2 * np.sin((n - 2 * j + 1) * np.pi / (2 * n))
 
 
 @dataclass(frozen=True)

@@ -39,7 +39,7 @@ from ._file import mechanism_file, point
 from .burmester import Dyad
 from .positions import SynthesisError, wrap
 
-__all__ = ["Linkage", "LinkageCheck", "linkages"]
+__all__ = ["Linkage", "LinkageCheck", "linkages", "four_position_linkages"]
 
 SWEEP_SAMPLES = 48  # per gap between positions
 MIN_TRANSMISSION = math.radians(30.0)  # a usual lower bound for a usable transmission angle
@@ -218,6 +218,15 @@ class Linkage:
         return load_text(self.mechanism_text(length_unit=length_unit), source=self.name)
 
     # ------------------------------------------------------------------ checks
+    @cached_property
+    def geometry_ok(self) -> bool:
+        """No order and no circuit defect, seen from the dyads alone (no engine run)."""
+        if self._order[3] == 0:
+            return False
+        A, B = self.pins()
+        signs = self._assembly(A, B)
+        return bool(np.all(signs == signs[self.ref]) and np.all(signs != 0))
+
     def _classify(self):
         L = self.lengths
         if self.kind == "four-bar":
@@ -311,8 +320,46 @@ def linkages(dyads, name: str = "Synthesized linkage") -> list[Linkage]:
                 continue
 
     def key(lk: Linkage):
+        if not lk.geometry_ok:  # ranked last without running the engine
+            return (True, True, 0.0)
         c = lk.check
-        return (not c.usable(), -np.nan_to_num(c.min_transmission, nan=-1.0))
+        return (False, not c.usable(), -np.nan_to_num(c.min_transmission, nan=-1.0))
 
     out.sort(key=key)
     return out
+
+
+def four_position_linkages(pos, candidates: int = 12, *, reach: float = 3.0, slider: bool = True,
+                           name: str = "Synthesized linkage") -> list[Linkage]:
+    """Linkages for four positions without chosen pivots: `candidates` centre points spread
+    along the centre-point curve within `reach` times the positions' size of their middle
+    (and, with `slider`, the curve's point at infinity), every pair of them made into a
+    linkage and ranked as `linkages` ranks them."""
+    from .burmester import centre_point_curve, curve_samples, dyad
+
+    if len(pos) != 4:
+        raise SynthesisError(f"four_position_linkages takes four positions, got {len(pos)}")
+    if candidates < 2:
+        raise SynthesisError(f"give at least two candidates, got {candidates}")
+    curve = centre_point_curve(pos)
+    pts = curve_samples(curve, samples=1440)
+    middle = pos.origin.mean(axis=0)
+    near = np.isfinite(pts).all(axis=1)
+    near[near] = np.hypot(*(pts[near] - middle).T) <= reach * pos.size
+    pts = pts[near]
+    if len(pts) < 2:
+        raise SynthesisError("the centre-point curve does not come near the positions")
+    # spread the candidates evenly by arc length along the sampled pieces
+    step = np.hypot(*np.diff(pts, axis=0).T)
+    step[step > 0.05 * pos.size * reach] = 0.0  # a jump between pieces is no arc
+    s = np.concatenate([[0.0], np.cumsum(step)])
+    picks = np.unique(np.searchsorted(s, np.linspace(0.0, s[-1], candidates), side="left").clip(0, len(pts) - 1))
+    ds = []
+    for M in pts[picks]:
+        try:
+            ds.append(dyad(pos, M))
+        except SynthesisError:
+            continue  # a pole line's point: its circle point is not unique
+    if slider:
+        ds.append(curve.slider())
+    return linkages(ds, name)

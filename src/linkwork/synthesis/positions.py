@@ -55,8 +55,9 @@ def _xy(z) -> np.ndarray:
 
 
 def wrap(angle):
-    """An angle reduced to (−π, π]."""
-    return -np.remainder(-np.asarray(angle, dtype=float) + np.pi, 2 * np.pi) + np.pi
+    """An angle reduced to (−π, π] (NaN stays NaN: an unreachable sample)."""
+    with np.errstate(invalid="ignore"):
+        return -np.remainder(-np.asarray(angle, dtype=float) + np.pi, 2 * np.pi) + np.pi
 
 
 @dataclass(frozen=True, eq=False)

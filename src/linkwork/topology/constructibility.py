@@ -39,7 +39,7 @@ from typing import Mapping
 
 import numpy as np
 
-from ..model import CamContact, Gear, Mechanism, Prismatic, Revolute, RollingContact, Slot
+from ..model import CamContact, CircularSlot, Gear, Mechanism, Prismatic, Revolute, RollingContact, Slot
 
 #: the frame's image, the pole o of the velocity plan
 POLE = "o"
@@ -89,7 +89,10 @@ class Chain:
     contacts: tuple[tuple[str, str, str, str], ...] = ()
     #: rolling contacts (pair, link, link, contact point): the point of contact is the two
     #: links' relative pole, for velocities a hinge
-    rolls: tuple[tuple[str, str, str, str], ...] = ()  # the link whose images are the pole o (None: a free chain)
+    rolls: tuple[tuple[str, str, str, str], ...] = ()
+    #: curved slots (pair, guide link, pin link, pin point, centre point of the guide link): the
+    #: relative velocity is tangent to the arc, so both links project equally on its radius
+    arcs: tuple[tuple[str, str, str, str, str], ...] = ()  # the link whose images are the pole o (None: a free chain)
 
     def restricted(self, links, known) -> "Chain":
         """The part of the chain on ``links`` with the links ``known`` given (a group of the
@@ -102,7 +105,8 @@ class Chain:
                      tuple(m for m in self.meshes if {m[1], m[2]} <= keep),
                      known=tuple(known), collinear=self.collinear, frame=self.frame,
                      contacts=tuple(c for c in self.contacts if {c[1], c[2]} <= keep),
-                     rolls=tuple(c for c in self.rolls if {c[1], c[2]} <= keep))
+                     rolls=tuple(c for c in self.rolls if {c[1], c[2]} <= keep),
+                     arcs=tuple(c for c in self.arcs if {c[1], c[2]} <= keep))
 
     @classmethod
     def free(cls, links: Mapping[str, str | tuple[str, ...]], *, given: tuple[str, ...] = (),
@@ -123,7 +127,7 @@ class Chain:
     @classmethod
     def from_mechanism(cls, mech: Mechanism) -> "Chain":
         links = {ln.name: tuple(ln.points) for ln in mech.links}
-        hinges, slides, slots, meshes, unsupported, contacts, rolls = [], [], [], [], [], [], []
+        hinges, slides, slots, meshes, unsupported, contacts, rolls, arcs = [], [], [], [], [], [], [], []
         for j in mech.joints:
             if isinstance(j, Revolute):
                 hinges.append((j.point, *j.links))
@@ -133,6 +137,8 @@ class Chain:
                 slots.append((j.name, j.links[0], j.links[1], j.point))
             elif isinstance(j, CamContact):
                 contacts.append((j.name, *j.links, contact_point_name(mech, j)))
+            elif isinstance(j, CircularSlot):
+                arcs.append((j.name, *j.links, j.point, j.center))
             elif isinstance(j, RollingContact):
                 rolls.append((j.name, *j.links, contact_point_name(mech, j)))
             elif isinstance(j, Gear) and j.gear_kind in ("external", "internal"):
@@ -168,7 +174,7 @@ class Chain:
         return cls(links, tuple(hinges), tuple(slides), tuple(slots), tuple(meshes),
                    known=(mech.frame,), drivers=tuple(drivers),
                    collinear=collinear, unsupported=tuple(unsupported),
-                   frame=mech.frame, contacts=tuple(contacts), rolls=tuple(rolls))
+                   frame=mech.frame, contacts=tuple(contacts), rolls=tuple(rolls), arcs=tuple(arcs))
 
 
 def contact_point_name(mech: Mechanism, pair) -> str:
@@ -357,7 +363,7 @@ def wittenbauer_rule(chain: Chain) -> WittenbauerVerdict:
     joints: dict[str, set[str]] = {}
     for p, a, b in chain.hinges:
         joints.setdefault(p, set()).update((a, b))
-    for entry in chain.slides + chain.slots + chain.contacts:
+    for entry in chain.slides + chain.slots + chain.contacts + tuple(a[:4] for a in chain.arcs):
         joints.setdefault(entry[3], set()).update(entry[1:3])
     # the points whose velocities are given count as joints of the chain (its free ends)
     for p in chain.given + chain.directions:
@@ -668,6 +674,11 @@ class _Planner:
                     new |= self.add_cond(T, PlanLine((L, k), self.lines.special("normal", k, pair), ((L, T, pair),)))
                 elif not slide and L == S and X in self.kpoints[S]:
                     new |= self.add_cond(T, PlanLine((L, X), normal, ((L, T, pair),)))
+        for pair, G, S, X, C in c.arcs:
+            for L, T in ((G, S), (S, G)):
+                if T not in self.known and (L in self.known or (L == S and X in self.kpoints[S])):
+                    self.ensure_image(L, X)
+                    new |= self.add_cond(T, PlanLine((L, X), self.lines.join(C, X), ((L, T, pair),)))
         for pair, A, B, K in c.contacts:
             for L, T in ((A, B), (B, A)):
                 if T not in self.known and L in self.known:
