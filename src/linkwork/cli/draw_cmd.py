@@ -118,18 +118,21 @@ def register(app: typer.Typer) -> None:
         against: str = typer.Option("input", "--against", help="input (angle or displacement) or time"),
         component: str = typer.Option("x,y,magnitude", "--component", help="x, y, magnitude (points)"),
         vs: bool = typer.Option(False, "--vs", help="the v–s diagram of the (first) point instead"),
+        diagrams: bool = typer.Option(False, "--diagrams", help="Pöschl's s–t, v–t, a–t lines of the (first) point, with the graphical differentiation by chords"),
         output: str = typer.Option(..., "-o", "--output", help="FILE.png, FILE.pdf or FILE.svg"),
     ) -> None:
         """Plot positions, velocities, accelerations over the whole motion, or a v–s diagram."""
-        from ..drawing.plots import motion_plot, save, vs_plot
+        from ..drawing.plots import graphical_motion, motion_plot, save, vs_plot
 
         with user_errors():
             mech = load_mechanism(mechanism)
             points, links = _list(point), _list(link)
+            if (vs or diagrams) and not points:
+                raise InputError(f"{'--vs' if vs else '--diagrams'} needs --point")
             if vs:
-                if not points:
-                    raise InputError("--vs needs --point")
                 fig = vs_plot(mech, points[0])
+            elif diagrams:
+                fig = graphical_motion(mech, points[0])
             else:
                 fig = motion_plot(mech, points=points, links=links, quantity=quantity, against=against,
                                   components=_list(component))
