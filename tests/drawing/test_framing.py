@@ -97,3 +97,18 @@ def test_unknown_frame_is_refused(tmp_path):
     r = CliRunner().invoke(app, ["draw", "library:crank-rocker", "--frame", "all", "--show",
                                  "mechanism,return", "-o", str(tmp_path / "x.svg")])
     assert r.exit_code == 0, r.output
+
+
+def test_step_frames_are_the_same_size():
+    from linkwork.constructions import construct
+    mech = linkwork.load("library:crank-rocker")
+    sc = scene_at(mech, np.radians(230))
+    con = construct("acceleration-plan", mech, sc.sol)
+    seen = set()
+    for k in range(len(con.steps)):
+        fig = scene_figure(sc, ["mechanism"], construction=con, step=k)
+        root = ET.fromstring(fig.to_svg().encode())
+        tf = fig.transforms()
+        seen.add((root.get("viewBox"),) + tuple((n, tuple(np.round(t["origin"], 6)), tuple(np.round(t["lo"], 9)),
+                                                  tuple(np.round(t["hi"], 9))) for n, t in sorted(tf.items())))
+    assert len(seen) == 1

@@ -543,4 +543,10 @@ def scene_figure(sc: Scene, show: Iterable[str] = ("mechanism",), *,
         draw_construction(fig, con, upto=step, highlight=step)
         if step is not None:
             fig.current_step = step
+            # every step's panels fitted to the whole construction, so that the mechanism does
+            # not move or change its size when paging through the steps
+            whole = scene_figure(sc, show, construction=construction, title=title, frame=frame)
+            for name, tf in whole.transforms().items():
+                if name not in fig.view:
+                    fig.view[name] = (np.array(tf["lo"]), np.array(tf["hi"]))
     return fig

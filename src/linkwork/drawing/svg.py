@@ -425,7 +425,8 @@ class Figure:
         captions = self.captions if animate else ([self.captions[self.current_step]]
                                                   if self.current_step is not None and self.captions else [])
         if captions:
-            caption_h = 5.0 + 4.4 * max(len(_wrap(c, width)) for c in captions)
+            # as deep as the longest caption of all steps: every step's sheet is the same size
+            caption_h = 5.0 + 4.4 * max(len(_wrap(c, width)) for c in self.captions)
         samples: list[np.ndarray] = []
         layers: dict[str, list[str]] = {}
         for p in self.prims:
