@@ -112,3 +112,44 @@ def test_step_frames_are_the_same_size():
         seen.add((root.get("viewBox"),) + tuple((n, tuple(np.round(t["origin"], 6)), tuple(np.round(t["lo"], 9)),
                                                   tuple(np.round(t["hi"], 9))) for n, t in sorted(tf.items())))
     assert len(seen) == 1
+
+
+def _segments(root, layer):
+    out = []
+    for el in root.find(f".//{SVG}g[@id='layer-{layer}']").iter():
+        if el.tag == f"{SVG}line":
+            out.append(np.array([[float(el.get("x1")), float(el.get("y1"))], [float(el.get("x2")), float(el.get("y2"))]]))
+        elif el.tag == f"{SVG}path":
+            nums = [float(v) for v in el.get("d").replace("M", " ").replace("L", " ").split()]
+            out.append(np.array(nums).reshape(-1, 2))
+    return out
+
+
+def test_pole_lines_reach_their_poles_and_do_not_double_a_bar():
+    from linkwork.instant import pole_schedule, poles
+    mech = linkwork.load("library:crank-rocker")
+    sc = scene_at(mech, np.radians(30))
+    fig = scene_figure(sc, ["mechanism", "poles", "pole-lines"], frame="all")
+    root = ET.fromstring(fig.to_svg().encode())
+    segs = _segments(root, "pole-lines")
+    ps = poles(sc.sol)
+
+    def dist(q, seg):
+        a, b = seg[0], seg[-1]
+        t = np.clip(np.dot(q - a, b - a) / np.dot(b - a, b - a), 0, 1)
+        return np.linalg.norm(a + t * (b - a) - q)
+    # every derived pole (Aronhold–Kennedy) lies on a drawn line
+    for st in pole_schedule(mech).derived:
+        P = ps[st.pair][0]
+        if P.is_finite:
+            q = to_paper(fig, P.xy)
+            assert min(dist(q, s) for s in segs) < 0.05
+    # no pole line runs along the inside of a binary link's bar
+    for ln in mech.moving_links:
+        pts = mech.link(ln).points
+        if len(pts) != 2:
+            continue
+        a, b = (to_paper(fig, sc.pos(p)) for p in pts)
+        for f in (0.25, 0.5, 0.75):
+            q = a + f * (b - a)
+            assert min(dist(q, s) for s in segs) > 0.05

@@ -95,6 +95,33 @@ def _circle(fig: Figure, c: Circle, i: int, layer: str, kind: str, label: str, s
     _towards(fig, ctr, f"centre of the {label}", COLOURS[kind], layer)
 
 
+def _pole_line(fig: Figure, sc, o: np.ndarray, d: np.ndarray, span: list, ends: list) -> None:
+    """An Aronhold–Kennedy line drawn thin past the poles in ``span``. Where it runs along a bar
+    of the mechanism (its two poles are both points of one link) only its parts beyond the bar
+    are drawn, so that the bar keeps a single outline."""
+    style = Style(stroke="#888", width=0.18)
+    mech = sc.mech
+    along = None
+    if len(ends) == 2:
+        for ln in mech.moving_links:
+            pts = [sc.pos(x) for x in mech.link(ln).points]
+            tol = 1e-9 * mech.length_scale
+            if all(any(np.all(np.abs(e - q) <= tol) for q in pts) for e in ends):
+                along = ends
+                break
+    if along is None:
+        fig.line(o, d, span, style=style, layer="pole-lines")
+        return
+    u = d / np.linalg.norm(d)
+    t = np.array([np.dot(x - o, u) for x in span])
+    ta, tb = sorted(float(np.dot(x - o, u)) for x in along)
+    over = 4.0 * fig.spaces["mechanism"].per_mm
+    lo, hi = t.min() - over, t.max() + over
+    for a, b in ((lo, ta), (tb, hi)):
+        if b - a > 1e-9 * mech.length_scale:
+            fig.path(np.array([o + a * u, o + b * u]), style=style, layer="pole-lines")
+
+
 def draw_instant(fig: Figure, sc, layer: str) -> None:
     sol, i, mech = sc.sol, sc.index, sc.mech
     if layer in ("poles", "pole-lines"):
@@ -115,9 +142,10 @@ def draw_instant(fig: Figure, sc, layer: str) -> None:
                     if a == 0 and b == 0:
                         continue
                     o = np.array([-a * k, -b * k]) / (a * a + b * b)
-                    span = [x[:2] / x[2] for x in (p, q) if x[2] != 0]
-                    fig.line(o, np.array([b, -a]), span, style=Style(stroke="#888", width=0.18),
-                             layer="pole-lines")
+                    # the line reaches the pole it is drawn for, however far it lies
+                    R = ps[st.pair].coords[i]
+                    span = [x[:2] / x[2] for x in (p, q, R) if x[2] != 0 and np.all(np.isfinite(x))]
+                    _pole_line(fig, sc, o, np.array([b, -a]), span, [x[:2] / x[2] for x in (p, q) if x[2] != 0])
         if layer == "pole-lines":
             return
         for pair in ps:
