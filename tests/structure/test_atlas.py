@@ -19,7 +19,6 @@ from __future__ import annotations
 import itertools
 import json
 import random
-import time
 import xml.etree.ElementTree as ET
 
 import networkx as nx
@@ -107,15 +106,11 @@ def test_counts_match_published_numbers(n_links, published):
     assert len(enumerate_chains(n_links)) == published
 
 
-def test_twelve_links_match_published_count_within_a_minute():
-    atlas._cache.pop(12, None)  # time a fresh build
-    # CPU time of this process, so that other jobs on a shared machine do not
-    # make the test flaky (about 5 s on one core when measured).
-    start = time.process_time()
+def test_twelve_links_match_published_count():
+    # (its time is measured by `atlas --links 12`, not asserted here: bench/README.md)
+    atlas._cache.pop(12, None)  # a fresh build
     chains = enumerate_chains(12)
-    elapsed = time.process_time() - start
     assert len(chains) == 6856
-    assert elapsed < 60, f"12-link atlas took {elapsed:.1f} s of CPU time"
 
 
 def test_link_type_mixes_are_rosenauers():
@@ -419,3 +414,27 @@ def test_cli_svg_errors_are_one_line(cli, tmp_path, monkeypatch):
     assert r.exit_code == 2, r.output
     assert "No space left on device" in r.output and "Traceback" not in r.output
     assert [p.name for p in (tmp_path / "svg").iterdir()] == []
+
+
+@pytest.mark.parametrize("n_links", [8, 10, 12])
+def test_contracted_graph_automorphisms_equal_a_graph_matcher_search(n_links):
+    """`atlas_contracted.automorphisms` (backtracking on the multiplicity matrix) against the
+    automorphisms of the subdivided graph found by NetworkX's VF2 matcher: the same set."""
+    from linkwork.topology.atlas_contracted import work_units
+
+    units = [u for u in work_units(n_links) if u.graph is not None]
+    assert units
+    for unit in units:
+        cg = unit.graph
+        s = nx.Graph()
+        for v, t in enumerate(cg.types):
+            s.add_node(("v", v), kind=f"v{t}")
+        for e, (a, b) in enumerate(cg.edges):
+            s.add_node(("e", e), kind="e")
+            s.add_edges_from([(("v", a), ("e", e)), (("v", b), ("e", e))])
+        vf2 = {(tuple(iso[("v", v)][1] for v in range(len(cg.types))),
+                tuple(iso[("e", e)][1] for e in range(len(cg.edges))))
+               for iso in GraphMatcher(s, s, node_match=lambda x, y: x["kind"] == y["kind"])
+               .isomorphisms_iter()}
+        assert set(cg.automorphisms) == vf2
+        assert len(cg.automorphisms) == len(vf2)  # no automorphism twice

@@ -371,3 +371,93 @@ def test_serve_binds_locally_unless_told(monkeypatch, workdir):
     assert r.exit_code == 0 and "?file=mine.toml" in r.output
     r = runner.invoke(cli_app, ["serve", "library:nope"])
     assert r.exit_code == 2 and "no mechanism 'nope'" in r.output
+
+
+def test_the_page_and_only_its_files_are_served(client):
+    r = client.get("/")
+    assert r.status_code == 200 and '<script src="/static/app.js">' in r.text
+    assert client.get("/static/style.css").status_code == 200
+    for path in ("/static/../app.py", "/static/..%2fapp.py", "/static/%2e%2e/sources.py",
+                 "/static/../../io/files.py"):
+        r = client.get(path)
+        assert r.status_code == 404 and "import" not in r.text, path
+
+
+def test_drawing_traces_the_paths_asked(client):
+    def ids(**extra):
+        r = post(client, "/api/drawing", source=SRC, layers=["mechanism", "paths"], **extra)
+        assert r.status_code == 200, r.text
+        return set(re.findall(r'id="(path-[^"]+)"', r.json()["svg"]))
+
+    assert ids() == {"path-A", "path-B", "path-C"}  # every moving point by default
+    assert ids(paths=["C"]) == {"path-C"}
+    assert ids(paths=[]) == set()
+    r = post(client, "/api/drawing", source=SRC, layers=["paths"], paths=["Z"])
+    assert r.status_code == 400 and "no point 'Z'" in r.json()["error"]
+
+
+def _png_size(data: bytes) -> tuple[int, int]:
+    assert data[:8] == b"\x89PNG\r\n\x1a\n" and data[12:16] == b"IHDR"
+    return int.from_bytes(data[16:20], "big"), int.from_bytes(data[20:24], "big")
+
+
+def test_drawing_as_png(client):
+    pytest.importorskip("cairosvg")
+    body = dict(source=SRC, layers=["mechanism", "poles"], at=[1.0])
+    svg = post(client, "/api/drawing", **body).json()["svg"]
+    w_mm, h_mm = (float(v) for v in re.search(r'width="([\d.]+)mm" height="([\d.]+)mm"', svg).groups())
+    for dpi in (200.0, 96.0):
+        r = post(client, "/api/drawing.png", **body, dpi=dpi)
+        assert r.status_code == 200 and r.headers["content-type"] == "image/png"
+        w, h = _png_size(r.content)  # the paper's size at the resolution asked
+        assert abs(w - w_mm / 25.4 * dpi) <= 1 and abs(h - h_mm / 25.4 * dpi) <= 1
+    r = post(client, "/api/drawing.png", **body, dpi=5000)
+    assert r.status_code == 422 and r.json()["kind"] == "RequestValidationError"
+
+
+def test_motion_as_csv(client):
+    from linkwork.kinematics.export import csv_lines
+    r = post(client, "/api/motion.csv", source=SRC)
+    assert r.status_code == 200 and r.headers["content-type"].startswith("text/csv")
+    sol = linkwork.whole_motion(MECH)
+    assert r.text == "".join(csv_lines(sol))
+    head, *rows = r.text.splitlines()
+    assert len(rows) == len(sol)
+    col = head.split(",").index("C.x")
+    assert [float(row.split(",")[col]) for row in rows] == pytest.approx(sol.point("C").position[:, 0], rel=1e-15)
+
+
+def test_motion_status_with_error_bounds_that_are_not_finite(client):
+    """A Stephenson six-bar (the crank-rocker with a dyad C–F–O6) passes two samples whose error
+    bound is not finite: they come back as null, the answer stays JSON."""
+    text = resolve("library:crank-rocker")[1]
+    text = (text.replace('C  = [15, 25]\n', 'C  = [15, 25]\nF = [45, 45]\nO6 = [70, 30]\n')
+            .replace('frame   = ["O2", "O4"]', 'frame = ["O2", "O4", "O6"]')
+            .replace('rocker  = ["B", "O4"]\n', 'rocker  = ["B", "O4"]\nl5 = ["C", "F"]\nl6 = ["F", "O6"]\n')
+            + '\n[joints.C]\ntype = "revolute"\nlinks = ["coupler", "l5"]\n'
+              '[joints.F]\ntype = "revolute"\nlinks = ["l5", "l6"]\n'
+              '[joints.O6]\ntype = "revolute"\nlinks = ["l6", "frame"]\n')
+    sol = linkwork.whole_motion(linkwork.io.load_text(text))
+    bad = ~np.isfinite(sol.errors)
+    assert bad.any()
+    r = post(client, "/api/motion", source={"text": text}, detail="status")
+    assert r.status_code == 200, r.text
+    errors = [s["error"] for s in r.json()["samples"]]
+    assert [e is None for e in errors] == bad.tolist()
+
+
+def test_the_server_solves_with_the_compiled_loops(monkeypatch):
+    """`linkwork serve` makes its application with compiled=True: when it starts, the
+    kinematics' compiled loops are made ready and then used for every batch; the drawing is
+    the one of the interpreted loops (to the last bits numba's fused multiply-adds change)."""
+    from linkwork.kinematics import kernels
+    from linkwork.web.app import compile_kernels
+    monkeypatch.setattr(kernels, "INTERPRETED_UP_TO", kernels.INTERPRETED_UP_TO)
+    body = dict(source={"library": "crank-rocker", "points": {"C": [16.0, 24.0]}}, at=[2.0],
+                layers=["mechanism"], motion=False)
+    before = TestClient(create_app(None)).post("/api/drawing", json=body).json()
+    compile_kernels()
+    assert kernels.INTERPRETED_UP_TO == 0
+    after = TestClient(create_app(None)).post("/api/drawing", json=body).json()
+    for p, xy in before["points"].items():
+        assert after["points"][p] == pytest.approx(xy, abs=1e-12)

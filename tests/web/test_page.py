@@ -216,6 +216,14 @@ def test_dragging_a_point_solves_again(page):
     assert svg_position(page, "point-C") == pytest.approx(expected_svg(page, xy), abs=2e-3)
     # and the crank is longer: A on the circle of radius |moved|
     assert np.hypot(*number_row(page, "A")) == pytest.approx(np.hypot(*moved), abs=1e-4)
+    # Save TOML: the file with A's new design coordinates, the rest as it was
+    with page.expect_download() as dl:
+        page.click("#save")
+    saved = Path(dl.value.path()).read_text()
+    assert dl.value.suggested_filename == "crank-rocker.toml"
+    assert load_text(saved).points["A"] == pytest.approx(moved, abs=1e-6)
+    assert [ln for ln in saved.splitlines() if not ln.startswith("A ")] == \
+        [ln for ln in resolve("library:crank-rocker")[1].splitlines() if not ln.startswith("A ")]
 
 
 def test_an_unassemblable_drag_shows_the_engines_message(page):
@@ -292,3 +300,283 @@ def test_velocity_plan(page):
     page.check("#show-acceleration-plan")
     wait_drawn(page, lambda: "acceleration plan" in page.inner_text("#drawing"), "draw the acceleration plan")
     assert not page.is_checked("#show-velocity-plan")
+
+
+def _api(server, path, body):
+    import urllib.request
+    req = urllib.request.Request(f"{server}{path}", data=json.dumps(body).encode(),
+                                 headers={"content-type": "application/json"})
+    with urllib.request.urlopen(req, timeout=60) as r:
+        return json.loads(r.read())
+
+
+def test_a_construction_played_step_by_step(page, server):
+    from linkwork.constructions import CONSTRUCTIONS
+    options = page.locator("#construction option").evaluate_all("els => els.map(e => e.value)")
+    assert options == [""] + list(CONSTRUCTIONS)  # every construction the engine offers
+    api = _api(server, "/api/construction", {"source": {"library": "crank-rocker"}, "name": "kennedy"})
+    page.select_option("#construction", "kennedy")
+    wait_drawn(page, lambda: page.inner_text("#step-text") == api["steps"][0], "show the first step")
+    assert page.inner_text("#step-count") == f"step 1 of {len(api['steps'])}"
+    assert page.is_disabled("#step-back")
+    page.click("#step-forward")
+    wait_drawn(page, lambda: page.inner_text("#step-text") == api["steps"][1], "show the second step")
+    # the drawing is the construction up to that step: the API's drawing for step 1
+    want = _api(server, "/api/drawing", {"source": {"library": "crank-rocker"}, "at": [math.pi / 2],
+                                         "layers": ["mechanism"], "construction": "kennedy", "step": 1})
+    assert page.locator("#drawing svg").evaluate("e => e.outerHTML").count("<path") == \
+        want["svg"].count("<path")
+    page.click("#step-back")
+    wait_drawn(page, lambda: page.inner_text("#step-text") == api["steps"][0], "step back")
+    # a construction the mechanism does not allow: the engine's message, the mechanism still drawn
+    page.select_option("#construction", "klein")
+    page.wait_for_selector("#error:not([hidden])", timeout=20_000)
+    assert "klein: " in page.inner_text("#error") and "slider-crank" in page.inner_text("#error")
+    assert page.inner_text("#step-text") == ""
+    page.select_option("#construction", "")
+    wait_drawn(page, lambda: page.is_hidden("#error"), "drop the construction")
+
+
+@pytest.mark.parametrize("key, values", [
+    ("point:C:y", lambda sol: sol.point("C").position[:, 1]),
+    ("point:B:v", lambda sol: np.hypot(*sol.point("B").velocity.T)),
+    ("link:rocker:angle", lambda sol: np.degrees(sol.link("rocker").angle)),
+    ("link:coupler:alpha", lambda sol: sol.link("coupler").alpha),
+])
+def test_plot_over_the_motion_marks_the_input_and_its_extremes_are_the_engines(page, key, values):
+    sol = linkwork.whole_motion(MECH)
+    page.select_option("#quantity", key)
+    page.wait_for_selector("#plot svg", timeout=30_000)
+    svg = page.locator("#plot svg")
+    v = values(sol)
+    assert float(svg.get_attribute("data-max")) == pytest.approx(np.nanmax(v), rel=1e-12, abs=1e-12)
+    assert float(svg.get_attribute("data-min")) == pytest.approx(np.nanmin(v), rel=1e-12, abs=1e-12)
+    assert int(svg.get_attribute("data-argmax")) == int(np.nanargmax(v))
+    assert svg.locator("polyline.curve").count() >= 1
+    assert svg.get_attribute("data-current") == "0"
+    # the slider moves the mark
+    page.focus("#input-slider")
+    for _ in range(10):
+        page.keyboard.press("ArrowRight")
+    wait_drawn(page, lambda: page.get_attribute("#plot svg", "data-current") == "10", "move the mark")
+
+
+def selected_rows(pg) -> dict[str, tuple[float, str]]:
+    rows = pg.locator("#selected tr").evaluate_all(
+        "trs => trs.map(r => [r.dataset.quantity, r.cells[1].textContent, r.cells[2].textContent])")
+    return {k: (float(v), unit) for k, v, unit in rows}
+
+
+def test_clicking_selects_a_point_a_link_or_a_pair(page):
+    """(The panel shows four decimals.) At the design position (crank up, 60 rpm = 2π rad/s): the crank's end A moves at
+    |v| = 10 mm · 2π/s, its acceleration is centripetal, 10 mm · (2π/s)²."""
+    w = 2 * math.pi
+    page.mouse.click(*_client_of(page, (0.0, 10.0)))
+    wait_drawn(page, lambda: page.get_attribute("#selected", "data-selected") == "point:A", "select A")
+    rows = selected_rows(page)
+    assert rows["x"] == (pytest.approx(0.0, abs=1e-9), "mm") and rows["y"] == (pytest.approx(10.0, abs=5e-5), "mm")
+    assert rows["|v|"] == (pytest.approx(10 * w, abs=5e-5), "mm/s")
+    assert rows["vx"] == (pytest.approx(-10 * w, abs=5e-5), "mm/s")
+    assert rows["|a|"] == (pytest.approx(10 * w * w, abs=5e-5), "mm/s²")
+    assert page.input_value("#selection") == "point:A"
+    # a second click on a point that is a pair selects the pair: O2's relative ω is the crank's
+    page.mouse.click(*_client_of(page, (0.0, 0.0)))
+    wait_drawn(page, lambda: page.get_attribute("#selected", "data-selected") == "point:O2", "select O2")
+    page.mouse.click(*_client_of(page, (0.0, 0.0)))
+    wait_drawn(page, lambda: page.get_attribute("#selected", "data-selected") == "joint:O2", "select the pair O2")
+    assert selected_rows(page)["ω"] == (pytest.approx(w, abs=5e-5), "rad/s")
+    # the middle of the crank's bar: the crank, at 90°, turning at 2π rad/s
+    page.mouse.click(*_client_of(page, (0.0, 5.0)))
+    wait_drawn(page, lambda: page.get_attribute("#selected", "data-selected") == "link:crank", "select the crank")
+    rows = selected_rows(page)
+    assert rows["angle"] == (pytest.approx(90.0, abs=5e-5), "°") and rows["ω"] == (pytest.approx(w, abs=5e-5), "rad/s")
+    # the numbers follow the input: the coupler point C, 40 samples on, as the engine solves it
+    page.select_option("#selection", "point:C")
+    page.focus("#input-slider")
+    for _ in range(40):
+        page.keyboard.press("ArrowRight")
+    k = float(linkwork.whole_motion(MECH).inputs[40, 0])
+    wait_drawn(page, lambda: json.loads(page.get_attribute("#selected", "data-input") or "[0]") ==
+               pytest.approx([k], abs=1e-15) and page.get_attribute("#selected", "data-selected") == "point:C",
+               "show C at the new input")
+    sol = linkwork.solve(MECH, [k])
+    rows = selected_rows(page)
+    assert (rows["x"][0], rows["y"][0]) == pytest.approx(tuple(sol.point("C").position[0]), abs=1e-4)
+    assert rows["|a|"][0] == pytest.approx(np.hypot(*sol.point("C").acceleration[0]), abs=1e-4)
+
+
+def test_traced_paths_are_those_chosen(page):
+    page.check("#show-paths")
+    wait_drawn(page, lambda: page.locator("#drawing svg [id^=path-]").count() == 3, "trace every path")
+    page.select_option("#paths-of", ["C"])
+    wait_drawn(page, lambda: page.locator("#drawing svg [id^=path-]").evaluate_all("es => es.map(e => e.id)")
+               == ["path-C"], "trace C's path only")
+
+
+def test_exports(page):
+    from linkwork.kinematics.export import csv_lines
+    page.check("#show-poles")
+    wait_drawn(page, lambda: page.locator("#drawing svg #layer-poles").count() == 1, "draw the poles")
+    shown = page.locator("#drawing svg").evaluate("e => e.outerHTML")
+    with page.expect_download() as dl:
+        page.click("#export-svg")
+    svg = Path(dl.value.path()).read_text()
+    assert dl.value.suggested_filename == "crank-rocker.svg"
+    assert 'id="layer-poles"' in svg and svg.count("<circle") == shown.count("<circle")
+    with page.expect_download() as dl:
+        page.click("#export-png")
+    assert dl.value.suggested_filename == "crank-rocker.png"
+    assert Path(dl.value.path()).read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    with page.expect_download(timeout=60_000) as dl:
+        page.click("#export-csv")
+    assert dl.value.suggested_filename == "crank-rocker-motion.csv"
+    assert Path(dl.value.path()).read_text() == "".join(csv_lines(linkwork.whole_motion(MECH)))
+
+
+def _edit(pg, op, name, **fields):
+    pg.select_option("#edit-op", op)
+    pg.fill("#edit-name", name)
+    for field, value in fields.items():
+        pg.fill(f"#edit-{field}", value)
+    pg.click("#edit-apply")
+    wait_drawn(pg, lambda: pg.get_attribute("#editor", "data-applied") in ("ok", "error"), f"apply {op} {name}")
+    return pg.get_attribute("#editor", "data-applied")
+
+
+def test_editing_adds_and_deletes_points_links_and_joints(page):
+    """The crank-rocker becomes a Stephenson six-bar: a dyad C–F–O6 hung between the coupler
+    point C and a new frame pivot O6; each edit is read by the engine, and the intermediate files
+    that do not build show its message. The expected file is written here by hand."""
+    text = resolve("library:crank-rocker")[1]
+    want = (text.replace('C  = [15, 25]\n', 'C  = [15, 25]\nO6 = [70, 30]\nF = [45, 45]\n')
+            .replace('frame   = ["O2", "O4"]', 'frame = ["O2", "O4", "O6"]')
+            .replace('rocker  = ["B", "O4"]\n', 'rocker  = ["B", "O4"]\nl5 = ["C", "F"]\nl6 = ["F", "O6"]\n')
+            .replace('O4 = { type = "revolute", links = ["rocker", "frame"] }\n',
+                     'O4 = { type = "revolute", links = ["rocker", "frame"] }\n'
+                     'C = { type = "revolute", links = ["coupler", "l5"] }\n'
+                     'F = { type = "revolute", links = ["l5", "l6"] }\n'
+                     'O6 = { type = "revolute", links = ["l6", "frame"] }\n'))
+    six = load_text(want)
+    assert _edit(page, "add-point", "O6", link="frame", xy="70, 30") == "ok"
+    wait_drawn(page, lambda: page.locator("#numbers tr[data-point='O6']").count() == 1, "list O6")
+    assert number_row(page, "O6") == (70.0, 30.0)
+    # a link whose point does not exist yet: the engine's message, and the text stays for the next edit
+    assert _edit(page, "add-link", "l5", members="C, F") == "error"
+    msg = page.inner_text("#error")
+    with pytest.raises(LinkworkError) as exc:
+        load_text(page.input_value("#edit-text"), source="crank-rocker.toml")
+    assert msg == str(exc.value) and "F" in msg
+    assert page.locator("#drawing.stale").count() == 1
+    assert _edit(page, "add-point", "F", link="l5", xy="45, 45") == "error"  # l5 has no pair yet
+    assert _edit(page, "add-link", "l6", members="F, O6") == "error"
+    assert _edit(page, "add-joint", "C", members="coupler, l5") == "error"
+    assert _edit(page, "add-joint", "F", members="l5, l6") == "error"
+    assert _edit(page, "add-joint", "O6", members="l6, frame") == "ok"
+    assert page.is_hidden("#error")
+    got = load_text(page.input_value("#edit-text")).points
+    assert {p: tuple(v) for p, v in got.items()} == {p: tuple(v) for p, v in six.points.items()}
+    assert page.input_value("#edit-text").replace(" ", "") == want.replace(" ", "")
+    # the six-bar is solved where the four-bar was (the design position): F as the engine puts it
+    assert number_row(page, "F") == pytest.approx((45.0, 45.0), abs=1e-4)
+    page.wait_for_selector("#structure dd")
+    wait_drawn(page, lambda: "1" in page.inner_text("#structure"), "the six-bar's structure")
+    # and deleting takes it back apart: the pair O6 first (the engine says what is then wrong)
+    assert _edit(page, "delete-joint", "O6") == "error"
+    assert "O6" in page.inner_text("#error") or "l6" in page.inner_text("#error")
+    for op, name in (("delete-joint", "F"), ("delete-joint", "C"), ("delete-link", "l6"),
+                     ("delete-link", "l5"), ("delete-point", "F")):
+        _edit(page, op, name)
+    assert _edit(page, "delete-point", "O6") == "ok", page.inner_text("#error")
+    assert page.input_value("#edit-text").replace(" ", "") == text.replace(" ", "")
+
+
+def test_an_edit_that_is_incomplete_is_refused_by_the_form(page):
+    page.select_option("#edit-op", "add-point")
+    page.fill("#edit-name", "D")
+    page.fill("#edit-link", "coupler")
+    page.fill("#edit-xy", "1")
+    page.click("#edit-apply")
+    page.wait_for_selector("#error:not([hidden])")
+    assert page.inner_text("#error") == "edit: give the design coordinates as x, y"
+
+
+def test_a_mechanism_with_two_drivers(page):
+    """Heusinger's valve gear has two drivers (the wheel O and the reversing arm RV): the page
+    asks for each drawing with one value per driver and shows both inputs."""
+    mech = linkwork.load("library:heusinger-valve-gear")
+    page.select_option("#mechanism", "library:heusinger-valve-gear")
+    wait_drawn(page, lambda: page.inner_text("#title") == mech.name and
+               page.locator("#numbers tr[data-point='P45']").count() == 1, "open the valve gear", timeout=120)
+    assert page.is_hidden("#error")
+    want = [mech.driver_input_at_design(d) for d in mech.drivers]
+    assert drawn_input(page) == pytest.approx(want, abs=1e-12)
+    assert page.inner_text("#input-value") == ", ".join(
+        f"{d.joint} {math.degrees(v):.2f}°" for d, v in zip(mech.drivers, want))
+
+
+def test_keyboard_only(page):
+    """The main controls are reached with Tab and worked with keys alone."""
+    page.focus("#mechanism")
+    seen = []
+    for _ in range(80):
+        seen.append(page.evaluate("document.activeElement.id"))
+        page.keyboard.press("Tab")
+    for control in ("mechanism", "upload", "export-svg", "export-png", "export-csv", "save", "drawing",
+                    "quantity", "play", "speed", "input-slider", "show-poles", "show-velocity-plan",
+                    "paths-of", "selection", "edit", "construction", "edit-op", "edit-name", "edit-apply"):
+        assert control in seen, control
+    # a construction chosen and stepped with keys
+    page.focus("#construction")
+    page.keyboard.press("ArrowDown")  # the first construction of the list
+    first = page.input_value("#construction")
+    assert first == "rotated-velocities"
+    from linkwork.constructions import construct
+    steps = [s.text for s in construct(first, MECH, linkwork.solve(MECH, [math.pi / 2])).steps]
+    wait_drawn(page, lambda: page.inner_text("#step-text") == steps[0], "show the first step")
+    page.focus("#step-forward")
+    page.keyboard.press("Enter")
+    wait_drawn(page, lambda: page.inner_text("#step-text") == steps[1], "step with Enter")
+    page.focus("#drawing")
+    page.keyboard.press(".")
+    wait_drawn(page, lambda: page.inner_text("#step-text") == steps[2], "step with the period key")
+    page.keyboard.press(",")
+    wait_drawn(page, lambda: page.inner_text("#step-text") == steps[1], "step back with the comma key")
+    # the motion: arrows go one sample, Space plays and pauses
+    page.keyboard.press("ArrowRight")
+    page.keyboard.press("ArrowRight")
+    assert page.input_value("#input-slider") == "2"
+    sol = linkwork.whole_motion(MECH)
+    wait_drawn(page, lambda: drawn_input(page) == pytest.approx([sol.inputs[2, 0]], abs=1e-15), "draw sample 2")
+    page.keyboard.press("Space")
+    assert page.get_attribute("#play", "aria-pressed") == "true"
+    page.keyboard.press("Space")
+    assert page.get_attribute("#play", "aria-pressed") == "false"
+    # a design point moved with Alt+arrows: A one step (0.1 mm for this drawing of 40 mm) up
+    page.focus("#selection")
+    page.select_option("#selection", "point:A")
+    page.check("#edit")
+    page.focus("#drawing")
+    page.keyboard.press("Alt+ArrowUp")
+    wait_drawn(page, lambda: json.loads(page.get_attribute("#drawing", "data-moved") or "{}").get("A")
+               == pytest.approx([0.0, 10.1]), "move A up")
+
+
+def test_numbers_carry_units(page):
+    assert page.inner_text("#numbers thead").split() == ["point", "x", "[mm]", "y", "[mm]"]
+    assert page.inner_text("#input-value").endswith("°")
+    for choice in ("point:C", "link:coupler", "joint:B"):
+        page.select_option("#selection", choice)
+        wait_drawn(page, lambda: page.get_attribute("#selected", "data-selected") == choice, f"select {choice}")
+        rows = page.locator("#selected tr").evaluate_all(
+            "trs => trs.map(r => [r.cells[0].textContent, r.cells[1].textContent, r.cells[2].textContent])")
+        assert rows and all(unit.strip() for _, _, unit in rows), rows
+        units = {k: u for k, _, u in rows}
+        want = {"point:C": {"x": "mm", "|v|": "mm/s", "|a|": "mm/s²"},
+                "link:coupler": {"angle": "°", "ω": "rad/s", "α": "rad/s²"},
+                "joint:B": {"angle": "°", "ω": "rad/s", "α": "rad/s²"}}[choice]
+        assert {k: units[k] for k in want} == want
+    for key, unit in (("point:C:x", "mm"), ("point:C:a", "mm/s²"), ("link:rocker:omega", "rad/s")):
+        page.select_option("#quantity", key)
+        wait_drawn(page, lambda: page.get_attribute("#plot svg", "data-unit") == unit, f"plot {key}")
+        assert f"[{unit}]" in page.inner_text("#plot")
+        assert page.locator(f"#quantity option[value='{key}']").inner_text().endswith(f"[{unit}]")

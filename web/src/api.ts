@@ -27,6 +27,7 @@ export interface MechanismInfo {
   points: Record<string, XY>;
   links: Record<string, string[]>;
   owners: Record<string, string>;
+  joints: { name: string; type: string; links: string[]; point: string | null }[];
   drivers: DriverInfo[];
   layers: string[];
   constructions: string[];
@@ -53,6 +54,36 @@ export interface Motion {
   warnings: string[];
 }
 
+export interface PointState {
+  position: [number | null, number | null];
+  velocity: [number | null, number | null] | null;
+  acceleration: [number | null, number | null] | null;
+}
+
+export interface LinkState {
+  angle: number | null;
+  omega: number | null;
+  alpha: number | null;
+}
+
+/** A pair's (joint's) numbers: relative angle, ω, α; a prismatic pair also its slide. */
+export type JointState = Record<string, number | [number | null, number | null] | null>;
+
+/** A sample of `analyze --format json` (the full motion document). */
+export interface FullSample extends MotionSample {
+  condition: number | null;
+  points: Record<string, PointState>;
+  links: Record<string, LinkState>;
+  joints: Record<string, JointState>;
+}
+
+export interface FullMotion {
+  mechanism: string;
+  drivers: string[];
+  samples: FullSample[];
+  warnings: string[];
+}
+
 export interface Transform {
   origin: XY;
   lo: XY;
@@ -73,9 +104,13 @@ export interface Drawing {
 
 export interface DrawingRequest {
   source: Source;
-  at?: number[];
+  at?: number[] | number[][];
   layers: string[];
   construction?: string;
+  step?: number;
+  paths?: string[];
+  link?: string;
+  point?: string;
   fit?: "motion" | "drawing";
   motion?: boolean;
 }
@@ -111,6 +146,17 @@ export async function post<T>(path: string, body: unknown): Promise<T> {
     headers: { "content-type": "application/json" },
     body: JSON.stringify(body),
   }));
+}
+
+/** A POST whose answer is a file (PNG, CSV); errors come as JSON like every other answer. */
+export async function postFile(path: string, body: unknown): Promise<Blob> {
+  const r = await fetch(path, {
+    method: "POST",
+    headers: { "content-type": "application/json" },
+    body: JSON.stringify(body),
+  });
+  if (!r.ok) await answer<never>(r);
+  return r.blob();
 }
 
 /** World coordinates of a panel → SVG user units (mm of paper, y down). */

@@ -3,9 +3,11 @@
 // the page only asks, shows and maps the pointer into the drawing's world coordinates.
 
 import {
-  ApiError, Drawing, DrawingRequest, LibraryList, MechanismInfo, Motion, Source, Transform, XY,
-  get, post, toSvg, toWorld,
+  ApiError, Drawing, DrawingRequest, FullMotion, FullSample, LibraryList, MechanismInfo, Motion,
+  Source, Transform, XY, get, post, postFile, toSvg, toWorld,
 } from "./api";
+import { EditError, addEntry, addToLink, removeEntry, removeFromLinks } from "./edit";
+import { plotSvg } from "./plot";
 
 const $ = <T extends HTMLElement>(id: string): T => {
   const el = document.getElementById(id);
@@ -17,6 +19,19 @@ const ui = {
   mechanism: $<HTMLSelectElement>("mechanism"),
   upload: $<HTMLInputElement>("upload"),
   save: $<HTMLButtonElement>("save"),
+  exportSvg: $<HTMLButtonElement>("export-svg"),
+  exportPng: $<HTMLButtonElement>("export-png"),
+  exportCsv: $<HTMLButtonElement>("export-csv"),
+  editOp: $<HTMLSelectElement>("edit-op"),
+  editName: $<HTMLInputElement>("edit-name"),
+  editLink: $<HTMLInputElement>("edit-link"),
+  editXy: $<HTMLInputElement>("edit-xy"),
+  editMembers: $<HTMLInputElement>("edit-members"),
+  editMembersWhat: $<HTMLSpanElement>("edit-members-what"),
+  editApply: $<HTMLButtonElement>("edit-apply"),
+  editText: $<HTMLTextAreaElement>("edit-text"),
+  editTextApply: $<HTMLButtonElement>("edit-text-apply"),
+  editor: $<HTMLFieldSetElement>("editor"),
   error: $<HTMLDivElement>("error"),
   drawing: $<HTMLDivElement>("drawing"),
   title: $<HTMLHeadingElement>("title"),
@@ -31,6 +46,18 @@ const ui = {
   edit: $<HTMLInputElement>("edit"),
   numbers: $<HTMLTableElement>("numbers"),
   structure: $<HTMLDListElement>("structure"),
+  construction: $<HTMLSelectElement>("construction"),
+  constructionLink: $<HTMLSelectElement>("construction-link"),
+  constructionPoint: $<HTMLSelectElement>("construction-point"),
+  stepBack: $<HTMLButtonElement>("step-back"),
+  stepForward: $<HTMLButtonElement>("step-forward"),
+  stepCount: $<HTMLOutputElement>("step-count"),
+  stepText: $<HTMLParagraphElement>("step-text"),
+  quantity: $<HTMLSelectElement>("quantity"),
+  plot: $<HTMLDivElement>("plot"),
+  pathsOf: $<HTMLSelectElement>("paths-of"),
+  selection: $<HTMLSelectElement>("selection"),
+  selected: $<HTMLTableElement>("selected"),
 };
 
 /** Layers drawn over the mechanism, and the plans (constructions drawn beside it). */
@@ -41,10 +68,14 @@ interface State {
   moved: Record<string, XY>; // design points dragged since
   info: MechanismInfo | null;
   motion: Motion | null;
+  full: Promise<FullMotion> | null; // the whole motion with every number, asked for when needed
+  motionSource: Source | null; // the design the motion is of
   index: number;
   playing: boolean;
   layers: Set<string>;
   plan: string | null;
+  // the construction played step by step (0-based step; its link and point, if chosen)
+  construction: { name: string; link: string; point: string; step: number } | null;
   drawn: Drawing | null;
   busy: boolean;
   again: boolean;
@@ -52,9 +83,17 @@ interface State {
 }
 
 const state: State = {
-  base: null, moved: {}, info: null, motion: null, index: 0, playing: false,
-  layers: new Set(), plan: null, drawn: null, busy: false, again: false, generation: 0,
+  base: null, moved: {}, info: null, motion: null, full: null, motionSource: null, index: 0, playing: false,
+  layers: new Set(), plan: null, construction: null, drawn: null, busy: false, again: false, generation: 0,
 };
+
+// drag → redrawn frame: for each drawing of a drag, the time from the pointer's move it follows to
+// the first paint after it (ms); bench/bench_workbench.py reads them
+// (and of that, the request's round trip: linkworkFetches)
+const frames: number[] = [];
+const fetches: number[] = [];
+Object.assign(window, { linkworkFrames: frames, linkworkFetches: fetches });
+let movedAt = 0; // when the pointer moved last during a drag (performance.now())
 
 function source(): Source {
   const s: Source = { ...(state.base as Source) };
@@ -99,10 +138,22 @@ function inputText(values: (number | null)[]): string {
 function drawingRequest(): DrawingRequest {
   const layers = ["mechanism", ...Array.from(state.layers)];
   const req: DrawingRequest = { source: source(), layers };
-  if (state.motion) req.at = sampleInput(state.index);
-  if (state.plan) req.construction = state.plan;
+  if (state.motion) {
+    // one sample: a number per driver, as one list of them when there are several
+    const at = sampleInput(state.index);
+    req.at = at.length > 1 ? [at] : at;
+  }
+  const c = state.construction;
+  if (c) {
+    req.construction = c.name;
+    req.step = c.step;
+    if (c.link) req.link = c.link;
+    if (c.point) req.point = c.point;
+  } else if (state.plan) req.construction = state.plan;
   // while dragging, the frames leave the whole motion out: they follow the pointer sooner
   if (dragging) req.motion = false;
+  const traced = Array.from(ui.pathsOf.selectedOptions).map((o) => o.value);
+  if (traced.length) req.paths = traced;
   return req;
 }
 
@@ -119,17 +170,24 @@ async function redraw(): Promise<void> {
       state.again = false;
       const generation = state.generation;
       const req = drawingRequest();
+      const asked = req.motion === false ? movedAt : 0;
       try {
+        const sent = performance.now();
         const d = await post<Drawing>("/api/drawing", req);
         if (generation !== state.generation) continue;
+        if (asked) fetches.push(performance.now() - sent);
         show(d, req);
+        if (asked) { // after the next paint: a task queued in the frame callback runs after it
+          requestAnimationFrame(() => window.setTimeout(() => frames.push(performance.now() - asked), 0));
+        }
         clearError();
       } catch (e) {
         if (generation !== state.generation) continue;
         if (req.construction && e instanceof ApiError && e.status === 400) {
           // a plan that cannot be drawn here: say why, draw the rest
-          showError(`${PLANS[req.construction]}: ${e.message}`);
-          const plain = { ...req, construction: undefined };
+          showError(`${PLANS[req.construction] ?? req.construction}: ${e.message}`);
+          if (state.construction) stepShown([], 0);
+          const plain = { ...req, construction: undefined, step: undefined };
           const rest = await post<Drawing>("/api/drawing", plain).catch(() => null);
           if (rest && generation === state.generation) show(rest, plain);
         } else {
@@ -157,6 +215,62 @@ function show(d: Drawing, req: DrawingRequest): void {
   ui.sampleStatus.textContent = d.status;
   ui.sampleStatus.className = d.status;
   numbers(d);
+  void plot();
+  void selected(d, req);
+  if (req.construction && state.construction && req.construction === state.construction.name) {
+    stepShown(d.steps, req.step ?? 0);
+  }
+}
+
+/** The step drawn and its text (as the engine words it), and which way one can step. */
+function stepShown(steps: string[], k: number): void {
+  const n = steps.length;
+  ui.stepCount.textContent = n ? `step ${k + 1} of ${n}` : "";
+  ui.stepText.textContent = n ? steps[k] : "";
+  ui.stepText.dataset.step = String(k);
+  ui.stepBack.disabled = !n || k <= 0;
+  ui.stepForward.disabled = !n || k >= n - 1;
+}
+
+function step(by: number): void {
+  const c = state.construction;
+  const n = state.drawn?.steps.length ?? 0;
+  if (!c || !n) return;
+  const k = Math.min(Math.max(c.step + by, 0), n - 1);
+  if (k === c.step) return;
+  c.step = k;
+  void redraw();
+}
+
+function chooseConstruction(): void {
+  const name = ui.construction.value;
+  state.construction = name ? {
+    name, link: ui.constructionLink.value, point: ui.constructionPoint.value, step: 0,
+  } : null;
+  if (name) { // one construction is drawn at a time: the plans' toggles give way
+    state.plan = null;
+    for (const other of Object.keys(PLANS)) {
+      const box = document.getElementById(`show-${other}`) as HTMLInputElement | null;
+      if (box) box.checked = false;
+    }
+  }
+  stepShown([], 0);
+  void redraw();
+}
+
+function buildConstructions(info: MechanismInfo): void {
+  const keep = ui.construction.value;
+  ui.construction.innerHTML = `<option value="">none</option>` + info.constructions
+    .map((c) => `<option value="${c}">${c}</option>`).join("");
+  ui.construction.value = info.constructions.includes(keep) ? keep : "";
+  const moving = Object.keys(info.links).filter((l) => l !== info.frame);
+  ui.constructionLink.innerHTML = `<option value="">default</option>` + moving
+    .map((l) => `<option value="${escapeHtml(l)}">${escapeHtml(l)}</option>`).join("");
+  ui.constructionPoint.innerHTML = `<option value="">default</option>` + Object.keys(info.points)
+    .map((p) => `<option value="${escapeHtml(p)}">${escapeHtml(p)}</option>`).join("");
+  state.construction = null;
+  if (ui.construction.value) chooseConstruction();
+  else stepShown([], 0);
 }
 
 function numbers(d: Drawing): void {
@@ -174,24 +288,235 @@ function numbers(d: Drawing): void {
   }
 }
 
+// ------------------------------------------------------------------ quantities and plots
+/** What can be read off a sample: a point's x, y, speed and acceleration magnitude, a link's
+ * angle, angular velocity and acceleration, in the file's length unit, degrees and radians. */
+interface Quantity {
+  label: string;
+  unit: string;
+  of: (s: FullSample) => number | null;
+}
+
+const hyp = (v: [number | null, number | null] | null | undefined): number | null =>
+  v && v[0] !== null && v[1] !== null ? Math.hypot(v[0], v[1]) : null;
+
+function quantities(info: MechanismInfo): Map<string, Quantity> {
+  const u = info.units.length;
+  const out = new Map<string, Quantity>();
+  for (const p of Object.keys(info.points)) {
+    out.set(`point:${p}:x`, { label: `${p} x`, unit: u, of: (s) => s.points[p]?.position[0] ?? null });
+    out.set(`point:${p}:y`, { label: `${p} y`, unit: u, of: (s) => s.points[p]?.position[1] ?? null });
+    out.set(`point:${p}:v`, { label: `${p} |v|`, unit: `${u}/s`, of: (s) => hyp(s.points[p]?.velocity) });
+    out.set(`point:${p}:a`, { label: `${p} |a|`, unit: `${u}/s²`, of: (s) => hyp(s.points[p]?.acceleration) });
+  }
+  for (const l of Object.keys(info.links)) {
+    if (l === info.frame) continue;
+    const deg = (v: number | null | undefined) => (v === null || v === undefined ? null : (v * 180) / Math.PI);
+    out.set(`link:${l}:angle`, { label: `${l} angle`, unit: "°", of: (s) => deg(s.links[l]?.angle) });
+    out.set(`link:${l}:omega`, { label: `${l} ω`, unit: "rad/s", of: (s) => s.links[l]?.omega ?? null });
+    out.set(`link:${l}:alpha`, { label: `${l} α`, unit: "rad/s²", of: (s) => s.links[l]?.alpha ?? null });
+  }
+  return out;
+}
+
+function buildQuantities(info: MechanismInfo): void {
+  const keep = ui.quantity.value;
+  const qs = quantities(info);
+  ui.quantity.innerHTML = `<option value="">none</option>` + Array.from(qs.entries())
+    .map(([k, q]) => `<option value="${escapeHtml(k)}">${escapeHtml(q.label)} [${escapeHtml(q.unit)}]</option>`).join("");
+  ui.quantity.value = qs.has(keep) ? keep : "";
+}
+
+/** The whole motion with every number (asked for once per design, when a panel needs it). */
+function fullMotion(): Promise<FullMotion> {
+  if (!state.full) {
+    state.full = post<FullMotion>("/api/motion", { source: state.motionSource ?? source(), detail: "full" });
+    state.full.catch(() => { state.full = null; });
+  }
+  return state.full;
+}
+
+let plotted = ""; // the quantity and sample drawn last (a plot is redrawn when either changes)
+
+async function plot(): Promise<void> {
+  const key = ui.quantity.value;
+  const info = state.info;
+  if (!key || !info || !state.motion) {
+    ui.plot.innerHTML = "";
+    plotted = "";
+    return;
+  }
+  const q = quantities(info).get(key);
+  if (!q) return;
+  const generation = state.generation;
+  let full: FullMotion;
+  try {
+    full = await fullMotion();
+  } catch (e) {
+    ui.plot.textContent = messageOf(e);
+    return;
+  }
+  if (generation !== state.generation || key !== ui.quantity.value) return;
+  const wish = `${key}@${state.index}#${generation}`;
+  if (wish === plotted) return;
+  plotted = wish;
+  ui.plot.innerHTML = plotSvg({
+    label: q.label, unit: q.unit, values: full.samples.map(q.of),
+    inputs: full.samples.map((s) => inputText(Array.isArray(s.input) ? s.input : [s.input])),
+  }, state.index);
+  ui.plot.dataset.quantity = key;
+}
+
+// ------------------------------------------------------------------ selection
+/** The units of a pair's numbers (the names of the JSON of `analyze`). */
+function jointUnit(field: string, u: string): string {
+  return ({
+    angle: "°", omega: "rad/s", alpha: "rad/s²", slide: u, sliding_velocity: `${u}/s`,
+    sliding_acceleration: `${u}/s²`, velocity: `${u}/s`, acceleration: `${u}/s²`, coriolis: `${u}/s²`,
+  } as Record<string, string>)[field] ?? "";
+}
+
+const num = (v: number | null | undefined, digits = 4): string =>
+  v === null || v === undefined || !Number.isFinite(v) ? "—" : v.toFixed(digits);
+
+let selectedFor = ""; // the request whose numbers the panel shows
+
+/** The numbers of the selected point, link or pair at the drawn input (`linkwork.solve`). */
+async function selected(d: Drawing, req: DrawingRequest): Promise<void> {
+  const choice = ui.selection.value;
+  const info = state.info;
+  const body = ui.selected.tBodies[0];
+  if (!choice || !info) {
+    body.innerHTML = "";
+    selectedFor = "";
+    return;
+  }
+  if (d.input.some((v) => v === null)) return;
+  const at = info.drivers.length === 1 ? [d.input[0] as number] : [d.input as number[]];
+  const ask = JSON.stringify({ source: req.source, at, choice });
+  if (ask === selectedFor) return;
+  selectedFor = ask;
+  let doc: { samples: FullSample[] };
+  try {
+    doc = await post<{ samples: FullSample[] }>("/api/solve", { source: req.source, at, order: 2 });
+  } catch (e) {
+    body.innerHTML = `<tr><td>${escapeHtml(messageOf(e))}</td></tr>`;
+    return;
+  }
+  if (ask !== selectedFor) return;
+  const s = doc.samples[0];
+  const u = info.units.length;
+  const rows: [string, string, string][] = [];
+  const [kind, name] = [choice.slice(0, choice.indexOf(":")), choice.slice(choice.indexOf(":") + 1)];
+  const vec = (label: string, v: [number | null, number | null] | null | undefined, unit: string, size = true) => {
+    rows.push([`${label}x`, num(v?.[0]), unit], [`${label}y`, num(v?.[1]), unit]);
+    if (size) rows.push([`|${label}|`, num(hyp(v ?? null)), unit]);
+  };
+  if (kind === "point") {
+    const p = s.points[name];
+    rows.push(["x", num(p?.position[0]), u], ["y", num(p?.position[1]), u]);
+    vec("v", p?.velocity, `${u}/s`);
+    vec("a", p?.acceleration, `${u}/s²`);
+  } else if (kind === "link") {
+    const l = s.links[name];
+    rows.push(["angle", num(l ? (l.angle === null ? null : (l.angle * 180) / Math.PI) : null), "°"],
+      ["ω", num(l?.omega), "rad/s"], ["α", num(l?.alpha), "rad/s²"]);
+  } else {
+    for (const [field, v] of Object.entries(s.joints[name] ?? {})) {
+      const unit = jointUnit(field, u);
+      const label = ({ omega: "ω", alpha: "α" } as Record<string, string>)[field] ?? field;
+      if (Array.isArray(v)) vec(`${label} `, v, unit, false);
+      else rows.push([label, num(field === "angle" && v !== null ? (v * 180) / Math.PI : v), unit]);
+    }
+  }
+  body.innerHTML = rows.map(([k, v, unit]) =>
+    `<tr data-quantity="${escapeHtml(k)}"><th>${escapeHtml(k)}</th><td>${v}</td><td class="unit">${escapeHtml(unit)}</td></tr>`).join("");
+  ui.selected.dataset.selected = choice;
+  ui.selected.dataset.input = JSON.stringify(d.input);
+}
+
+function select(choice: string): void {
+  ui.selection.value = choice;
+  selectedFor = "";
+  if (state.drawn) void selected(state.drawn, drawingRequest());
+}
+
+function buildSelection(info: MechanismInfo): void {
+  const keep = ui.selection.value;
+  const opt = (v: string, t: string) => `<option value="${escapeHtml(v)}">${escapeHtml(t)}</option>`;
+  const moving = Object.keys(info.points).filter((p) => info.owners[p] !== info.frame);
+  ui.selection.innerHTML = opt("", "none (click the drawing)") +
+    Object.keys(info.points).map((p) => opt(`point:${p}`, `point ${p}`)).join("") +
+    Object.keys(info.links).filter((l) => l !== info.frame).map((l) => opt(`link:${l}`, `link ${l}`)).join("") +
+    info.joints.map((j) => opt(`joint:${j.name}`, `pair ${j.name} (${j.type})`)).join("");
+  ui.selection.value = Array.from(ui.selection.options).some((o) => o.value === keep) ? keep : "";
+  const traced = new Set(Array.from(ui.pathsOf.selectedOptions).map((o) => o.value));
+  ui.pathsOf.innerHTML = moving.map((p) => opt(p, p)).join("");
+  for (const o of Array.from(ui.pathsOf.options)) o.selected = traced.has(o.value);
+  selectedFor = "";
+}
+
+/** What a click at `q` (SVG units of the mechanism panel) hits: a point, else a link's bar. */
+function hit(q: XY, t: Transform): string | null {
+  const point = nearestPoint(q, t);
+  const info = state.info;
+  if (point) {
+    // a pair drawn at this point is chosen by a second click on it
+    const pair = info?.joints.find((j) => j.point === point || j.name === point);
+    if (pair && ui.selection.value === `point:${point}`) return `joint:${pair.name}`;
+    return `point:${point}`;
+  }
+  let best: string | null = null;
+  let bestDist = 2.5; // mm of paper
+  for (const [link, names] of Object.entries(info?.links ?? {})) {
+    if (link === info?.frame) continue;
+    const xy = names.map((n) => state.drawn?.points[n]).filter((p): p is XY => !!p).map((p) => toSvg(t, p));
+    for (let i = 0; i < xy.length; i++) {
+      for (let j = i + 1; j < xy.length; j++) {
+        const d = segmentDistance(q, xy[i], xy[j]);
+        if (d < bestDist) {
+          best = `link:${link}`;
+          bestDist = d;
+        }
+      }
+    }
+  }
+  return best;
+}
+
+function segmentDistance(q: XY, a: XY, b: XY): number {
+  const dx = b[0] - a[0], dy = b[1] - a[1];
+  const len2 = dx * dx + dy * dy;
+  const u = len2 ? Math.min(Math.max(((q[0] - a[0]) * dx + (q[1] - a[1]) * dy) / len2, 0), 1) : 0;
+  return Math.hypot(q[0] - a[0] - u * dx, q[1] - a[1] - u * dy);
+}
+
 // ------------------------------------------------------------------ opening
-async function open(base: Source): Promise<void> {
+async function open(base: Source, keep = false): Promise<boolean> {
   state.generation += 1;
   pause();
   clearError();
+  const before = keep ? sampleInput(state.index) : [];
   try {
     const info = await post<MechanismInfo>("/api/mechanism", { source: base });
     state.base = base;
     state.moved = {};
     state.info = info;
+    ui.editText.value = info.text;
     ui.title.textContent = info.name;
     ui.description.textContent = info.description;
     buildLayers(info);
+    buildConstructions(info);
+    buildQuantities(info);
+    buildSelection(info);
     void structure(base);
-    await loadMotion();
+    await loadMotion(before);
     if (info.warnings.length) showError(info.warnings.join("\n"));
+    return true;
   } catch (e) {
     showError(messageOf(e));
+    ui.drawing.classList.add("stale");
+    return false;
   }
 }
 
@@ -248,13 +573,16 @@ async function structure(base: Source): Promise<void> {
   }
 }
 
-async function loadMotion(keep = false): Promise<void> {
+/** The whole motion of the design; the slider goes to the sample nearest `before` (the input
+ * shown before an edit), else to the start. */
+async function loadMotion(before: number[] = []): Promise<void> {
   const generation = state.generation;
-  const before = keep ? sampleInput(state.index) : [];
   const src = source();
   const motion = await post<Motion>("/api/motion", { source: src, detail: "status" });
   if (generation !== state.generation) return;
   state.motion = motion;
+  state.full = null;
+  state.motionSource = src;
   ui.slider.dataset.moved = JSON.stringify(src.points ?? {}); // the design the motion is of
   const n = motion.samples.length;
   ui.slider.max = String(Math.max(n - 1, 0));
@@ -282,6 +610,11 @@ function buildLayers(info: MechanismInfo): void {
     if (!info.constructions.includes(name)) continue;
     addToggle(`show-${name}`, label, state.plan === name, (on) => {
       state.plan = on ? name : null;
+      if (on && state.construction) {
+        state.construction = null;
+        ui.construction.value = "";
+        stepShown([], 0);
+      }
       for (const other of Object.keys(PLANS)) {
         const box = document.getElementById(`show-${other}`) as HTMLInputElement | null;
         if (box && other !== name) box.checked = false;
@@ -390,7 +723,15 @@ function nearestPoint(q: XY, t: Transform): string | null {
 }
 
 ui.drawing.addEventListener("pointerdown", (ev) => {
-  if (!ui.edit.checked || !state.drawn) return;
+  if (!state.drawn) return;
+  if (!ui.edit.checked) { // a click selects what it hits
+    const t = state.drawn.transforms["mechanism"];
+    const screen = screenToSvg();
+    if (!t || !screen) return;
+    const what = hit(svgPoint(ev, screen), t);
+    if (what) select(what);
+    return;
+  }
   const t = state.drawn.transforms["mechanism"];
   const screen = screenToSvg();
   if (!t || !screen) return;
@@ -405,6 +746,7 @@ ui.drawing.addEventListener("pointerdown", (ev) => {
 
 ui.drawing.addEventListener("pointermove", (ev) => {
   if (!dragging) return;
+  movedAt = performance.now();
   const w = toWorld(dragging.transform, svgPoint(ev, dragging.screen));
   const [x, y, th] = dragging.pose;
   const c = Math.cos(th), s = Math.sin(th);
@@ -416,7 +758,7 @@ const endDrag = () => {
   if (!dragging) return;
   dragging = null;
   state.generation += 1;
-  void loadMotion(true).catch((e) => showError(messageOf(e)));
+  void loadMotion(sampleInput(state.index)).catch((e) => showError(messageOf(e)));
 };
 ui.drawing.addEventListener("pointerup", endDrag);
 ui.drawing.addEventListener("pointercancel", endDrag);
@@ -447,12 +789,137 @@ function savedText(): string {
   return out.join("\n");
 }
 
+/** The text the edits apply to: the file being edited (which may not build yet), else the
+ * file open, with the dragged points written in. */
+function editorText(): string {
+  const info = state.info;
+  if (info && ui.editText.value === info.text) return savedText();
+  return ui.editText.value;
+}
+
+const names = (s: string): string[] => s.split(/[\s,;]+/).map((x) => x.trim()).filter(Boolean);
+
+/** The file's text after the form's action (a clear message if the form is incomplete). */
+function edited(text: string): string {
+  const op = ui.editOp.value;
+  const name = ui.editName.value.trim();
+  if (!name) throw new EditError("give a name");
+  switch (op) {
+    case "add-point": {
+      const xy = names(ui.editXy.value).map(Number);
+      if (xy.length !== 2 || !xy.every(Number.isFinite)) throw new EditError("give the design coordinates as x, y");
+      const link = ui.editLink.value.trim();
+      if (!link) throw new EditError("give the link the point belongs to");
+      return addToLink(addEntry(text, "points", name, `[${xy[0]}, ${xy[1]}]`), link, name);
+    }
+    case "delete-point":
+      return removeFromLinks(removeEntry(text, "points", name), name);
+    case "add-link": {
+      const pts = names(ui.editMembers.value);
+      return addEntry(text, "links", name, `[${pts.map((p) => JSON.stringify(p)).join(", ")}]`);
+    }
+    case "delete-link":
+      return removeEntry(text, "links", name);
+    case "add-joint": {
+      const links = names(ui.editMembers.value);
+      if (links.length !== 2) throw new EditError("a hinge joins two links: give both");
+      return addEntry(text, "joints", name, `{ type = "revolute", links = [${links.map((l) => JSON.stringify(l)).join(", ")}] }`);
+    }
+    case "delete-joint":
+      return removeEntry(text, "joints", name);
+  }
+  throw new EditError(`unknown action ${op}`);
+}
+
+/** Open the edited text; when it does not build, the engine's message is shown and the text
+ * stays in the editor for the next edit. */
+async function applyText(text: string): Promise<void> {
+  const label = `${stem()}.toml`;
+  ui.editText.value = text;
+  ui.editor.dataset.applied = "pending";
+  const ok = await open({ text, name: label }, true);
+  if (!ok) ui.editText.value = text;
+  ui.editor.dataset.applied = ok ? "ok" : "error";
+}
+
+function showEditFields(): void {
+  const op = ui.editOp.value;
+  document.querySelectorAll<HTMLElement>("#editor label[class^=for-]").forEach((l) => {
+    l.hidden = !l.className.split(" ").includes(`for-${op}`);
+  });
+  ui.editMembersWhat.textContent = op === "add-joint" ? "two links" : "points";
+}
+
+// ------------------------------------------------------------------ keyboard
+/** A design point moved by the keyboard: `by` in the file's length unit, in the design
+ * coordinates of the point's link (those the file holds). */
+function nudge(name: string, by: XY): void {
+  const info = state.info;
+  if (!info) return;
+  const at = state.moved[name] ?? info.points[name];
+  state.moved[name] = [at[0] + by[0], at[1] + by[1]];
+  state.generation += 1;
+  void loadMotion(sampleInput(state.index)).catch((e) => showError(messageOf(e)));
+}
+
+const ARROWS: Record<string, XY> = { ArrowLeft: [-1, 0], ArrowRight: [1, 0], ArrowUp: [0, 1], ArrowDown: [0, -1] };
+
+document.addEventListener("keydown", (ev) => {
+  const target = ev.target as HTMLElement;
+  const typing = !!target.closest("input[type=text], input:not([type]), textarea");
+  if (ev.altKey && ARROWS[ev.key] && !typing && ui.edit.checked && ui.selection.value.startsWith("point:")) {
+    const info = state.info;
+    if (!info) return;
+    // a step of 1/200 of the drawing's size (Shift: ten times that), in round numbers
+    const xs = Object.values(info.points);
+    const size = Math.max(...xs.map((p) => p[0])) - Math.min(...xs.map((p) => p[0])) || 1;
+    const unit = 10 ** Math.floor(Math.log10(size / 200)) * (ev.shiftKey ? 10 : 1);
+    const [dx, dy] = ARROWS[ev.key];
+    nudge(ui.selection.value.slice(6), [dx * unit, dy * unit]);
+    ev.preventDefault();
+    return;
+  }
+  // the form's own controls keep their keys (a slider's arrows, a button's Space)
+  if (typing || ev.altKey || ev.ctrlKey || ev.metaKey || target.closest("input, select, textarea, button, summary")) return;
+  if (ev.key === " ") {
+    if (state.playing) pause();
+    else play();
+  } else if ((ev.key === "ArrowRight" || ev.key === "ArrowLeft") && state.motion) {
+    pause();
+    const n = state.motion.samples.length;
+    setIndex((state.index + (ev.key === "ArrowRight" ? 1 : n - 1)) % n);
+  } else if (ev.key === "." || ev.key === ",") {
+    step(ev.key === "." ? 1 : -1);
+  } else return;
+  ev.preventDefault();
+});
+
 // ------------------------------------------------------------------ wiring
+ui.editOp.addEventListener("change", showEditFields);
+ui.editApply.addEventListener("click", () => {
+  let text: string;
+  try {
+    text = edited(editorText());
+  } catch (e) {
+    showError(`edit: ${messageOf(e)}`);
+    return;
+  }
+  void applyText(text);
+});
+ui.editTextApply.addEventListener("click", () => void applyText(ui.editText.value));
 ui.play.addEventListener("click", () => (state.playing ? pause() : play()));
 ui.slider.addEventListener("input", () => {
   pause();
   setIndex(Number(ui.slider.value));
 });
+ui.construction.addEventListener("change", chooseConstruction);
+ui.constructionLink.addEventListener("change", chooseConstruction);
+ui.constructionPoint.addEventListener("change", chooseConstruction);
+ui.quantity.addEventListener("change", () => void plot());
+ui.selection.addEventListener("change", () => select(ui.selection.value));
+ui.pathsOf.addEventListener("change", () => void redraw());
+ui.stepBack.addEventListener("click", () => step(-1));
+ui.stepForward.addEventListener("click", () => step(1));
 ui.edit.addEventListener("change", () => {
   ui.drawing.classList.toggle("editing", ui.edit.checked);
 });
@@ -464,14 +931,40 @@ ui.upload.addEventListener("change", async () => {
   void open({ text, name: file.name });
   ui.upload.value = "";
 });
+/** The file name the downloads start with: the mechanism's file or library name. */
+function stem(): string {
+  return `${(state.info?.source ?? "mechanism").replace(/^library:/, "").replace(/\.toml$/, "").split("/").pop()}`;
+}
+
+function download(blob: Blob, name: string): void {
+  const a = document.createElement("a");
+  a.href = URL.createObjectURL(blob);
+  a.download = name;
+  a.click();
+  window.setTimeout(() => URL.revokeObjectURL(a.href), 1000);
+}
+
 ui.save.addEventListener("click", () => {
   const text = savedText();
-  if (!text) return;
-  const a = document.createElement("a");
-  a.href = URL.createObjectURL(new Blob([text], { type: "text/plain" }));
-  a.download = `${(state.info?.source ?? "mechanism").replace(/^library:/, "").replace(/\.toml$/, "").split("/").pop()}.toml`;
-  a.click();
-  URL.revokeObjectURL(a.href);
+  if (text) download(new Blob([text], { type: "text/plain" }), `${stem()}.toml`);
+});
+ui.exportSvg.addEventListener("click", () => {
+  // the very SVG the server drew (that of `linkwork draw`), as shown
+  if (state.drawn) download(new Blob([state.drawn.svg], { type: "image/svg+xml" }), `${stem()}.svg`);
+});
+ui.exportPng.addEventListener("click", async () => {
+  try {
+    download(await postFile("/api/drawing.png", drawingRequest()), `${stem()}.png`);
+  } catch (e) {
+    showError(messageOf(e));
+  }
+});
+ui.exportCsv.addEventListener("click", async () => {
+  try {
+    download(await postFile("/api/motion.csv", { source: state.motionSource ?? source() }), `${stem()}-motion.csv`);
+  } catch (e) {
+    showError(messageOf(e));
+  }
 });
 
 async function start(): Promise<void> {

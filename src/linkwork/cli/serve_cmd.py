@@ -91,4 +91,4 @@ def register(app: typer.Typer) -> None:
                 typer.echo(f"working folder: {root}")
             if open_browser:
                 webbrowser.open(url)
-            uvicorn.run(create_app(root), host=host, port=port, log_level="warning")
+            uvicorn.run(create_app(root, compiled=True), host=host, port=port, log_level="warning")

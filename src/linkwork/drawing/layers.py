@@ -481,9 +481,11 @@ FRAMES = ("mechanism", "all")
 
 def scene_figure(sc: Scene, show: Iterable[str] = ("mechanism",), *,
                  construction: Construction | None = None, step: int | None = None,
-                 title: str | None = None, frame: str = "mechanism") -> Figure:
-    """A figure of the scene with the named layers (and a construction, up to ``step``), framed
-    as ``frame`` says (:data:`FRAMES`)."""
+                 title: str | None = None, paths: Sequence[str] | None = None,
+                 frame: str = "mechanism") -> Figure:
+    """A figure of the scene with the named layers (and a construction, up to ``step``);
+    ``paths`` names the points whose paths the ``paths`` layer traces (default: every moving
+    point); framed as ``frame`` says (:data:`FRAMES`)."""
     if frame not in FRAMES:
         raise InputError(f"unknown frame '{frame}'; the frames are {', '.join(FRAMES)}")
     show = list(show)
@@ -527,7 +529,7 @@ def scene_figure(sc: Scene, show: Iterable[str] = ("mechanism",), *,
             own = construction is not None and construction.own_labels
             draw_mechanism(fig, sc, labelled=_points_labelled_by(con, sc) if own else ())
         elif layer == "paths":
-            draw_paths(fig, sc)
+            draw_paths(fig, sc, paths)
         elif layer == "velocities":
             draw_vectors(fig, sc, "velocity")
         elif layer == "accelerations":
@@ -545,7 +547,8 @@ def scene_figure(sc: Scene, show: Iterable[str] = ("mechanism",), *,
             fig.current_step = step
             # every step's panels fitted to the whole construction, so that the mechanism does
             # not move or change its size when paging through the steps
-            whole = scene_figure(sc, show, construction=construction, title=title, frame=frame)
+            whole = scene_figure(sc, show, construction=construction, title=title, paths=paths,
+                                 frame=frame)
             for name, tf in whole.transforms().items():
                 if name not in fig.view:
                     fig.view[name] = (np.array(tf["lo"]), np.array(tf["hi"]))

@@ -9,8 +9,8 @@ Derivatives: for every group, by linear solves on the group's constraint Jacobia
 Taylor coefficient of the unknown poses enters the k-th coefficient of the constraint residuals
 linearly, J·q⁽ᵏ⁾/k! = −r_k, where r_k comes from evaluating the constraints on jets with the
 unknown coefficient set to zero; so one code path gives velocities, accelerations and jerks.
-The RRR dyad and the revolute driver, the hot path of four-bars, six-bars and Jansen's linkage,
-run as compiled loops (`kernels`): positions at any order, velocities and accelerations at
+The RRR and RRP dyads and the revolute driver, the hot path of four-bars, six-bars,
+slider-cranks and Jansen's linkage, run as compiled loops (`kernels`): positions at any order, velocities and accelerations at
 order 2. Every link's cos θ and sin θ are kept once in `State.T`.
 """
 

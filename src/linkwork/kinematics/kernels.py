@@ -97,6 +97,22 @@ def _compiled() -> dict:
     return ns
 
 
+@_loop()
+def _world(Q0, T, i, s0, s1, n):
+    """World position of design point s on link i at sample n (its pose and cos θ, sin θ)."""
+    c, sn = T[i, 0, n], T[i, 1, n]
+    return Q0[i, 0, n] + c * s0 - sn * s1, Q0[i, 1, n] + sn * s0 + c * s1
+
+
+@_loop()
+def _place(Q0, T, i, c, sn, s0, s1, px, py, n):
+    """Place link i at sample n: angle given by c, sn = cos θ, sin θ, its design point s at
+    (px, py)."""
+    T[i, 0, n], T[i, 1, n] = c, sn
+    Q0[i, 0, n] = px - (c * s0 - sn * s1)
+    Q0[i, 1, n] = py - (sn * s0 + c * s1)
+
+
 @_loop(2)
 def rrr_positions(Q0, T, iA, A, iC, C, i1, i2, diff, L1sq, tol, branch, k1, k2, r, ok):
     """Circle–circle intersection: the hinge B of links i1 (through A) and i2 (through C) at
@@ -109,11 +125,8 @@ def rrr_positions(Q0, T, iA, A, iC, C, i1, i2, diff, L1sq, tol, branch, k1, k2, 
     r[0:2], r[2:4], whose angles the caller takes with NumPy's vectorised arctan2 (a scalar
     atan2 here would cost more than the rest)."""
     for n in range(Q0.shape[2]):
-        cA, sA, cC, sC = T[iA, 0, n], T[iA, 1, n], T[iC, 0, n], T[iC, 1, n]
-        ax = Q0[iA, 0, n] + cA * A[0] - sA * A[1]
-        ay = Q0[iA, 1, n] + sA * A[0] + cA * A[1]
-        cx = Q0[iC, 0, n] + cC * C[0] - sC * C[1]
-        cy = Q0[iC, 1, n] + sC * C[0] + cC * C[1]
+        ax, ay = _world(Q0, T, iA, A[0], A[1], n)
+        cx, cy = _world(Q0, T, iC, C[0], C[1], n)
         dx, dy = cx - ax, cy - ay
         D2 = dx * dx + dy * dy
         inv = 1.0 / math.sqrt(D2)
@@ -129,11 +142,8 @@ def rrr_positions(Q0, T, iA, A, iC, C, i1, i2, diff, L1sq, tol, branch, k1, k2, 
         n2 = 1.0 / math.sqrt(r2x * r2x + r2y * r2y)
         c1, s1 = (r1x * k1[0] + r1y * k1[1]) * n1, (r1y * k1[0] - r1x * k1[1]) * n1
         c2, s2 = (r2x * k2[0] + r2y * k2[1]) * n2, (r2y * k2[0] - r2x * k2[1]) * n2
-        T[i1, 0, n], T[i1, 1, n], T[i2, 0, n], T[i2, 1, n] = c1, s1, c2, s2
-        Q0[i1, 0, n] = ax - (c1 * A[0] - s1 * A[1])
-        Q0[i1, 1, n] = ay - (s1 * A[0] + c1 * A[1])
-        Q0[i2, 0, n] = cx - (c2 * C[0] - s2 * C[1])
-        Q0[i2, 1, n] = cy - (s2 * C[0] + c2 * C[1])
+        _place(Q0, T, i1, c1, s1, A[0], A[1], ax, ay, n)
+        _place(Q0, T, i2, c2, s2, C[0], C[1], cx, cy, n)
         r[0, n], r[1, n], r[2, n], r[3, n] = r1x, r1y, r2x, r2y
 
 
@@ -215,11 +225,9 @@ def rrp_positions(Q0, T, iA, A, ig, P, e0, rsq, tol, branch, ir, ib, k, r, ok):
     block keeps the guide's angle. A squared half chord below zero by rounding only (above tol)
     counts as zero."""
     for n in range(Q0.shape[2]):
-        cA, sA, cg, sg = T[iA, 0, n], T[iA, 1, n], T[ig, 0, n], T[ig, 1, n]
-        ax = Q0[iA, 0, n] + cA * A[0] - sA * A[1]
-        ay = Q0[iA, 1, n] + sA * A[0] + cA * A[1]
-        qx = Q0[ig, 0, n] + cg * P[0] - sg * P[1]
-        qy = Q0[ig, 1, n] + sg * P[0] + cg * P[1]
+        cg, sg = T[ig, 0, n], T[ig, 1, n]
+        ax, ay = _world(Q0, T, iA, A[0], A[1], n)
+        qx, qy = _world(Q0, T, ig, P[0], P[1], n)
         ex, ey = cg * e0[0] - sg * e0[1], sg * e0[0] + cg * e0[1]
         wx, wy = qx - ax, qy - ay
         b = ex * wx + ey * wy
@@ -233,11 +241,8 @@ def rrp_positions(Q0, T, iA, A, ig, P, e0, rsq, tol, branch, ir, ib, k, r, ok):
         rx, ry = px - ax, py - ay
         nr = 1.0 / math.sqrt(rx * rx + ry * ry)
         c, sn = (rx * k[0] + ry * k[1]) * nr, (ry * k[0] - rx * k[1]) * nr
-        T[ir, 0, n], T[ir, 1, n], T[ib, 0, n], T[ib, 1, n] = c, sn, cg, sg
-        Q0[ir, 0, n] = ax - (c * A[0] - sn * A[1])
-        Q0[ir, 1, n] = ay - (sn * A[0] + c * A[1])
-        Q0[ib, 0, n] = px - (cg * P[0] - sg * P[1])
-        Q0[ib, 1, n] = py - (sg * P[0] + cg * P[1])
+        _place(Q0, T, ir, c, sn, A[0], A[1], ax, ay, n)
+        _place(Q0, T, ib, cg, sg, P[0], P[1], px, py, n)
         Q0[ib, 2, n] = Q0[ig, 2, n]
         r[0, n], r[1, n] = rx, ry
 
@@ -292,14 +297,9 @@ def driver_positions(Q0, T, b, i, H, u, u0):
     """Revolute driver: link i turns about the hinge H of its base link b by the input u,
     θ = θ_b + u − u0 (u0 the input at the design position)."""
     for n in range(Q0.shape[2]):
-        cb, sb = T[b, 0, n], T[b, 1, n]
-        hx = Q0[b, 0, n] + cb * H[0] - sb * H[1]
-        hy = Q0[b, 1, n] + sb * H[0] + cb * H[1]
+        hx, hy = _world(Q0, T, b, H[0], H[1], n)
         th = Q0[b, 2, n] + (u[n] - u0)
-        c, sn = math.cos(th), math.sin(th)
-        T[i, 0, n], T[i, 1, n] = c, sn
-        Q0[i, 0, n] = hx - (c * H[0] - sn * H[1])
-        Q0[i, 1, n] = hy - (sn * H[0] + c * H[1])
+        _place(Q0, T, i, math.cos(th), math.sin(th), H[0], H[1], hx, hy, n)
         Q0[i, 2, n] = th
 
 

@@ -23,6 +23,12 @@ from .precision import POLISH_LIMIT, TOLERANCE, ErrorBudget, polish, polishable
 from .solution import Solution, Status
 
 BLOCK = 8192  # samples per block when every group has a closed form
+#: samples per block of the compiled kernels: a batch of this size or smaller is one block (a
+#: block is no faster in the kernels, whose loops hold nothing but registers); larger batches
+#: are cut so that the work arrays (error bounds, hinge vectors, branch signs) stay this size,
+#: not the batch's (ten million samples of a four-bar: 3.7 GB of answer, a gigabyte less at
+#: the peak)
+KERNEL_BLOCK = 1 << 17
 
 
 @lru_cache(maxsize=64)
@@ -124,11 +130,17 @@ def solve(mech: Mechanism, inputs=None, *, times=None, velocities=None, accelera
     generic = any(s.kind == "generic" for s in solvers)
     path_end = None
     if nd == 1:
-        branches = {g: sch.signs(values[:, 0]) for g, sch in branch_schedule(mech).items()}
+        schedules = branch_schedule(mech)
+
+        def branches_in(sl: slice) -> dict:  # the signs of a block only (no N-long temporaries)
+            return {g: sch.signs(values[sl, 0]) for g, sch in schedules.items()}
         guesses = continuation_guesses(mech, solvers, values) if generic else {}
     else:  # a path through the samples
         schedules, lam, path = path_schedule(mech, solvers, values, resume)
         branches = {g: sch.signs(lam) for g, sch in schedules.items()}
+
+        def branches_in(sl: slice) -> dict:
+            return {g: b[sl] for g, b in branches.items()}
         ends: dict = {}
         guesses = continuation_guesses(mech, solvers, values, schedules, start=resume,
                                        ends=ends) if generic else {}
@@ -147,15 +159,15 @@ def solve(mech: Mechanism, inputs=None, *, times=None, velocities=None, accelera
     T[frame, 0], T[frame, 1] = 1.0, 0.0
     # Closed-form groups in NumPy work sample by sample, so the samples are solved in blocks
     # whose temporaries stay in the CPU cache (same operations per sample, same results); the
-    # compiled kernels (positions at any order, rates at order 2) have no temporaries and the
-    # Newton path wants one batch.
-    one_batch = generic or (order == 2 and all(s.compiled for s in solvers))
-    block = max(N, 1) if one_batch else BLOCK
+    # compiled kernels (positions at any order, rates at order 2) have few temporaries, kept to
+    # KERNEL_BLOCK samples; the Newton path wants one batch.
+    compiled = order == 2 and all(s.compiled for s in solvers)
+    block = max(N, 1) if generic else KERNEL_BLOCK if compiled else BLOCK
     can_polish = polishable(mech)
     for lo in range(0, N, block):
         sl = slice(lo, lo + block)
         state = State(mech, Q[:, sl], {j: c[:, sl] for j, c in inputs.items()}, T=T[:, :, sl],
-                      known={frame}, branches={g: b[sl] for g, b in branches.items()})
+                      known={frame}, branches=branches_in(sl))
         ok = assembled[sl]  # a view: updated in place
         for s in solvers:
             g = guesses.get(s.group)
@@ -188,10 +200,13 @@ def solve(mech: Mechanism, inputs=None, *, times=None, velocities=None, accelera
             Q[:, cut] = np.nan
             T[:, :, cut] = np.nan
             assembled &= ~cut
-    status = np.where(assembled, np.where(status_errors > TOLERANCE, Status.SINGULAR, Status.OK),
-                      Status.UNREACHABLE).astype(np.int8)
-    condition = np.where(assembled, condition, np.nan)
-    errors = np.where(assembled, errors, np.nan)
+    # in place: no N-long temporaries beyond the masks
+    status = np.full(N, Status.OK, dtype=np.int8)
+    status[status_errors > TOLERANCE] = Status.SINGULAR
+    unassembled = ~assembled
+    status[unassembled] = Status.UNREACHABLE
+    condition[unassembled] = np.nan
+    errors[unassembled] = np.nan
     sol = Solution(mech, values, t, Q, status, condition, trig=(T[:, 0].T, T[:, 1].T),
                    errors=errors)
     sol.path_end = path_end

@@ -35,7 +35,6 @@ from functools import lru_cache
 
 import networkx as nx
 import numpy as np
-from networkx.algorithms.isomorphism import GraphMatcher
 
 from linkwork.topology.atlas_rigidity import rigid_subchain
 
@@ -142,25 +141,55 @@ def _multiplicity_matrices(types: tuple[int, ...], max_mult: int) -> Iterator[li
     yield from rec(0)
 
 
-def _subdivision(types: tuple[int, ...], edges: tuple[tuple[int, int], ...]) -> nx.Graph:
-    """The contracted multigraph with every edge subdivided by an 'edge' node.
+def automorphisms(types: tuple[int, ...], edges: tuple[tuple[int, int], ...]) -> list[tuple[tuple[int, ...], tuple[int, ...]]]:
+    """All automorphisms ``(sigma, pi)`` of a loopless multigraph (edges ``(a, b)`` with
+    ``a < b``, parallel edges repeated): the vertex permutations that keep the types and the
+    edge multiplicities, found by backtracking, each with every matching of parallel edges.
 
-    Subdividing makes parallel edges distinct nodes, so the automorphisms of this
-    simple graph (vertex kinds kept apart) are the automorphisms of the
-    multigraph including the swaps of parallel edges.
+    The same set as the automorphisms of the graph with every edge subdivided by a node of its
+    own (vertex kinds kept apart; a NetworkX ``GraphMatcher`` search, which the tests compare
+    with), found some ten times faster: the graphs have at most ten vertices.
     """
-    s = nx.Graph()
-    for v, t in enumerate(types):
-        s.add_node(("v", v), kind=f"v{t}")
+    c = len(types)
+    mult = [[0] * c for _ in range(c)]
+    classes: dict[tuple[int, int], list[int]] = {}
     for e, (a, b) in enumerate(edges):
-        s.add_node(("e", e), kind="e")
-        s.add_edge(("v", a), ("e", e))
-        s.add_edge(("v", b), ("e", e))
-    return s
+        mult[a][b] += 1
+        mult[b][a] += 1
+        classes.setdefault((a, b), []).append(e)
+    sigmas: list[tuple[int, ...]] = []
+    perm = [-1] * c
+    used = [False] * c
 
+    def rec(v: int) -> None:
+        if v == c:
+            sigmas.append(tuple(perm))
+            return
+        for w in range(c):
+            if used[w] or types[w] != types[v]:
+                continue
+            if any(mult[u][v] != mult[perm[u]][w] for u in range(v)):
+                continue
+            perm[v], used[w] = w, True
+            rec(v + 1)
+            used[w] = False
+        perm[v] = -1
 
-def _same_kind(x: dict, y: dict) -> bool:
-    return x["kind"] == y["kind"]
+    rec(0)
+    autos = []
+    for sigma in sigmas:
+        sources, targets = [], []
+        for (a, b), es in classes.items():
+            x, y = sigma[a], sigma[b]
+            sources.append(es)
+            targets.append(list(itertools.permutations(classes[(min(x, y), max(x, y))])))
+        for choice in itertools.product(*targets):
+            pi = [0] * len(edges)
+            for es, fs in zip(sources, choice):
+                for e, f in zip(es, fs):
+                    pi[e] = f
+            autos.append((sigma, tuple(pi)))
+    return autos
 
 
 @lru_cache(maxsize=None)
@@ -199,12 +228,7 @@ def contracted_graphs(types: tuple[int, ...], n_binary: int) -> tuple[Contracted
             continue
         bucket.append(g)
         edges = tuple((i, j) for i in range(c) for j in range(i + 1, c) for _ in range(mat[i][j]))
-        s = _subdivision(types, edges)
-        autos = []
-        for iso in GraphMatcher(s, s, node_match=_same_kind).isomorphisms_iter():
-            sigma = tuple(iso[("v", v)][1] for v in range(c))
-            pi = tuple(iso[("e", e)][1] for e in range(len(edges)))
-            autos.append((sigma, pi))
+        autos = automorphisms(types, edges)
         identity = (tuple(range(c)), tuple(range(len(edges))))
         autos.sort(key=lambda p: p != identity)
         found.append(ContractedGraph(types, edges, tuple(autos)))

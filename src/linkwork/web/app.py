@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import tomllib
 import warnings
-from contextlib import contextmanager
+from contextlib import asynccontextmanager, contextmanager
 from importlib import resources
 from pathlib import Path
 from typing import Iterator
@@ -20,7 +20,7 @@ import numpy as np
 from fastapi import FastAPI, Request
 from fastapi.encoders import jsonable_encoder
 from fastapi.exceptions import RequestValidationError
-from fastapi.responses import FileResponse, JSONResponse
+from fastapi.responses import FileResponse, JSONResponse, Response
 from fastapi.staticfiles import StaticFiles
 
 from ..errors import LinkworkError, LinkworkWarning, InputError, UnknownMechanismError
@@ -93,6 +93,12 @@ def _warnings() -> Iterator[list[str]]:
         yield out
         out.extend(dict.fromkeys(str(w.message) for w in caught
                                  if issubclass(w.category, LinkworkWarning)))
+
+
+def _finite(x) -> float | None:
+    """A number of the JSON: null where it is not finite (an unreachable sample's error bound)."""
+    x = float(x)
+    return x if np.isfinite(x) else None
 
 
 def _design_inputs(mech: Mechanism) -> np.ndarray:
@@ -172,7 +178,15 @@ def drawing(mech: Mechanism, req: m.DrawingRequest) -> dict:
         if req.step is not None and req.step >= len(steps):
             raise InputError(f"step {req.step}: the construction has {len(steps)} steps (0 to "
                              f"{len(steps) - 1})")
-    fig = scene_figure(sc, list(req.layers), construction=con, step=req.step)
+    layers = list(req.layers)
+    if req.paths is not None:
+        unknown = [p for p in req.paths if p not in mech.points]
+        if unknown:
+            raise InputError(f"paths: mechanism '{mech.name}' has no point '{unknown[0]}' (its "
+                             f"points are {', '.join(mech.points)})")
+        if not req.paths:
+            layers = [n for n in layers if n != "paths"]
+    fig = scene_figure(sc, layers, construction=con, step=req.step, paths=req.paths or None)
     if req.fit == "motion" and con is None and req.motion:
         fig.view["mechanism"] = sc.box(grow=0.12)
     svg = fig.to_svg()
@@ -186,10 +200,39 @@ def drawing(mech: Mechanism, req: m.DrawingRequest) -> dict:
             "transforms": fig.transforms(), "steps": steps}
 
 
-def create_app(workdir: str | Path | None = None) -> FastAPI:
-    """The workbench application; files are opened only from the library and `workdir`."""
+def compile_kernels() -> None:
+    """Run the kinematics' compiled loops for every batch size from now on.
+
+    A command line solve of a few samples runs them interpreted, because loading numba costs a
+    second or more per process; a server pays that once, and a drag frame of a four-bar (a
+    branch scan of 2 049 inputs and the solve) then takes a few milliseconds instead of a
+    hundred. The loops are compiled (or loaded from numba's cache) first by batches large
+    enough to take the compiled path anyway, so no request waits for the compiler; only then
+    is the threshold lowered."""
+    from ..io import load
+    from ..io.library import LIBRARY_PREFIX
+    from ..kinematics import kernels
+    inputs = np.linspace(0.0, 2 * np.pi, kernels.INTERPRETED_UP_TO + 1)[:, None]
+    for name in ("crank-rocker", "slider-crank-centric"):  # the RRR and RRP dyads, the driver
+        solve(load(LIBRARY_PREFIX + name), inputs, order=2)
+    kernels.INTERPRETED_UP_TO = 0
+
+
+
+def create_app(workdir: str | Path | None = None, *, compiled: bool = False) -> FastAPI:
+    """The workbench application; files are opened only from the library and `workdir`.
+    `compiled`: compile the kinematics' loops in the background and use them for every solve
+    (`linkwork serve`; see `compile_kernels`)."""
     sources = Sources(None if workdir is None else Path(workdir))
-    app = FastAPI(title="linkwork workbench", version="1",
+
+    @asynccontextmanager
+    async def lifespan(app):
+        if compiled:  # when the server starts (not when the application is merely made)
+            import threading
+            threading.Thread(target=compile_kernels, name="compile-kernels", daemon=True).start()
+        yield
+
+    app = FastAPI(title="linkwork workbench", version="1", lifespan=lifespan,
                   description="The linkwork Python API over HTTP: lengths in the mechanism "
                               "file's unit, angles in radians, times in seconds.",
                   openapi_url="/api/openapi.json", docs_url=None, redoc_url=None)
@@ -274,7 +317,7 @@ def create_app(workdir: str | Path | None = None) -> FastAPI:
                        "drivers": [d.joint for d in mech.drivers],
                        "samples": [{"input": float(sol.inputs[n, 0]) if single else sol.inputs[n].tolist(),
                                     "status": str(Status(int(sol.status[n]))),
-                                    "error": float(sol.errors[n])} for n in range(len(sol))]}
+                                    "error": _finite(sol.errors[n])} for n in range(len(sol))]}
             else:
                 doc = to_document(sol)
         return respond({**doc, "warnings": warned})
@@ -338,6 +381,32 @@ def create_app(workdir: str | Path | None = None) -> FastAPI:
         with _warnings() as warned:
             doc = drawing(load(req.source).mechanism, req)
         return respond({**doc, "warnings": warned})
+
+    @app.post("/api/drawing.png", responses={**errors, 200: {"content": {"image/png": {}}}},
+              response_class=Response)
+    def drawing_png(req: m.PngRequest):
+        """The drawing of `/api/drawing` as PNG (`linkwork draw -o FILE.png`: cairo converts
+        the very same SVG)."""
+        import tempfile
+
+        from ..drawing.svg import convert
+        with _warnings():
+            svg = drawing(load(req.source).mechanism, req)["svg"]
+        with tempfile.TemporaryDirectory() as tmp:
+            out = Path(tmp) / "drawing.png"
+            convert(svg, out, dpi=req.dpi)
+            data = out.read_bytes()
+        return Response(data, media_type="image/png")
+
+    @app.post("/api/motion.csv", responses={**errors, 200: {"content": {"text/csv": {}}}},
+              response_class=Response)
+    def motion_csv(req: m.MechanismRequest):
+        """The whole motion as the CSV of `linkwork analyze --format csv` (one row a sample)."""
+        from ..kinematics.export import csv_lines
+        with _warnings():
+            sol = whole_motion(load(req.source).mechanism)
+            text = "".join(csv_lines(sol))
+        return Response(text, media_type="text/csv; charset=utf-8")
 
     @app.get("/", include_in_schema=False)
     def page():

@@ -109,12 +109,21 @@ class DrawingRequest(At):
     point: Optional[Name] = None
     link: Optional[Name] = None
     step: Optional[int] = Field(None, ge=0, le=1000)
+    paths: Optional[Annotated[list[Name], Field(max_length=1000)]] = Field(
+        None, description="the points whose paths the paths layer traces (default: every "
+                          "moving point; an empty list: none)")
     motion: bool = Field(
         True, description="false: leave the whole motion out (no paths; the panel fits the "
                           "position drawn), for the frames of a drag")
     fit: Literal["motion", "drawing"] = Field(
         "motion", description="motion: the panel fits the whole motion, so that frames of an "
                               "animation share one layout; drawing: it fits what is drawn")
+
+
+class PngRequest(DrawingRequest):
+    """The drawing of a `DrawingRequest` as PNG (converted from the same SVG by cairo)."""
+
+    dpi: float = Field(200.0, ge=30.0, le=600.0, description="pixels per inch of paper")
 
 
 # ---------------------------------------------------------------------------- responses
