@@ -57,7 +57,7 @@ def test_label_markup_subscripts():
     assert ">0</tspan>" in label_markup("W_0", 3.0)
     assert ">13</tspan>" in label_markup("P_{13}", 3.0)
     m = label_markup("M_l: 1 mm", 3.0)
-    assert ">l</tspan>" in m and m.endswith(": 1 mm")
+    assert ">l</tspan>" in m and m.endswith(": 1 mm</tspan>")
     assert text_width("P_13", 3.0) < text_width("P13x", 3.0)
 
 

@@ -47,3 +47,39 @@ def test_path_coordinate_of_a_curve_is_arc_length():
 def test_plot_needs_something_to_plot():
     with pytest.raises(linkwork.LinkworkError):
         motion_plot(linkwork.load("library:crank-rocker"))
+
+
+def test_graphical_motion_diagrams_match_the_engine():
+    # Pöschl's chord polygons of the s–t and v–t lines against the engine's velocity and
+    # tangential acceleration (at the chords' middles; chord error O(h²))
+    from linkwork.drawing.plots import graphical_motion
+    from linkwork.kinematics import whole_motion
+
+    mech = linkwork.load("library:slider-crank-centric")
+    sol = whole_motion(mech)
+    fig = graphical_motion(mech, "B", chords=72, solution=sol)
+    t = sol.time if sol.time is not None else None
+    ax_v, ax_a = fig.axes[1], fig.axes[2]
+    (eng_v, chords_v), (eng_a, chords_a) = ax_v.get_lines()[:2], ax_a.get_lines()[:2]
+    for eng, ch in ((eng_v, chords_v), (eng_a, chords_a)):
+        te, ye = eng.get_data()
+        tc, yc = ch.get_data()
+        want = np.interp(tc, te, ye)
+        assert np.max(np.abs(yc - want)) < 0.02 * np.max(np.abs(ye))
+    # the engine's velocity line is the point's velocity along the line of stroke
+    v = sol.point("B").velocity
+    assert np.allclose(np.abs(eng_v.get_data()[1]), np.linalg.norm(v, axis=1), rtol=1e-9, atol=1e-9)
+    assert t is None or len(t) == len(v)
+
+
+def test_cli_plot_diagrams(tmp_path):
+    from typer.testing import CliRunner
+
+    from linkwork.cli import app
+    runner = CliRunner()
+    out = tmp_path / "d.png"
+    r = runner.invoke(app, ["plot", "library:slider-crank-centric", "--point", "B", "--diagrams", "-o", str(out)])
+    assert r.exit_code == 0, r.output
+    assert out.stat().st_size > 1000
+    r = runner.invoke(app, ["plot", "library:slider-crank-centric", "--diagrams", "-o", str(out)])
+    assert r.exit_code != 0 and "--diagrams needs --point" in r.output

@@ -41,6 +41,7 @@ def register(app: typer.Typer) -> None:
         length_scale: Optional[float] = typer.Option(None, "--length-scale", help="mechanism units per mm of paper"),
         velocity_scale: Optional[float] = typer.Option(None, "--velocity-scale", help="velocity units per mm of paper"),
         acceleration_scale: Optional[float] = typer.Option(None, "--acceleration-scale", help="acceleration units per mm of paper"),
+        frame: str = typer.Option("mechanism", "--frame", help="mechanism: the mechanism stays the subject, larger layers are cut at a frame around it (arrows to centres off the sheet); all: everything drawn fits the sheet"),
         dpi: float = typer.Option(200.0, "--dpi", help="resolution of PNG output"),
         output: str = typer.Option(..., "-o", "--output", help="FILE.svg, FILE.png, FILE.pdf or FILE.dxf (mechanism and paths layers, in the file's length unit, for CAD)"),
     ) -> None:
@@ -103,7 +104,7 @@ def register(app: typer.Typer) -> None:
             if con is not None and steps:
                 written = []
                 for k in range(len(con.steps)):
-                    fig = scene_figure(sc, layers, construction=con, step=k)
+                    fig = scene_figure(sc, layers, construction=con, step=k, frame=frame)
                     if forces is not None:
                         draw_forces(fig, sc, forces)
                     p = out.with_name(f"{out.stem}-{k + 1:02d}{out.suffix}")
@@ -118,7 +119,7 @@ def register(app: typer.Typer) -> None:
                 write_dxf(sc, out, layers)
                 typer.echo(f"wrote {out}")
                 return
-            fig = scene_figure(sc, layers, construction=con)
+            fig = scene_figure(sc, layers, construction=con, frame=frame)
             if forces is not None:
                 draw_forces(fig, sc, forces)
             fig.save(out, dpi=dpi, animate=animate)
@@ -133,18 +134,21 @@ def register(app: typer.Typer) -> None:
         against: str = typer.Option("input", "--against", help="input (angle or displacement) or time"),
         component: str = typer.Option("x,y,magnitude", "--component", help="x, y, magnitude (points)"),
         vs: bool = typer.Option(False, "--vs", help="the v–s diagram of the (first) point instead"),
+        diagrams: bool = typer.Option(False, "--diagrams", help="Pöschl's s–t, v–t, a–t lines of the (first) point, with the graphical differentiation by chords"),
         output: str = typer.Option(..., "-o", "--output", help="FILE.png, FILE.pdf or FILE.svg"),
     ) -> None:
         """Plot positions, velocities, accelerations over the whole motion, or a v–s diagram."""
-        from ..drawing.plots import motion_plot, save, vs_plot
+        from ..drawing.plots import graphical_motion, motion_plot, save, vs_plot
 
         with user_errors():
             mech = load_mechanism(mechanism)
             points, links = _list(point), _list(link)
+            if (vs or diagrams) and not points:
+                raise InputError(f"{'--vs' if vs else '--diagrams'} needs --point")
             if vs:
-                if not points:
-                    raise InputError("--vs needs --point")
                 fig = vs_plot(mech, points[0])
+            elif diagrams:
+                fig = graphical_motion(mech, points[0])
             else:
                 fig = motion_plot(mech, points=points, links=links, quantity=quantity, against=against,
                                   components=_list(component))

@@ -303,6 +303,13 @@ class Construction:
         return "\n".join(lines)
 
 
+def literal(name: str) -> str:
+    """A user's point or link name for a label, escaped so that the drawing prints it as written
+    (``link_j`` stays link_j; only the books' own notation, P_{13} or v_A, is set as sub- or
+    superscript)."""
+    return "".join("\\" + c if c in "\\_^{}" else c for c in name)
+
+
 def _fmt(v: Any) -> str:
     v = np.asarray(v, float)
     if v.ndim == 1 and v.size == 2 and np.isinf(v[0]):
@@ -357,6 +364,14 @@ class Builder:
         self.legend: list[str] = []
         self.length: float | None = None  # the drawing's size, for tolerances (set by constructions)
         self._spans: dict[str, list[Point]] = {}
+
+    def key(self, letters: dict[str, str]) -> None:
+        """The book's letters of the steps against the file's point names, as a legend line
+        (drawn points carry the file's names; the key is needed only where the two differ)."""
+        pairs = [(book, name) for book, name in letters.items() if book.replace("_", "") != name]
+        if pairs:
+            self.legend.append("key, book's letters in the steps = the file's points: "
+                               + ", ".join(f"{book} = {literal(name)}" for book, name in pairs))
 
     # ------------------------------------------------------------------ bookkeeping
     def step(self, text: str) -> None:

@@ -36,7 +36,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .construction import Builder, Construction, Role
+from .construction import Builder, Construction, Role, literal
 from ..errors import InputError
 from ..geometry import Point
 from ..geometry.constructions import midpoint
@@ -73,9 +73,11 @@ def klein(mech: Mechanism, inputs, *, omega: float | None = None) -> Constructio
                     "a_A at M_a = \u03c9\u00b2\u00b7M_l")
     b.step("Given: crank centre C, crank pin P and crosshead A on the line of stroke; the crank "
            "turns uniformly at \u03c9, so CP represents the crank pin's acceleration \u03c9\u00b2\u00b7CP.")
-    b.point("C", C, Role.GIVEN, "C")
-    b.point("P", Pp, Role.GIVEN, "P")
-    b.point("A", A, Role.GIVEN, "A")
+    # the drawn points keep the file's names; the steps speak the book's letters (the key)
+    b.key({"C": sc.C, "P": sc.P, "A": sc.A})
+    b.point("C", C, Role.GIVEN, literal(sc.C))
+    b.point("P", Pp, Role.GIVEN, literal(sc.P))
+    b.point("A", A, Role.GIVEN, literal(sc.A))
     b.segment("crank", C, Pp, Role.GIVEN)
     b.segment("rod", Pp, A, Role.GIVEN)
     from ..geometry import Vector

@@ -52,7 +52,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .construction import Builder, Construction, Role, mask_points, pt
+from .construction import Builder, Construction, Role, literal, mask_points, pt
 from ..errors import InputError
 from ..geometry import Point, Vector
 from ..model import Mechanism, Revolute
@@ -152,9 +152,11 @@ def mohr(mech: Mechanism, inputs, *, ka: float | None = None) -> Construction:
     else:
         b.step(f"Given: crank O_1A ({g.O}, {g.A}) with b_A (its normal component b_A^(n) = "
                f"r\u2081\u03c9\u2081\u00b2 along AO_1), coupler AB ({g.B}), rocker O_2B ({g.O2}).")
-    b.point("O", O, Role.GIVEN, o)
-    b.point("A", A, Role.GIVEN, "A")
-    b.point("B", B, Role.GIVEN, "B")
+    # the drawn points keep the file's names; the steps speak the book's letters (the key)
+    b.key({o: g.O, "A": g.A, "B": g.B} | ({} if slider else {"O_2": g.O2}))
+    b.point("O", O, Role.GIVEN, literal(g.O))
+    b.point("A", A, Role.GIVEN, literal(g.A))
+    b.point("B", B, Role.GIVEN, literal(g.B))
     b.segment("crank", O, A, Role.GIVEN)
     b.segment("rod", A, B, Role.GIVEN)
     b.arrow("bAn", A, pt(Tn), Role.GIVEN, "b_A^(n)", kind="acceleration")
@@ -164,7 +166,7 @@ def mohr(mech: Mechanism, inputs, *, ka: float | None = None) -> Construction:
         path = b.parallel("stroke", B, Vector(axis), Role.GIVEN)
         O2 = None
     else:
-        O2 = b.point("O2", pt(sol.point(g.O2).position), Role.GIVEN, "O_2")
+        O2 = b.point("O2", pt(sol.point(g.O2).position), Role.GIVEN, literal(g.O2))
         path = b.join("O2B", O2, B, Role.GIVEN)
 
     # O, A, B in line: a dead centre (the rocker's reversal point for the four-bar)

@@ -14,11 +14,12 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..constructions.construction import literal
 from ..geometry import Circle
 from ..instant import (bresse_circle, centrodes, inflection_circle, instant, pole_schedule, poles,
                        return_circle)
 from ..model import Revolute
-from .svg import COLOURS, Figure, Style
+from .svg import COLOURS, DASHES, Figure, Style
 
 
 def curvature_links(sc) -> list[str]:
@@ -33,9 +34,49 @@ def _label(t: str) -> str:
     return "P_{" + t[1:] + "}" if t.startswith("P") else t
 
 
+def _inside(fig: Figure, xy: np.ndarray) -> np.ndarray:
+    """Which of the world points ``xy`` lie inside the mechanism panel's clip box (all when the
+    figure is not clipped), a little in from its edges so that a label there stays on the sheet."""
+    xy = np.asarray(xy, float).reshape(-1, 2)
+    ok = np.all(np.isfinite(xy), axis=1)
+    if "mechanism" not in fig.clip:
+        return ok
+    lo, hi = (np.asarray(v, float) for v in fig.clip["mechanism"])
+    pad = 0.06 * (hi - lo)
+    return ok & np.all((xy >= lo + pad) & (xy <= hi - pad), axis=1)
+
+
+def _label_on_curve(fig: Figure, xy: np.ndarray, text: str, colour: str, at: float = 0.3) -> bool:
+    """Label a curve where it is: at the drawn point of ``xy`` nearest the fraction ``at`` of its
+    length that lies inside the frame; False if none does."""
+    xy = np.asarray(xy, float).reshape(-1, 2)
+    ok = np.flatnonzero(_inside(fig, xy))
+    if not len(ok):
+        return False
+    k = ok[np.argmin(abs(ok - at * (len(xy) - 1)))]
+    fig.label(xy[k], text, colour=colour, size=2.8, italic=False)
+    return True
+
+
+def _towards(fig: Figure, centre: np.ndarray, text: str, colour: str, layer: str) -> None:
+    """An arrow at the frame's edge pointing to a centre off the sheet, labelled with it."""
+    if "mechanism" not in fig.clip or _inside(fig, centre)[0]:
+        return
+    lo, hi = (np.asarray(v, float) for v in fig.clip["mechanism"])
+    mid = (lo + hi) / 2
+    d = centre - mid
+    # where the ray from the box's middle to the centre leaves the box (a little inside it)
+    t = min(abs((hi - mid)[k] / d[k]) if d[k] else np.inf for k in range(2)) * 0.92
+    head = mid + t * d
+    u = d / np.linalg.norm(d)
+    tail = head - 9.0 * fig.spaces["mechanism"].per_mm * u
+    fig.arrow(tail, head, style=Style(stroke=colour, width=0.3), layer=layer)
+    fig.label(tail, text, colour=colour, size=2.6, italic=False, prefer=np.array([-u[0], u[1]]))
+
+
 def _circle(fig: Figure, c: Circle, i: int, layer: str, kind: str, label: str, span) -> None:
     c = c[i]
-    st = Style(stroke=COLOURS[kind], width=0.35, dash="2.2 1.2" if kind == "return" else None)
+    st = Style(stroke=COLOURS[kind], width=0.35, dash=DASHES.get(kind))
     if bool(c.is_line):
         line = c.tangent_line
         a, b, k = line.coords
@@ -47,7 +88,38 @@ def _circle(fig: Figure, c: Circle, i: int, layer: str, kind: str, label: str, s
     if not (np.all(np.isfinite(ctr)) and np.isfinite(r)):
         return
     fig.circle(ctr, r, style=st, layer=layer, ident=f"{layer}-circle")
-    fig.label(ctr + r * np.array([np.cos(0.6), np.sin(0.6)]), label, colour=COLOURS[kind], size=2.8)
+    t = np.linspace(0.0, 2 * np.pi, 145)[:-1]
+    on = ctr + r * np.stack([np.cos(t), np.sin(t)], -1)
+    if not _label_on_curve(fig, on, label, COLOURS[kind], at=0.6 / (2 * np.pi)):
+        fig.note(f"{label}: centre ({ctr[0]:.4g}, {ctr[1]:.4g}), radius {r:.4g}; off the frame")
+    _towards(fig, ctr, f"centre of the {label}", COLOURS[kind], layer)
+
+
+def _pole_line(fig: Figure, sc, o: np.ndarray, d: np.ndarray, span: list, ends: list) -> None:
+    """An Aronhold–Kennedy line drawn thin past the poles in ``span``. Where it runs along a bar
+    of the mechanism (its two poles are both points of one link) only its parts beyond the bar
+    are drawn, so that the bar keeps a single outline."""
+    style = Style(stroke="#888", width=0.18)
+    mech = sc.mech
+    along = None
+    if len(ends) == 2:
+        for ln in mech.moving_links:
+            pts = [sc.pos(x) for x in mech.link(ln).points]
+            tol = 1e-9 * mech.length_scale
+            if all(any(np.all(np.abs(e - q) <= tol) for q in pts) for e in ends):
+                along = ends
+                break
+    if along is None:
+        fig.line(o, d, span, style=style, layer="pole-lines")
+        return
+    u = d / np.linalg.norm(d)
+    t = np.array([np.dot(x - o, u) for x in span])
+    ta, tb = sorted(float(np.dot(x - o, u)) for x in along)
+    over = 4.0 * fig.spaces["mechanism"].per_mm
+    lo, hi = t.min() - over, t.max() + over
+    for a, b in ((lo, ta), (tb, hi)):
+        if b - a > 1e-9 * mech.length_scale:
+            fig.path(np.array([o + a * u, o + b * u]), style=style, layer="pole-lines")
 
 
 def draw_instant(fig: Figure, sc, layer: str) -> None:
@@ -55,7 +127,7 @@ def draw_instant(fig: Figure, sc, layer: str) -> None:
     if layer in ("poles", "pole-lines"):
         ps = poles(sol)
         if layer == "poles":
-            fig.note("poles: " + ps.legend())
+            fig.note("poles: " + ", ".join(f"{k + 1} = {literal(ln)}" for k, ln in enumerate(ps.links)))
         if layer == "pole-lines":
             sch = pole_schedule(mech)
             for st in sch.derived:
@@ -70,9 +142,10 @@ def draw_instant(fig: Figure, sc, layer: str) -> None:
                     if a == 0 and b == 0:
                         continue
                     o = np.array([-a * k, -b * k]) / (a * a + b * b)
-                    span = [x[:2] / x[2] for x in (p, q) if x[2] != 0]
-                    fig.line(o, np.array([b, -a]), span, style=Style(stroke="#888", width=0.18),
-                             layer="pole-lines")
+                    # the line reaches the pole it is drawn for, however far it lies
+                    R = ps[st.pair].coords[i]
+                    span = [x[:2] / x[2] for x in (p, q, R) if x[2] != 0 and np.all(np.isfinite(x))]
+                    _pole_line(fig, sc, o, np.array([b, -a]), span, [x[:2] / x[2] for x in (p, q) if x[2] != 0])
         if layer == "pole-lines":
             return
         for pair in ps:
@@ -91,7 +164,7 @@ def draw_instant(fig: Figure, sc, layer: str) -> None:
         ins = instant(sol, ln)
         P = ins.pole[i]
         if not P.is_finite:
-            fig.note(f"{ln}: translating instantaneously (pole at infinity), no {layer} drawn")
+            fig.note(f"{literal(ln)}: translating instantaneously (pole at infinity), no {layer} drawn")
             continue
         span = [P.xy - ext * 0.3 * np.array([1, 0]), P.xy + ext * 0.3 * np.array([1, 0])]
         if layer == "centrodes":
@@ -103,16 +176,19 @@ def draw_instant(fig: Figure, sc, layer: str) -> None:
             cen = centrodes(full, ln, curvature=False)
             fig.path(cen.fixed_xy, style=Style(stroke=COLOURS["centrode"], width=0.35), layer="centrodes",
                      ident=f"centrode-fixed-{ln}")
+            _label_on_curve(fig, cen.fixed_xy, f"fixed centrode ({literal(ln)})", COLOURS["centrode"], 0.25)
             # the moving centrode, carried into the drawn position of the link
             th = float(sol.pose_derivatives(ln)[0, i, 2])
             x0 = sol.pose_derivatives(ln)[0, i, :2]
             m = cen.moving_xy
             R = np.array([[np.cos(th), -np.sin(th)], [np.sin(th), np.cos(th)]])
-            fig.path(m @ R.T + x0, style=Style(stroke=COLOURS["centrode"], width=0.35, dash="3 1.5"),
+            moving = m @ R.T + x0
+            fig.path(moving, style=Style(stroke=COLOURS["centrode"], width=0.35, dash=DASHES["moving-centrode"]),
                      layer="centrodes", ident=f"centrode-moving-{ln}")
-            fig.note(f"centrodes of {ln}: fixed solid, moving dashed")
+            _label_on_curve(fig, moving, f"moving centrode ({literal(ln)})", COLOURS["centrode"], 0.75)
+            fig.note(f"centrodes of {literal(ln)}: fixed solid, moving dashed")
         elif layer == "inflection":
-            _circle(fig, inflection_circle(sol, ln), i, "inflection", "inflection", f"inflection circle ({ln})", span)
+            _circle(fig, inflection_circle(sol, ln), i, "inflection", "inflection", f"inflection circle ({literal(ln)})", span)
             W = ins.inflection_pole[i]
             if W.is_finite:
                 fig.dot(W.xy, r=0.6, style=Style(stroke=COLOURS["inflection"]), layer="inflection")
@@ -126,11 +202,12 @@ def draw_instant(fig: Figure, sc, layer: str) -> None:
             fig.dot(P.xy, r=0.6, layer="inflection")
             fig.label(P.xy, "P", size=3.0)
         elif layer == "return":
-            _circle(fig, return_circle(sol, ln), i, "return", "return", f"return circle ({ln})", span)
+            _circle(fig, return_circle(sol, ln), i, "return", "return", f"return circle ({literal(ln)})", span)
         elif layer == "bresse":
-            _circle(fig, bresse_circle(sol, ln), i, "bresse", "bresse", f"Bresse circle ({ln})", span)
+            _circle(fig, bresse_circle(sol, ln), i, "bresse", "bresse", f"Bresse circle ({literal(ln)})", span)
         elif layer == "gamma":
             G = ins.acceleration_pole[i]
             if G.is_finite:
                 fig.dot(G.xy, r=0.7, style=Style(stroke=COLOURS["gamma"]), layer="gamma", ident=f"gamma-{ln}")
                 fig.label(G.xy, "\u0393", colour=COLOURS["gamma"], size=3.2)
+                _towards(fig, G.xy, f"\u0393 ({literal(ln)})", COLOURS["gamma"], "gamma")

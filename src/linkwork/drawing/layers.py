@@ -33,9 +33,9 @@ from ..geometry import Circle, Line, Point
 from ..kinematics import Solution, solve, whole_motion
 from ..model import (CircularSlot, Gear, Mechanism, Prismatic, Revolute, Slot, indexing_schedule,
                      is_intermittent)
-from ..constructions.construction import Arrow, Construction, Element, Polygon, Segment
+from ..constructions.construction import Arrow, Construction, Element, Polygon, Segment, literal
 from ..constructions.scales import SHEET_MM, Scale, Scales, nice_ceil
-from .svg import COLOURS, Figure, Style, plain, style_for
+from .svg import COLOURS, Figure, Style, style_for
 
 MECHANISM_LAYERS = ("mechanism", "paths", "velocities", "accelerations")
 INSTANT_LAYERS = ("poles", "pole-lines", "centrodes", "inflection", "return", "bresse", "gamma")
@@ -137,8 +137,11 @@ def scene_at(mech: Mechanism, value: float, *, kind: str = "input") -> Scene:
 
 
 # ---------------------------------------------------------------------------- mechanism
-def draw_mechanism(fig: Figure, sc: Scene, *, layer: str = "mechanism", labels: bool = True) -> None:
-    """Links, joints and frame in ISO 3952 symbols at the scene's position."""
+def draw_mechanism(fig: Figure, sc: Scene, *, layer: str = "mechanism", labels: bool = True,
+                   labelled: Iterable[str] = ()) -> None:
+    """Links, joints and frame in ISO 3952 symbols at the scene's position; ``labelled``: points
+    that something else (a construction) already labels."""
+    labelled = set(labelled)
     mech = sc.mech
     frame = mech.frame
     P = {p: sc.pos(p) for p in mech.points}
@@ -193,7 +196,7 @@ def draw_mechanism(fig: Figure, sc: Scene, *, layer: str = "mechanism", labels: 
     for p, xy in P.items():
         if p not in joint_points:
             fig.dot(xy, r=0.6, layer=layer, ident=f"point-{p}")
-        if labels:
+        if labels and p not in labelled:
             prefer = np.array([1.0, -1.0]) if np.allclose(xy, centroid) else (xy - centroid) * np.array([1, -1])
             if p in ground_points:
                 prefer = np.array([1.0, 0.6])
@@ -224,7 +227,7 @@ def _point_label(name: str) -> str:
     """``O2`` → ``O_2``: trailing digits of a point name become a subscript, as in the books."""
     import re
     m = re.match(r"^([A-Za-z]+)(\d+)$", name)
-    return f"{m.group(1)}_{m.group(2)}" if m else name
+    return f"{m.group(1)}_{m.group(2)}" if m else literal(name)
 
 
 def _draw_slider(fig: Figure, sc: Scene, j, layer: str) -> None:
@@ -316,7 +319,7 @@ def draw_vectors(fig: Figure, sc: Scene, which: str, points: Sequence[str] | Non
         head = x + k * v
         fig.arrow(x, head, style=Style(stroke=COLOURS[which], width=0.4), layer=layer,
                   ident=f"{which}-{p}")
-        fig.label(head, f"{sym}_{plain(_point_label(p)).replace('_', '')}", colour=COLOURS[which],
+        fig.label(head, f"{sym}_{{{literal(p)}}}", colour=COLOURS[which],
                   size=3.0, prefer=np.array([v[0], -v[1]]), ident=f"{which}-{p}")
 
 
@@ -461,12 +464,30 @@ def construction_spaces(con: Construction, scales: Scales) -> dict[str, Scale]:
     return out
 
 
+def _points_labelled_by(con: Construction, sc: Scene) -> set[str]:
+    """The mechanism's points at which the (sampled) construction puts a labelled point."""
+    tol = 1e-9 * sc.mech.length_scale
+    at = [el.obj.xy for el in con.elements.values()
+          if el.space == "mechanism" and el.label and isinstance(el.obj, Point) and el.obj.is_finite]
+    return {p for p in sc.mech.points
+            if any(np.all(np.abs(np.asarray(q).reshape(2) - sc.pos(p)) <= tol) for q in at)}
+
+
+#: how a figure is framed: ``mechanism`` keeps the mechanism the subject (layers larger than
+#: the sheet are cut at a frame around it, arrows point to centres off the sheet); ``all`` fits
+#: everything drawn on the sheet, however small the mechanism becomes
+FRAMES = ("mechanism", "all")
+
+
 def scene_figure(sc: Scene, show: Iterable[str] = ("mechanism",), *,
                  construction: Construction | None = None, step: int | None = None,
-                 title: str | None = None, paths: Sequence[str] | None = None) -> Figure:
+                 title: str | None = None, paths: Sequence[str] | None = None,
+                 frame: str = "mechanism") -> Figure:
     """A figure of the scene with the named layers (and a construction, up to ``step``);
     ``paths`` names the points whose paths the ``paths`` layer traces (default: every moving
-    point)."""
+    point); framed as ``frame`` says (:data:`FRAMES`)."""
+    if frame not in FRAMES:
+        raise InputError(f"unknown frame '{frame}'; the frames are {', '.join(FRAMES)}")
     show = list(show)
     unknown = [s for s in show if s not in LAYERS]
     if unknown:
@@ -498,13 +519,15 @@ def scene_figure(sc: Scene, show: Iterable[str] = ("mechanism",), *,
         cb = construction_box(con)
         if cb is not None:
             box = (np.minimum(box[0], cb[0]), np.maximum(box[1], cb[1]))
-    fig.clip["mechanism"] = box
+    if frame == "mechanism":
+        fig.clip["mechanism"] = box
+        fig.framed.add("mechanism")
     for layer in show:
         if layer == "mechanism":
             # a construction that labels the mechanism's points in its own notation hides the
             # file's point names
             own = construction is not None and construction.own_labels
-            draw_mechanism(fig, sc, labels=not own)
+            draw_mechanism(fig, sc, labelled=_points_labelled_by(con, sc) if own else ())
         elif layer == "paths":
             draw_paths(fig, sc, paths)
         elif layer == "velocities":
@@ -522,4 +545,11 @@ def scene_figure(sc: Scene, show: Iterable[str] = ("mechanism",), *,
         draw_construction(fig, con, upto=step, highlight=step)
         if step is not None:
             fig.current_step = step
+            # every step's panels fitted to the whole construction, so that the mechanism does
+            # not move or change its size when paging through the steps
+            whole = scene_figure(sc, show, construction=construction, title=title, paths=paths,
+                                 frame=frame)
+            for name, tf in whole.transforms().items():
+                if name not in fig.view:
+                    fig.view[name] = (np.array(tf["lo"]), np.array(tf["hi"]))
     return fig

@@ -5,7 +5,8 @@ Owns :func:`motion_plot` (positions, velocities or accelerations of chosen point
 and magnitude — and angles, angular velocities or accelerations of chosen links, against the
 input or the time) and :func:`vs_plot` (the v–s diagram of a point, Rosenauer §61 II: velocity
 over the path; for a point on a straight line the acceleration is the diagram's subnormal
-v·dv/ds, drawn as a check for a chosen position). Both return a Matplotlib ``Figure``
+v·dv/ds, drawn as a check for a chosen position) and :func:`graphical_motion` (Pöschl's s–t,
+v–t, a–t lines with the graphical differentiation by chords). All return a Matplotlib ``Figure``
 (Agg backend, no display needed); :func:`save` writes PNG, PDF or SVG.
 """
 
@@ -157,6 +158,62 @@ def vs_plot(mech: Mechanism, point: str, *, solution: Solution | None = None, ti
         ax.text(0.02, 0.96, "acceleration = subnormal v\u00b7dv/ds", transform=ax.transAxes, fontsize=8,
                 va="top")
     fig.suptitle(title or f"{mech.name}: v\u2013s diagram of {point}", fontsize=11)
+    fig.tight_layout()
+    return fig
+
+
+def graphical_motion(mech: Mechanism, point: str, *, chords: int = 36, H: float = 2.0,
+                     solution: Solution | None = None):
+    """Pöschl's motion diagrams of ``point`` along its path (ch. II §7): the s–t, v–t and a–t
+    lines (a the tangential acceleration), the last two from the engine, and over them the
+    graphically differentiated chord polygons (pole distance ``H`` cm, ``chords`` chords over the
+    motion, :mod:`linkwork.constructions.motion_calculus`) as markers, read at the derived scales
+    l_v = l_s/(H l_t), l_a = l_v/(H l_t), which are given in the panels' titles."""
+    from ..constructions.motion_calculus import differentiate
+    if point not in mech.points:
+        raise InputError(f"mechanism '{mech.name}' has no point '{point}'")
+    if chords < 2:
+        raise InputError(f"graphical differentiation needs two chords at least, not {chords}")
+    sol = solution or whole_motion(mech)
+    m = sol.point(point)
+    t, tlabel = _abscissa(mech, sol, "time")
+    s, v, straight = path_coordinate(m.position, m.velocity)
+    speed = np.linalg.norm(m.velocity, axis=1)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        e = m.velocity / speed[:, None] * np.sign(v)[:, None]
+    a = np.sum(m.acceleration * e, axis=1)
+    ok = np.isfinite(t) & np.isfinite(s) & np.isfinite(v)
+    if ok.sum() < 3 or np.any(np.diff(t[ok]) <= 0):
+        raise InputError(f"the motion of '{point}' has no increasing time axis to draw the diagrams on")
+    idx = np.unique(np.linspace(0, ok.sum() - 1, chords + 1).round().astype(int))
+    T, S, V = t[ok][idx], s[ok][idx], v[ok][idx]
+    # drawing scales as the book chooses them: the t axis about 15 cm, the s line about 5 cm high
+    l_t = float(np.ptp(T)) / 15.0 or 1.0
+    l_s = float(np.ptp(S)) / 5.0 or 1.0
+    dv = differentiate(T, S, l_t=l_t, l_x=l_s, H=H)
+    da = differentiate(T, V, l_t=l_t, l_x=dv.l_y, H=H)
+    u = mech.length_unit
+    plt = _plt()
+    fig, axes = plt.subplots(3, 1, figsize=(7.5, 8.0), sharex=True)
+    axes[0].plot(t, s, lw=1.2, color="#000")
+    axes[0].plot(T, S, "-", lw=0.5, color="#b3001b", marker=".", ms=3, label="chords")
+    axes[0].set_ylabel(f"s [{u}]")
+    axes[0].set_title(f"s–t line, $l_s$ = {l_s:.3g} {u}/cm, $l_t$ = {l_t:.3g} s/cm", fontsize=9)
+    axes[1].plot(t, v, lw=1.2, color="#1f4e9c", label="engine")
+    axes[1].plot(dv.x, dv.y, "o", ms=3, color="#b3001b", label=f"chord slopes, H = {H:g} cm")
+    axes[1].set_ylabel(f"v [{u}/s]")
+    axes[1].set_title(f"v–t line, $l_v = l_s/(H\\,l_t)$ = {dv.l_y:.3g} {u}/s per cm", fontsize=9)
+    axes[2].plot(t, a, lw=1.2, color="#1b7a3a", label="engine (tangential)")
+    axes[2].plot(da.x, da.y, "o", ms=3, color="#b3001b", label=f"chord slopes, H = {H:g} cm")
+    axes[2].set_ylabel(f"a [{u}/s²]")
+    axes[2].set_title(f"a–t line, $l_a = l_v/(H\\,l_t)$ = {da.l_y:.3g} {u}/s² per cm", fontsize=9)
+    axes[2].set_xlabel(tlabel)
+    for ax in axes:
+        ax.axhline(0.0, color="#888", lw=0.5)
+        ax.grid(True, lw=0.3, alpha=0.6)
+        ax.legend(fontsize=7, loc="upper right")
+    fig.suptitle(f"{mech.name}: motion diagrams of {point} ("
+                 + ("displacement" if straight else "arc length") + ", graphical differentiation)", fontsize=10)
     fig.tight_layout()
     return fig
 

@@ -17,6 +17,7 @@ import html
 import math
 import re
 from dataclasses import dataclass, field
+from functools import lru_cache
 from pathlib import Path
 from typing import Any, Iterable
 
@@ -33,6 +34,14 @@ SMALL = 2.6
 MARGIN = 9.0  # mm around a panel's content
 GAP = 10.0  # mm between panels
 TITLE_H = 9.0
+FRAME_PAD = 6.0  # mm between a framed panel's content and its frame
+SCALE_BAR = 20.0  # mm, the length of a scale bar
+SCALE_TEXT_SIZE, SCALE_VALUE_SIZE = 2.8, 2.5
+LEGEND_SIZE, LEGEND_LINE = 3.0, 4.2  # legend lines: font size and baseline distance (mm)
+#: below a scale bar: its value's baseline 3.6 under the bar, the value's descent, a gap
+SCALE_BELOW = 3.6 + 0.3 * SCALE_VALUE_SIZE + 1.5
+#: depth of a row of scale bars: the words' ascent (baseline 1 under the bar) above it
+SCALE_ROW = 0.8 * SCALE_TEXT_SIZE - 1.0 + SCALE_BELOW + 1.0
 
 
 @dataclass(frozen=True)
@@ -57,6 +66,9 @@ class Style:
 COLOURS = {"velocity": "#1f4e9c", "acceleration": "#1b7a3a", "coriolis": "#8a2be2",
            "pole": "#000", "inflection": "#b3001b", "return": "#b36b00", "bresse": "#006d77",
            "centrode": "#5a5a5a", "path": "#7a7a7a", "gamma": "#006d77", "highlight": "#e06c00"}
+#: dash patterns, one per kind of curve that shares a figure with others: the return circle
+#: dash-dotted, the moving centrode dashed (the fixed one solid)
+DASHES = {"return": "3 1 0.6 1", "moving-centrode": "3 1.5"}
 WEIGHTS = {"given": 0.5, "auxiliary": 0.18, "result": 0.6}
 RESULT_COLOUR = "#b3001b"
 AUX_COLOUR = "#555"
@@ -70,8 +82,7 @@ def style_for(role: str, kind: str = "") -> Style:
         colour = RESULT_COLOUR if role == "result" else (AUX_COLOUR if role == "auxiliary" else "#000")
     elif role == "auxiliary":
         w = max(w, 0.25)
-    dash = "2.2 1.2" if kind in ("return",) else None
-    return Style(stroke=colour, width=w, dash=dash)
+    return Style(stroke=colour, width=w, dash=DASHES.get(kind))
 
 
 # ---------------------------------------------------------------------------- primitives
@@ -102,41 +113,134 @@ class Label:
     clear: float = 0.0  # keep this far (mm) from the anchor, e.g. the radius of a joint circle
 
 
-_TOKEN = re.compile(r"([_^])(\{[^}]*\}|[0-9A-Za-z\u0370-\u03ff]+)")
-
-
 def _esc(text: str) -> str:
     """Escape for XML; symbols the serif face lacks (≙) are set in DejaVu Sans."""
     t = html.escape(text)
     return t.replace("\u2259", '<tspan font-family="DejaVu Sans, sans-serif">\u2259</tspan>')
 
 
-def label_markup(text: str, size: float = LABEL_SIZE) -> str:
-    """SVG text content for a label in the books' notation: ``W_0`` → W with subscript 0,
-    ``P_{13}`` or ``P_13`` → P with subscript 13, ``v^2`` → superscript (shifts in mm for a label
-    of ``size``)."""
-    out, pos = [], 0
-    for m in _TOKEN.finditer(text):
-        out.append(_esc(text[pos:m.start()]))
-        t = m.group(2).strip("{}")
-        dy = 0.32 * size if m.group(1) == "_" else -0.42 * size
-        out.append(f'<tspan font-size="{sym._f(0.7 * size)}" dy="{sym._f(dy)}">{html.escape(t)}</tspan>'
-                   f'<tspan dy="{sym._f(-dy)}">\u200a</tspan>')
-        pos = m.end()
-    out.append(_esc(text[pos:]))
+#: what follows ``_`` or ``^`` unbraced: letters, digits, Greek (``a^n_BO_4``, the books' name
+#: O_4 in a subscript, sets BO4 as one subscript)
+_RUN = re.compile(r"[0-9A-Za-z\u0370-\u03ff]+")
+SUB, SUP = -1, 1
+SCRIPT = 0.7  # size of sub- and superscripts relative to the label
+_SHIFT = {SUB: 0.32, SUP: -0.42}  # baseline shift (em, y down)
+
+
+def segments(text: str) -> list[tuple[str, int]]:
+    """A label in the books' notation as runs of (text, level): level 0 on the baseline, ``SUB``
+    or ``SUP``. ``P_{13}``, ``P_13`` and ``v_A`` are subscripts, ``v^2``, ``b_B^(n)`` and
+    ``x^{(n)}`` superscripts; a backslash takes the next character literally (user names are
+    escaped with :func:`~linkwork.constructions.construction.literal`, so ``link_j`` is printed
+    as written; a braced script is taken as written: ``v_{p_1}``)."""
+    out: list[tuple[str, int]] = []
+
+    def put(t: str, level: int) -> None:
+        if not t:
+            return
+        if out and out[-1][1] == level:
+            out[-1] = (out[-1][0] + t, level)
+        else:
+            out.append((t, level))
+    i, n = 0, len(text)
+    while i < n:
+        c = text[i]
+        if c == "\\" and i + 1 < n:
+            put(text[i + 1], 0)
+            i += 2
+            continue
+        if c in "_^" and i + 1 < n:
+            level = SUB if c == "_" else SUP
+            nxt = text[i + 1]
+            close = {"{": "}", "(": ")"}.get(nxt) if (nxt == "{" or (nxt == "(" and c == "^")) else None
+            if close:
+                j = text.find(close, i + 2)
+                if j > 0:
+                    body = text[i + 2:j] if close == "}" else text[i + 1:j + 1]
+                    put(re.sub(r"\\(.)", r"\1", body), level)
+                    i = j + 1
+                    continue
+            m = _RUN.match(text, i + 1)
+            if m:
+                put(m.group(0), level)
+                i = m.end()
+                continue
+        put(c, 0)
+        i += 1
+    return out
+
+
+@lru_cache(maxsize=4)
+def _face(family: str, italic: bool):
+    """A face shipped with Matplotlib (DejaVu) at 100 px per em."""
+    from matplotlib import font_manager
+    from matplotlib.ft2font import FT2Font
+    path = font_manager.findfont(font_manager.FontProperties(
+        family=family, style="italic" if italic else "normal"))
+    face = FT2Font(path)
+    face.set_size(100, 72)
+    return face
+
+
+@lru_cache(maxsize=4096)
+def _advance(text: str, size: float, italic: bool) -> float:
+    """Advance width (mm) of ``text`` set at ``size`` mm, from the glyph metrics of the label
+    face; glyphs the serif face lacks (≙) are measured in DejaVu Sans, where :func:`_esc` sets them."""
+    faces = (_face("DejaVu Serif", italic), _face("DejaVu Sans", False))
+    px = 0.0
+    for ch in text:
+        face = next((f for f in faces if f.get_char_index(ord(ch))), None)
+        # a glyph neither face has is set by the viewer's fallback font: about an em wide
+        px += face.load_char(ord(ch)).linearHoriAdvance / 65536.0 if face else 100.0
+    return px / 100.0 * size
+
+
+def _layout_runs(text: str, size: float, italic: bool) -> list[tuple[str, int, float, float, float]]:
+    """(text, level, x, width, font size) of each run; a superscript right after a subscript (or
+    the other way round) is stacked on it, as the books set b_B^(n) and a^n_A."""
+    runs, x, last = [], 0.0, None
+    for t, level in segments(text):
+        fs = size if level == 0 else SCRIPT * size
+        w = _advance(t, fs, italic)
+        if level and last is not None and last[1] == -level:
+            x0 = last[2]
+            runs.append((t, level, x0, w, fs))
+            x = max(x, x0 + w)
+        else:
+            runs.append((t, level, x, w, fs))
+            x += w
+        last = runs[-1]
+    return runs
+
+
+def label_markup(text: str, size: float = LABEL_SIZE, italic: bool = False) -> str:
+    """SVG text content for a label in the books' notation (see :func:`segments`), sub- and
+    superscripts as shifted tspans placed at measured positions (mm for a label of ``size``)."""
+    out, y, pos = [], 0.0, 0.0
+    for t, level, x, w, fs in _layout_runs(text, size, italic):
+        dy = _SHIFT.get(level, 0.0) * size - y
+        attrs = ""
+        if abs(x - pos) > 1e-6:
+            attrs += f' dx="{sym._f(x - pos)}"'
+        if abs(dy) > 1e-9:
+            attrs += f' dy="{sym._f(dy)}"'
+        if level:
+            attrs += f' font-size="{sym._f(fs)}"'
+        out.append(f"<tspan{attrs}>{_esc(t)}</tspan>" if attrs else _esc(t))
+        y += dy
+        pos = x + w
     return "".join(out)
 
 
 def plain(text: str) -> str:
     """The label as plain text (for titles, XML ids and reports)."""
-    return text.replace("_", "").replace("{", "").replace("}", "")
+    return "".join(t for t, _ in segments(text))
 
 
-def text_width(text: str, size: float) -> float:
-    """Estimated width of a label (mm): subscripts are narrower."""
-    main = re.sub(r"_\{?[^}\s^]+\}?", "", text)
-    subs = len(text) - len(main)
-    return size * (0.58 * len(main) + 0.42 * max(0, subs - 1)) + 0.4
+def text_width(text: str, size: float, italic: bool = False) -> float:
+    """Width of a label (mm) measured from the font's metrics, sub- and superscripts included."""
+    runs = _layout_runs(text, size, italic)
+    return max((x + w for _, _, x, w, _ in runs), default=0.0)
 
 
 def _ident(text: str) -> str:
@@ -170,6 +274,9 @@ class Figure:
         # keep one layout)
         self.view: dict[str, tuple[np.ndarray, np.ndarray]] = {}
         self.scales_declared = True  # vectors on the mechanism are at self.scales
+        # spaces drawn inside a visible frame (``--frame mechanism``): what runs past the clip
+        # box is cut at the frame, not at the sheet's edge
+        self.framed: set[str] = set()
 
     # ------------------------------------------------------------------ adding
     def space(self, name: str, scale: Scale, title: str = "") -> None:
@@ -276,6 +383,8 @@ class Figure:
         x = MARGIN
         panels = {}
         top = TITLE_H + (6.0 if any(self.titles.get(n) for n in boxes) else 0.0) + MARGIN * 0.5
+        if self.framed:
+            top += FRAME_PAD - MARGIN * 0.5 + 1.5  # the frame clear of the title
         height = 0.0
         for name, (lo, hi, size, scale) in boxes.items():
             w, h = max(size[0], 20.0), max(size[1], 15.0)
@@ -316,7 +425,8 @@ class Figure:
         captions = self.captions if animate else ([self.captions[self.current_step]]
                                                   if self.current_step is not None and self.captions else [])
         if captions:
-            caption_h = 5.0 + 4.4 * max(len(_wrap(c, width)) for c in captions)
+            # as deep as the longest caption of all steps: every step's sheet is the same size
+            caption_h = 5.0 + 4.4 * max(len(_wrap(c, width)) for c in self.captions)
         samples: list[np.ndarray] = []
         layers: dict[str, list[str]] = {}
         for p in self.prims:
@@ -374,11 +484,30 @@ class Figure:
                 f'<title>{html.escape(plain(self.title))}</title>',
                 f'<rect x="0" y="0" width="{sym._f(width)}" height="{sym._f(height)}" fill="#fff"/>',
                 "<defs>" + "".join(
-                    f'<clipPath id="clip-{_ident(n)}"><rect x="{sym._f(p["x"] - MARGIN)}" '
-                    f'y="{sym._f(p["y"] - MARGIN)}" width="{sym._f(p["w"] + 2 * MARGIN)}" '
-                    f'height="{sym._f(p["h"] + 2 * MARGIN)}"/></clipPath>' for n, p in panels.items())
-                + "</defs>"]
+                    f'<clipPath id="clip-{_ident(n)}">{self._clip_rect(n, p)}</clipPath>'
+                    for n, p in panels.items()) + "</defs>"]
+        frames = [f'<g id="frame-{_ident(n)}" class="frame">'
+                  + self._clip_rect(n, p).replace("/>", ' fill="none" stroke="#000" stroke-width="0.35"/>')
+                  + "</g>" for n, p in panels.items() if self._cut(n)]
+        out = frames + out
         return "\n".join(head + out + ["</svg>"]) + "\n"
+
+    def _cut(self, name: str) -> bool:
+        """Whether something drawn in the framed space ``name`` runs past its clip box (then the
+        frame is drawn, and cuts it)."""
+        if name not in self.framed or name not in self.clip:
+            return False
+        lo, hi = (np.asarray(v, float) for v in self.clip[name])
+        pts = np.array([q for p in self.prims if p.space == name for q in self._world_points(p)]).reshape(-1, 2)
+        pts = pts[np.all(np.isfinite(pts), axis=1)]
+        return bool(np.any((pts < lo) | (pts > hi)))
+
+    def _clip_rect(self, name: str, p: dict) -> str:
+        """The rectangle drawing is cut at: the frame (FRAME_PAD around the panel) where the
+        space's layers run past the sheet, else the panel with its margin."""
+        pad = FRAME_PAD if self._cut(name) else MARGIN
+        return (f'<rect x="{sym._f(p["x"] - pad)}" y="{sym._f(p["y"] - pad)}" '
+                f'width="{sym._f(p["w"] + 2 * pad)}" height="{sym._f(p["h"] + 2 * pad)}"/>')
 
     def _legend(self, y: float, width: float, extra: list[str]) -> tuple[str, float]:
         parts = ['<g id="legend" font-size="3">',
@@ -387,36 +516,45 @@ class Figure:
         scales = [self.scales.length] + [s for s in (self.scales.velocity, self.scales.acceleration)
                                          if s is not None and s.quantity in self.used_scales]
         scales += getattr(self, "extra_scales", [])  # e.g. the force scale of drawing.force_layers
+        # scale bars in rows, each as wide as its measured text; a row is as deep as the bar's
+        # value under it, so that the legend's lines below never touch it
         x = MARGIN
         yy = y + 5.5
         for s in scales:
-            w = 24.0 + text_width(s.text(), 2.8)
+            w = self._scale_bar_width(s)
             if x > MARGIN and x + w > width - MARGIN:
-                x, yy = MARGIN, yy + 7.5
+                x, yy = MARGIN, yy + SCALE_ROW
             parts.append(self._scale_bar(x, yy, s))
             x += w + 6.0
-        yy += 5.5
+        yy += SCALE_BELOW + 0.8 * LEGEND_SIZE  # the first line's ascent below the last row
         for t in extra:
-            parts.append(f'<text x="{MARGIN}" y="{sym._f(yy)}">{label_markup(t, 3.0)}</text>')
-            yy += 4.2
+            for line in _wrap(t, width, LEGEND_SIZE):
+                parts.append(f'<text x="{MARGIN}" y="{sym._f(yy)}">{label_markup(line, LEGEND_SIZE)}</text>')
+                yy += LEGEND_LINE
         parts.append("</g>")
         return "".join(parts), yy
 
     @staticmethod
-    def _scale_bar(x: float, y: float, s: Scale) -> str:
+    def _scale_words_at(s: Scale) -> float:
+        """Where the scale in words starts, right of the bar's value (centred under its end)."""
+        return SCALE_BAR + max(3.0, text_width(_scale_value(s), SCALE_VALUE_SIZE) / 2 + 1.5)
+
+    def _scale_bar_width(self, s: Scale) -> float:
+        return self._scale_words_at(s) + text_width(s.text(), SCALE_TEXT_SIZE)
+
+    def _scale_bar(self, x: float, y: float, s: Scale) -> str:
         """A scale bar (*Maßstabsleiste*) of 20 mm with its value, and the scale in words."""
-        L = 20.0
-        v = L * s.per_mm
+        L = SCALE_BAR
         ticks = "".join(f'<line x1="{sym._f(x + t)}" y1="{sym._f(y - 1.2)}" x2="{sym._f(x + t)}" '
                         f'y2="{sym._f(y + 0.4)}" stroke="#000" stroke-width="0.25"/>' for t in (0, 10, 20))
         return (f'<g class="scale" id="scale-{s.quantity}">'
                 f'<line x1="{sym._f(x)}" y1="{sym._f(y)}" x2="{sym._f(x + L)}" y2="{sym._f(y)}" '
                 f'stroke="#000" stroke-width="0.5"/>{ticks}'
-                f'<text x="{sym._f(x)}" y="{sym._f(y + 3.6)}" font-size="2.5">0</text>'
-                f'<text x="{sym._f(x + L)}" y="{sym._f(y + 3.6)}" font-size="2.5" text-anchor="middle">'
-                f'{v:.4g} {html.escape(s.unit)}</text>'
-                f'<text x="{sym._f(x + L + 3)}" y="{sym._f(y + 1)}" font-size="2.8">'
-                f'{label_markup(s.text(), 2.8)}</text></g>')
+                f'<text x="{sym._f(x)}" y="{sym._f(y + 3.6)}" font-size="{SCALE_VALUE_SIZE}">0</text>'
+                f'<text x="{sym._f(x + L)}" y="{sym._f(y + 3.6)}" font-size="{SCALE_VALUE_SIZE}" '
+                f'text-anchor="middle">{html.escape(_scale_value(s))}</text>'
+                f'<text x="{sym._f(x + self._scale_words_at(s))}" y="{sym._f(y + 1)}" '
+                f'font-size="{SCALE_TEXT_SIZE}">{label_markup(s.text(), SCALE_TEXT_SIZE)}</text></g>')
 
     def _render(self, p: Prim, tf, panel: dict) -> tuple[str, list]:
         d, st = p.data, p.style
@@ -539,13 +677,21 @@ class Figure:
         grid = _Grid(samples)
         placed: list[tuple[float, float, float, float]] = []
         out = []
+        cut = {n: self._cut(n) for n in panels}
         for lab in self.labels:
             if lab.space not in tfs:
                 continue
             if self.current_step is not None and lab.step is not None and lab.step > self.current_step and not animate:
                 continue
             a = tfs[lab.space](lab.xy)
-            w, h = text_width(lab.text, lab.size), lab.size * 0.95
+            frame = None
+            if cut.get(lab.space):
+                pn = panels[lab.space]
+                frame = (pn["x"] - FRAME_PAD, pn["y"] - FRAME_PAD, pn["x"] + pn["w"] + FRAME_PAD,
+                         pn["y"] + pn["h"] + FRAME_PAD)
+                if not (frame[0] <= a[0] <= frame[2] and frame[1] <= a[1] <= frame[3]):
+                    continue  # its point is cut off with the drawing at the frame
+            w, h = text_width(lab.text, lab.size, lab.italic) + 0.4, lab.size * 0.95
             best, best_score = None, math.inf
             cands = _candidates(lab.prefer)
             for k, (dx, dy) in enumerate(cands):
@@ -556,6 +702,9 @@ class Figure:
                     box = (cx - w / 2, cy - h / 2, cx + w / 2, cy + h / 2)
                     score = 40.0 * sum(_overlap(box, q) for q in placed) / (w * h)
                     score += grid.count(box) * 1.0 + 0.15 * k + 0.6 * dist
+                    if frame is not None and not (frame[0] <= box[0] and box[2] <= frame[2]
+                                                  and frame[1] <= box[1] and box[3] <= frame[3]):
+                        score += 1e4  # across the frame
                     if score < best_score:
                         best, best_score = box, score
             placed.append(best)
@@ -563,7 +712,7 @@ class Figure:
             ident = f' id="{lab.ident}"' if lab.ident else ""
             style = ' font-style="italic"' if lab.italic else ""
             el = (f'<text{ident} x="{sym._f(x0 + 0.2)}" y="{sym._f(y1 - 0.22 * lab.size)}" '
-                  f'font-size="{sym._f(lab.size)}"{style} fill="{lab.colour}">{label_markup(lab.text, lab.size)}</text>')
+                  f'font-size="{sym._f(lab.size)}"{style} fill="{lab.colour}">{label_markup(lab.text, lab.size, lab.italic)}</text>')
             # a white halo keeps labels readable over thin construction lines
             halo = (f'<rect x="{sym._f(x0)}" y="{sym._f(y0 + 0.1)}" width="{sym._f(x1 - x0)}" '
                     f'height="{sym._f(y1 - y0 - 0.1)}" fill="#fff" fill-opacity="0.75"/>')
@@ -662,17 +811,24 @@ def _clip_segment(a: np.ndarray, b: np.ndarray, box) -> tuple:
 
 
 def _wrap(text: str, width: float, size: float = 3.3) -> list[str]:
-    per = max(20, int((width - 2 * MARGIN) / (0.5 * size)))
+    """``text`` broken at spaces into lines whose measured width fits the sheet's ``width``."""
+    room = width - 2 * MARGIN
     words, lines, cur = text.split(), [], ""
     for w in words:
-        if len(cur) + len(w) + 1 > per and cur:
+        trial = f"{cur} {w}".strip()
+        if cur and text_width(trial, size) > room:
             lines.append(cur)
             cur = w
         else:
-            cur = f"{cur} {w}".strip()
+            cur = trial
     if cur:
         lines.append(cur)
     return lines or [""]
+
+
+def _scale_value(s: Scale) -> str:
+    """The value a scale bar's 20 mm stand for."""
+    return f"{SCALE_BAR * s.per_mm:.4g} {s.unit}"
 
 
 def _resample(xy: np.ndarray, step: float = 0.8) -> list[np.ndarray]:
