@@ -379,8 +379,12 @@ class _Lane(InputPath):
         if len(self.lam) >= 2:  # a limit position ahead: close in on it
             g1, g0 = gen.norm(t), gen.norm(self.T[-2])
             lam0 = self.lam[-2]
-            # near a turning point of the path |dq/dλ|⁻² falls linearly to zero at it
-            if np.isfinite(g0) and np.isfinite(g1) and g1 > g0 > 0:
+            # near a turning point of the path |dq/dλ|⁻² falls linearly to zero at it. Poses
+            # that hardly move (a change of less than SLACK over a largest step) turn at no
+            # limit position: a tangent growing from 1e-12 is a degenerate drawing's branch
+            # crossing, which the steps would close in on forever
+            if np.isfinite(g0) and np.isfinite(g1) and g1 > g0 > 0 and \
+                    g1 * CONTINUATION_STEP > SLACK * gen.L:
                 fold = lam + (lam - lam0) * g0 ** 2 / (g1 ** 2 - g0 ** 2)
                 h = min(h, max(FOLD_APPROACH * (fold - lam), MIN_STEP * CONTINUATION_STEP))
         nxt = self.knots[np.searchsorted(self.knots, lam, side="right")]
