@@ -66,6 +66,12 @@ def test_analyze_at_a_few_inputs_loads_no_profiles_plots_or_tables(mech):
                 "pandas"} & set(r["loaded"])
 
 
+def test_csv_output_needs_no_pandas():
+    r = _loaded("analyze", "library:crank-rocker", "--format", "csv")
+    assert r["code"] == 0 and r["out"].startswith("input,status,")
+    assert "pandas" not in r["loaded"]
+
+
 def test_a_bare_number_needs_no_unit_registry():
     """`--at 30` is read without pint; `--at 30deg` with it: the same value."""
     probe = ("import sys, math; from linkwork.units import parse_quantity as p; "

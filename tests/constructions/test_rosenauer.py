@@ -160,7 +160,7 @@ def test_wittenbauer_rule_holds_for_a_four_bar():
 
 
 def test_unknown_pairs_leave_the_question_open():
-    s = plan_velocities(linkwork.load("library:sulzer-valve-gear"))
+    s = plan_velocities(linkwork.load("library:geneva-4"))
     assert not s.direct and "not decided" in s.verdict()
 
 
@@ -261,3 +261,77 @@ def test_plan_command_json_and_structure_report():
     res = CliRunner().invoke(app, ["structure", "library:roemer-mechanism", "--format", "json"])
     assert res.exit_code == 0, res.output
     assert json.loads(res.output)["velocity_construction"]["rosenauer"]["auxiliary_points"][0]["link"] == "coupler"
+
+
+# ------------------------------------------------------------------ false position
+def test_binary_driver_needs_false_position():
+    """Paper 7, remark: with a binary link (3) driving Alt's chain the plan is not direct; a trial
+    rate of link 1 makes it direct, and the plan is then rescaled (one trial: the velocities are
+    proportional to the input, so the rows of trial images pass through o)."""
+    mech = load("alt-8-link-binary-driver")
+    s = plan_velocities(mech)
+    assert not s.direct and s.complete
+    assert s.trial[0] == "link_1" and s.scale_by[0] == "link_3"
+    assert "false position" in s.verdict()
+    assert s.steps[-1].kind == "scale"
+
+
+@pytest.mark.parametrize("build", [velocity_plan, rotated_velocities], ids=["plan", "rotated"])
+def test_false_position_plan_matches_the_engine(build):
+    mech = load("alt-8-link-binary-driver")
+    sol = positions(mech)
+    con = build(mech, sol)
+    con.check()
+    assert con.max_error() <= 1e-9 and not con.degenerate.any()
+    assert {"v_Q@link_4", "v_R@link_5"} <= set(con.results)
+
+
+def test_acceleration_plan_after_false_position_is_a_clear_error():
+    mech = load("alt-8-link-binary-driver")
+    with pytest.raises(linkwork.LinkworkError, match="needs false position"):
+        acceleration_plan(mech, positions(mech))
+
+
+# ------------------------------------------------------------------ cam contacts
+@pytest.mark.parametrize("name", ["rolling-lever-valve-gear", "radial-roller-cam", "flat-faced-cam",
+                                  "oscillating-roller-cam", "sulzer-valve-gear", "elliptical-gears",
+                                  "proell-schwabe-valve-gear"])
+@pytest.mark.parametrize("build", [velocity_plan, rotated_velocities], ids=["plan", "rotated"])
+def test_cam_contact_velocities_through_the_common_normal(name, build):
+    """A cam contact: both links' velocities project equally on the common normal n–n at the
+    contact (Rosenauer 1937 paper 8: the rolling lever's pole on n–n), a line condition like a
+    sliding pair's; a rolling contact: the point of contact is the relative pole, a hinge."""
+    mech = linkwork.load(f"library:{name}")
+    x0 = mech.driver_input_at_design(mech.drivers[0])
+    sol = solve(mech, x0 + np.array([0.05, 0.4, 1.1]))
+    con = build(mech, sol)
+    con.check()
+    assert con.max_error() <= 1e-9
+    assert plan_velocities(mech).direct
+
+
+def test_cam_contact_acceleration_is_refused_with_its_reason():
+    mech = linkwork.load("library:radial-roller-cam")
+    with pytest.raises(linkwork.LinkworkError, match="needs the curvature"):
+        acceleration_plan(mech, [0.3])
+
+
+def test_roemer_coupler_pole_lies_on_the_normal_to_the_slide_at_b():
+    """Paper 1, Construction I, step 3: the pole P of the coupler ABC lies on BN, the line through B
+    perpendicular to the slide of BL. The pole is read off the drawn images of Q and B (where the
+    coupler's velocity vanishes) and compared with the line BN and with the engine's pole."""
+    from linkwork.constructions._common import perp, pole
+
+    mech = linkwork.load("library:roemer-mechanism")
+    sol = positions(mech)
+    con = velocity_plan(mech, sol)
+    vq, vb = con.results["v_Q@coupler"].constructed, con.results["v_B"].constructed
+    Q = np.array([e for e in con.elements.values() if e.label == "Q" and e.space == "mechanism"][0].obj.xy)
+    B = sol.point("B").position
+    # ω from the two images: v_B − v_Q = ω J (B − Q)
+    d = B - Q
+    w = np.sum((vb - vq) * perp(d), axis=1) / np.sum(d * d, axis=1)
+    P = B + perp(vb) / w[:, None]
+    slide = np.array([0.0, 1.0])  # the guide of BL (frame, not turning)
+    assert np.allclose((P - B) @ slide, 0.0, atol=1e-9 * mech.length_scale)
+    assert np.allclose(P, pole(sol, "coupler"), atol=1e-9 * mech.length_scale)

@@ -78,7 +78,10 @@ def test_static_slider_crank_torque_by_virtual_work():
     P = -1000.0
     dyn = Dynamics.build(mech, loads=Loads(forces=(PointForce("block", mech.points["B"], [P, 0.0]),)))
     phi = np.radians(np.arange(5.0, 360.0, 10.0))
-    fa = kinetostatics(dyn, linkwork.solve(mech, phi), inertia=False)
+    sol = linkwork.solve(mech, phi)
+    fa = kinetostatics(dyn, sol, inertia=False)
+    # points of application in the drawing's unit (mm)
+    np.testing.assert_allclose(fa.reactions["B"].point, sol.point("B").position, rtol=1e-15)
     r, l = 0.05, 0.2
     root = np.sqrt(l**2 - (r * np.sin(phi)) ** 2)
     ds = -r * np.sin(phi) - r**2 * np.sin(phi) * np.cos(phi) / root

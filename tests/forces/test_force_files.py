@@ -127,3 +127,14 @@ def test_library_stephenson_reproduces_the_reference():
         sign = 1.0 if on == second else -1.0
         err = np.abs(sign * fa.reactions[jn].force - np.c_[ref[f"{jn}_fx"], ref[f"{jn}_fy"]]).max(axis=1)
         assert (err / scale).max() < 1e-9, jn
+
+
+def test_readme_example_loads_and_balances():
+    from pathlib import Path
+    from importlib import resources
+    readme = (Path(__file__).resolve().parents[2] / "README.md").read_text()
+    block = readme.split("## Forces")[1].split("```toml\n")[1].split("```")[0]
+    base = (resources.files("linkwork") / "library" / "slider-crank-centric.toml").read_text()
+    dyn = dynamics_from_text(base.split("\n# Mass data")[0] + "\n" + block)
+    fa = kinetostatics(dyn, linkwork.whole_motion(dyn.mechanism, step=np.radians(10)))
+    assert fa.solved.all() and np.abs(fa.power_residual / fa.power_scale).max() < 1e-9

@@ -8,6 +8,7 @@ import io
 import json
 
 import numpy as np
+import pytest
 from typer.testing import CliRunner
 
 import pmks_cases as P
@@ -64,3 +65,19 @@ def test_missing_mass_data_is_one_message():
 def test_bad_plot_suffix():
     r = run("forces", "library:crank-rocker", "--at", "10", "--plot", "x.txt")
     assert r.exit_code == 2 and ".png" in r.output
+
+
+def test_flywheel_of_the_free_slider_crank():
+    # without loads the torque that keeps ω constant stores and returns the kinetic energy
+    # ½·J(φ)·ω²: its work swings by ½·ω²·(J_max − J_min), and its mean is zero
+    r = run("forces", "library:slider-crank-centric", "--flywheel", "0.02", "--format", "json")
+    assert r.exit_code == 0, r.output
+    doc = json.loads(r.output)
+    fw, J = doc["flywheel"], np.array(doc["columns"]["reduced_inertia"])
+    w = 120 * 2 * np.pi / 60
+    assert fw["mean_speed"] == pytest.approx(w, rel=1e-12)
+    assert abs(fw["mean_torque"]) < 1e-12
+    assert fw["energy_fluctuation"] == pytest.approx(0.5 * w**2 * (J.max() - J.min()), rel=1e-3)
+    assert fw["inertia"] == pytest.approx(fw["energy_fluctuation"] / (0.02 * w**2), rel=1e-12)
+    r = run("forces", "library:slider-crank-centric", "--at", "30", "--flywheel", "0.02")
+    assert r.exit_code == 2 and "whole motion" in r.output

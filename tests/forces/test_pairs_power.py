@@ -14,7 +14,8 @@ from linkwork.errors import LinkworkWarning, ModelError
 from linkwork.forces import kinetostatics
 from linkwork.model.inertia import (Couple, Dynamics, LinearSpring, Loads, LoadTable, MassProperties,
                                     PointForce, TorsionSpring)
-from mechanism_texts import SCOTCH_YOKE, four_bar_text, slider_crank_text
+from mechanism_texts import (SCOTCH_YOKE, four_bar_from_lengths, four_bar_text, slider_crank_text,
+                             two_crank_five_bar_text)
 
 PLANETARY = """
 name = "planet on a fixed sun"
@@ -148,3 +149,40 @@ def test_intermittent_pairs_are_refused():
     dyn = Dynamics.build(mech)
     with pytest.raises(ModelError, match="intermittent"):
         kinetostatics(dyn, linkwork.solve(mech, [0.1]), inertia=False)
+
+
+def test_two_drivers_each_by_virtual_work():
+    # a five-bar with two driven cranks: each driver's torque from its own unit-speed motion
+    mech = linkwork.load_text(two_crank_five_bar_text())
+    dyn = _random_dynamics(mech, np.random.default_rng(11))
+    t = np.linspace(0.0, 0.35, 15)  # the cranks stay within reach of the dyad
+    q0 = [mech.driver_input_at_design(d) for d in mech.drivers]
+    inputs = np.column_stack([q0[0] + 2.0 * t, q0[1] - 1.0 * t])
+    sol = linkwork.solve(mech, inputs, velocities=[2.0, -1.0], accelerations=[0.5, 0.3])
+    fa = kinetostatics(dyn, sol)
+    ok = fa.solved
+    assert ok.all()
+    assert np.max(np.abs(fa.power_residual) / fa.power_scale) < 1e-9
+    for d in mech.drivers:
+        T, Tv = fa.efforts[d.joint], fa.virtual_work[d.joint]
+        assert np.abs(T - Tv).max() <= 1e-9 * np.abs(T).max(), d.joint
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_power_balance_on_random_four_bars(seed):
+    # Grashof crank-rockers of random proportions (shortest link the crank), random masses and
+    # loads, random crank speed and acceleration
+    rng = np.random.default_rng(100 + seed)
+    while True:
+        a, b, c, d = rng.uniform(5, 10), rng.uniform(20, 60), rng.uniform(20, 60), rng.uniform(20, 60)
+        if a + max(b, c, d) < b + c + d - max(b, c, d):  # Grashof: s + l < p + q, crank the shortest
+            break
+    mech = linkwork.load_text(four_bar_from_lengths(d, a, b, c, rng.uniform(0, 360)))
+    dyn = _random_dynamics(mech, rng)
+    q = np.linspace(0, 2 * np.pi, 73)
+    fa = kinetostatics(dyn, linkwork.solve(mech, q, velocities=rng.uniform(-20, 20),
+                                           accelerations=rng.uniform(-50, 50)))
+    assert fa.solved.all()
+    assert np.max(np.abs(fa.power_residual) / fa.power_scale) < 1e-9
+    T = fa.effort
+    assert np.abs(T - fa.virtual_work["O2"]).max() <= 1e-9 * np.abs(T).max()

@@ -226,6 +226,25 @@ def test_rrr_fast_derivatives_equal_generic_jacobian_solve(seed, monkeypatch):
 
 
 @pytest.mark.parametrize("seed", SEEDS)
+def test_rrp_fast_derivatives_equal_generic_jacobian_solve(seed, monkeypatch):
+    """The RRP dyad's compiled rates (`kernels.rrp_rates`) against `derivatives_generic`, from
+    the same closed-form positions."""
+    rng = np.random.default_rng(500 + seed)
+    ok = np.zeros(0, dtype=bool)
+    while ok.sum() < 5:
+        text = rrp(rng, 10.0 ** rng.uniform(-2, 3))
+        u = rng.uniform(-np.pi, np.pi, 60)
+        mech, kinds, fast = _solve(text, u, monkeypatch=monkeypatch)
+        assert kinds == ["driver", "RRP"]
+        _, _, slow = _solve(text, fast.input, generic_derivatives=True, monkeypatch=monkeypatch)
+        ok = _usable(fast, slow)
+    for link in ("rod", "block"):
+        assert np.array_equal(fast.pose_derivatives(link)[0], slow.pose_derivatives(link)[0],
+                              equal_nan=True)
+    _compare(mech, fast, slow, ok)
+
+
+@pytest.mark.parametrize("seed", SEEDS)
 @pytest.mark.parametrize("kind", sorted(KINDS))
 def test_closed_form_group_equals_generic_newton(kind, seed, monkeypatch):
     """Closed-form positions (and RRR's fast derivatives) against Newton's method plus the

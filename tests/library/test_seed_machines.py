@@ -11,23 +11,12 @@ checks.
 
 from __future__ import annotations
 
-from functools import lru_cache
-
 import numpy as np
 import pytest
 
 import linkwork
 from linkwork import Status
-
-
-@lru_cache(maxsize=None)
-def mech(name: str):
-    return linkwork.load(f"library:{name}")
-
-
-@lru_cache(maxsize=None)
-def motion(name: str):
-    return linkwork.whole_motion(mech(name))
+from library_solutions import mech, motion
 
 
 def P(name: str, point: str) -> np.ndarray:

@@ -4,7 +4,8 @@ points of the displacement computed from the poses, Hamilton's composition of ro
 the pole triangle's sides, Pöschl's image point 𝔇 (§57, §58: the homologous points are its
 mirror images, the centre point its isogonal conjugate, written here from trilinear
 coordinates), the smallest circle through three homologous points (§59: radius = the incircle's
-diameter) and the Steiner lines through the orthocentre (§59)."""
+diameter), the Steiner lines through the orthocentre and Alt's four-bar whose coupler point
+traces the centres of circles of one radius (§59)."""
 
 from __future__ import annotations
 
@@ -242,3 +243,52 @@ def test_dyad_forms_are_the_halved_difference_of_squared_distances(seed):
         Zk = move(pos.poses[1], pos.poses[k], Z)
         want = (np.sum((Zk - M) ** 2) - np.sum((Z - M) ** 2)) / 2
         assert np.r_[Z, 1] @ form @ np.r_[M, 1] == pytest.approx(want, rel=1e-12, abs=1e-12)
+
+
+def circle_meet(c1, r1, c2, r2, side):
+    d = np.hypot(*(c2 - c1))
+    u = (c2 - c1) / d
+    x = (r1 * r1 - r2 * r2 + d * d) / (2 * d)
+    h2 = r1 * r1 - x * x
+    if h2 < 0:
+        return None
+    return c1 + x * u + side * np.sqrt(h2) * np.array([-u[1], u[0]])
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_alts_four_bar_traces_the_centres_of_circles_of_one_radius(seed):
+    """Pöschl §59 (H. Alt's theorem, the digest's construction): on the altitude through P₁₂
+    mark A at r/2; the parallel to P₁₃P₂₃ through A meets P₁₂P₂₃ at B and P₁₂P₁₃ at C; the
+    four-bar on P₂₃, P₁₃ with cranks |P₁₂B|, |P₁₂C| and coupler |BC|, its coupler point Δ
+    making ΔUV ≅ P₁₂BC, traces centre points whose circles through three homologous points all
+    have radius r."""
+    pos = random_positions(3, np.random.default_rng(900 + seed))
+    P12, P13, P23 = (pos.pole(*ij).xy for ij in ((0, 1), (0, 2), (1, 2)))
+    n = np.array([-(P23 - P13)[1], (P23 - P13)[0]])
+    n /= np.hypot(*n)
+    if np.dot(P13 - P12, n) < 0:
+        n = -n  # the altitude from P12 towards the opposite side
+    r = 3 * incircle(P12, P13, P23)[1]  # above the smallest radius, 2·r_in (§59)
+    A = P12 + r / 2 * n
+    side_dir = (P23 - P13) / np.hypot(*(P23 - P13))
+
+    def meet(p, q):  # the parallel through A with the line pq
+        d = q - p
+        t = ((A - p)[0] * side_dir[1] - (A - p)[1] * side_dir[0]) / (d[0] * side_dir[1] - d[1] * side_dir[0])
+        return p + t * d
+    B, C = meet(P12, P23), meet(P12, P13)
+    lu, lv, lc = np.hypot(*(B - P12)), np.hypot(*(C - P12)), np.hypot(*(B - C))
+    works = {}
+    for alpha in np.linspace(0, 2 * np.pi, 360, endpoint=False):
+        U = P23 + lu * np.array([np.cos(alpha), np.sin(alpha)])
+        for branch in (1, -1):
+            V = circle_meet(U, lc, P13, lv, branch)
+            if V is None:
+                continue
+            for side in (1, -1):
+                D = circle_meet(U, lu, V, lv, side)
+                z = circle_points(pos, D).xy
+                ok = abs(np.hypot(*(z - D)) - r) <= 1e-9 * r
+                works.setdefault((branch, side), []).append(ok)
+    # one side of the coupler (the congruent triangle's orientation) works wherever it assembles
+    assert any(len(v) >= 4 and all(v) for v in works.values())

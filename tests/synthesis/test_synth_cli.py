@@ -56,14 +56,14 @@ def test_three_positions_with_chosen_pivots(tmp_path):
     out = tmp_path / "three.toml"
     poses = [(0.0, 0.0, 0.0), (1.0, 0.4, 20.0), (1.8, 1.2, 45.0)]
     args = [a for p in poses for a in ("--pose", ",".join(map(str, p)))]
-    r = run("synth", "poses", *args, "--centre", "0,-2", "--circle", "1,1", "-o", out)
+    r = run("synth", "poses", *args, "--centre", "0,-2", "--circle", "1,1", "-o", out, "--report", tmp_path / "r.json")
     assert r.exit_code == 0, r.output
-    doc = run("synth", "poses", *args, "--centre", "0,-2", "--circle", "1,1", "-o", out, "--report", tmp_path / "r.json")
     rep = json.loads((tmp_path / "r.json").read_text())
     samples = analyze_at(out, rep["linkages"][0]["input_angles_deg"])
     for s, (x, y, t) in zip(samples, poses):
         assert s["points"]["P"]["position"] == pytest.approx([x, y], abs=1e-9)
-    assert doc.exit_code == 0
+        d = np.subtract(s["points"]["Q"]["position"], s["points"]["P"]["position"])
+        assert np.degrees(np.arctan2(d[1], d[0])) == pytest.approx(t, abs=1e-9)  # the plane's x-axis
 
 
 def test_four_positions_slider(tmp_path):
@@ -71,8 +71,17 @@ def test_four_positions_slider(tmp_path):
     out, rep = tmp_path / "slider.toml", tmp_path / "s.json"
     r = run("synth", "poses", *pose_args(pos), "--centre", "0,0", "--slider", "-o", out, "--report", rep)
     assert r.exit_code == 0, r.output
-    lk = json.loads(rep.read_text())["linkages"][0]
+    doc = json.loads(rep.read_text())
+    lk = doc["linkages"][0]
     assert lk["kind"] == "slider-crank"
+    # the sampled centre-point curve: its points' circle points have four concyclic positions
+    from linkwork.synthesis import circle_points
+    from four_bar_by_hand import move
+    pts = [p for p in doc["centre_point_curve"]["points"] if p is not None and np.hypot(*p) < 20]
+    for M in pts[::40]:
+        Z = circle_points(pos, M).xy
+        r = [np.hypot(*(move(pos.poses[0], pos.poses[k], Z) - M)) for k in range(4)]
+        assert np.ptp(r) < 1e-8 * max(r)
     for s, (x, y, t) in zip(analyze_at(out, lk["input_angles_deg"]), pos.poses):
         assert s["points"]["P"]["position"] == pytest.approx([x, y], abs=1e-9)
 
@@ -115,3 +124,24 @@ def test_mistakes_give_one_message(tmp_path, monkeypatch, args, message):
     assert r.exit_code == 2
     assert message in r.output
     assert "Traceback" not in r.output
+
+
+def test_dwell_and_substitute_commands(tmp_path):
+    import linkwork
+    from linkwork.kinematics import solve
+
+    out = tmp_path / "dwell.toml"
+    r = run("synth", "dwell", "library:crank-rocker", "--at", "60", "--point", "C", "-o", out)
+    assert r.exit_code == 0, r.output
+    six = linkwork.load(out)
+    s = solve(six, [np.radians(60.0)], order=2)
+    assert abs(s.link("output").omega[0]) < 1e-9 * 2 * np.pi
+    sub = tmp_path / "sub.toml"
+    r = run("synth", "substitute", "library:crank-rocker", "--at", "60", "--pivot", "5,-8", "-o", sub)
+    assert r.exit_code == 0, r.output
+    new, old = linkwork.load(sub), linkwork.load("library:crank-rocker")
+    # at the design position the coupler point C is where the old four-bar has it at 60°
+    assert np.allclose(new.points["C"], solve(old, [np.radians(60.0)], order=1).point("C").position[0], atol=1e-9)
+    r = run("synth", "substitute", "library:crank-rocker", "--at", "60", "--pivot", "5,-8", "--replace", "frame",
+            "-o", sub)
+    assert r.exit_code == 2 and "replace" in r.output

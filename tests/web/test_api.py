@@ -87,6 +87,7 @@ def test_mechanism_info(client):
     doc = r.json()
     assert doc["points"] == {"O2": [0, 0], "A": [0, 10], "B": [30, 30], "O4": [40, 0], "C": [15, 25]}
     assert doc["links"]["coupler"] == ["A", "B", "C"] and doc["frame"] == "frame"
+    assert doc["owners"]["O4"] == "frame" and doc["owners"]["C"] == "coupler"
     # the input is the angle of O2→A: straight up in the drawing
     assert doc["drivers"] == [{"joint": "O2", "kind": "revolute", "design_input": pytest.approx(math.pi / 2)}]
     assert {"mechanism", "poles", "centrodes", "inflection"} <= set(doc["layers"])
@@ -202,10 +203,29 @@ def test_drawing_places_points_where_the_engine_puts_them(client):
         want = (t["origin"][0] + (xy[0] - t["lo"][0]) / t["per_mm"],
                 t["origin"][1] + (t["hi"][1] - xy[1]) / t["per_mm"])
         assert _dot(doc["svg"], "point-C") == pytest.approx(want, abs=1e-3)  # SVG: 3 decimals
+        # the poses place every point: position = R(θ)·design + (x, y) of its link
+        for p, xy_p in doc["points"].items():
+            x, y, turn = doc["poses"][MECH.point_owner[p]]
+            d = MECH.points[p]
+            assert xy_p == pytest.approx([x + math.cos(turn) * d[0] - math.sin(turn) * d[1],
+                                          y + math.sin(turn) * d[0] + math.cos(turn) * d[1]], abs=1e-12)
+        # the crank turned from its design position (90°) to th
+        assert doc["poses"]["crank"] == pytest.approx([0, 0, th - math.pi / 2], abs=1e-12)
     # fit = motion: every frame of the motion shares one layout
     a = post(client, "/api/drawing", source=SRC, at=[0.2]).json()["transforms"]
     b = post(client, "/api/drawing", source=SRC, at=[2.0]).json()["transforms"]
     assert a == b
+
+
+def test_drawing_without_the_whole_motion(client):
+    """The frames of a drag: the same position, no paths."""
+    r = post(client, "/api/drawing", source=SRC, at=[0.7], layers=["mechanism", "paths"], motion=False)
+    assert r.status_code == 200
+    doc = r.json()
+    xy = linkwork.solve(MECH, [0.7]).point("C").position[0]
+    assert doc["points"]["C"] == pytest.approx(list(xy), abs=1e-12)
+    assert "path-C" not in doc["svg"] and "could not be computed" in doc["svg"]
+    assert "path-C" in post(client, "/api/drawing", source=SRC, at=[0.7], layers=["mechanism", "paths"]).json()["svg"]
 
 
 def test_drawing_with_a_construction_and_its_steps(client):

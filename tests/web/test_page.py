@@ -115,6 +115,10 @@ def test_page_opens_a_library_mechanism(page):
     assert page.inner_text("#input-value") == "90.00°"
     assert page.inner_text("#sample-status") == "ok"
     assert page.is_hidden("#error")
+    # the structure panel: Grübler's count for four links and four hinges, 3(4 − 1) − 2·4 = 1
+    page.wait_for_selector("#structure dd")
+    panel = page.inner_text("#structure")
+    assert "mobility (count)\n1" in panel.replace("\t", "\n") and "crank-rocker" in panel
     # another mechanism from the list
     page.select_option("#mechanism", "library:slider-crank-centric")
     wait_drawn(page, lambda: page.inner_text("#title") == linkwork.load("library:slider-crank-centric").name,
@@ -149,16 +153,19 @@ def test_slider_moves_the_mechanism(page):
 
 
 def test_play_and_pause(page):
+    sol = linkwork.whole_motion(MECH)
     start = drawn_input(page)
     page.click("#play")
     assert page.get_attribute("#play", "aria-pressed") == "true"
     wait_drawn(page, lambda: drawn_input(page) != start, "play the motion")
     page.click("#play")
     assert page.get_attribute("#play", "aria-pressed") == "false"
-    page.wait_for_timeout(300)  # a drawing on its way when paused may still arrive
-    paused = drawn_input(page)
-    page.wait_for_timeout(400)
-    assert drawn_input(page) == paused
+    k = page.eval_on_selector("#input-slider", "e => e.value")
+    page.wait_for_timeout(500)
+    assert page.eval_on_selector("#input-slider", "e => e.value") == k  # it stopped
+    # and what is drawn comes to the sample it stopped at
+    want = float(sol.inputs[int(k), 0])
+    wait_drawn(page, lambda: drawn_input(page) == pytest.approx([want], abs=1e-15), "draw where it stopped")
 
 
 def _client_of(page, xy):
@@ -181,27 +188,63 @@ def test_dragging_a_point_solves_again(page):
         page.mouse.move(a[0] + f * (b[0] - a[0]), a[1] + f * (b[1] - a[1]))
         page.wait_for_timeout(40)
     page.mouse.up()
-    wait_drawn(page, lambda: "A" in json.loads(page.get_attribute("#drawing", "data-moved")),
-               "redraw the dragged point")
-    page.wait_for_timeout(500)
-    moved = json.loads(page.get_attribute("#drawing", "data-moved"))["A"]
-    assert moved == pytest.approx([0.0, 13.0], abs=0.2)  # to a pixel of the screen
-    # the file with A moved there, read by the engine, solved at a sample of its whole motion
-    text = resolve("library:crank-rocker")[1].replace("A  = [0, 10]", f"A  = [{moved[0]!r}, {moved[1]!r}]")
-    mech = load_text(text)
-    assert np.allclose(mech.points["A"], moved)
+
+    def moved_a():
+        return json.loads(page.get_attribute("#drawing", "data-moved")).get("A", [math.nan] * 2)
+
+    wait_drawn(page, lambda: np.hypot(moved_a()[0], moved_a()[1] - 13.0) < 0.2,
+               "redraw the dragged point")  # to a pixel of the screen
+    wait_drawn(page, lambda: json.loads(page.get_attribute("#input-slider", "data-moved") or "{}")
+               .get("A") == moved_a(), "solve the whole motion of the new design")
     page.uncheck("#edit")
-    sol = linkwork.whole_motion(mech)
     page.focus("#input-slider")
     for _ in range(25):
         page.keyboard.press("ArrowRight")
-    want = float(sol.inputs[25, 0])
+    wait_drawn(page, lambda: page.eval_on_selector("#input-slider", "e => e.value") == "25", "move the slider")
+    page.wait_for_timeout(300)
+    # the file with A moved where the drawing says, read by the engine, solved at the same
+    # sample of its whole motion
+    moved = moved_a()
+    text = resolve("library:crank-rocker")[1].replace("A  = [0, 10]", f"A  = [{moved[0]!r}, {moved[1]!r}]")
+    mech = load_text(text)
+    assert np.allclose(mech.points["A"], moved)
+    want = float(linkwork.whole_motion(mech).inputs[25, 0])
     wait_drawn(page, lambda: drawn_input(page) == pytest.approx([want], abs=1e-15), "draw the new motion")
+    assert moved_a() == moved
     xy = linkwork.solve(mech, [want]).point("C").position[0]
     assert number_row(page, "C") == pytest.approx(tuple(xy), abs=1e-4)
     assert svg_position(page, "point-C") == pytest.approx(expected_svg(page, xy), abs=2e-3)
     # and the crank is longer: A on the circle of radius |moved|
     assert np.hypot(*number_row(page, "A")) == pytest.approx(np.hypot(*moved), abs=1e-4)
+
+
+def test_an_unassemblable_drag_shows_the_engines_message(page):
+    """At 180° the crank's end A is at (−10, 0); dragged out to (−25, 0) it makes a crank of 25,
+    whose chain cannot close there: |A O4| = 65 > coupler + rocker = √925 + √1000 ≈ 62.0."""
+    sol = linkwork.whole_motion(MECH)
+    k = int(np.argmin(np.abs(sol.inputs[:, 0] - math.pi)))
+    assert sol.inputs[k, 0] == pytest.approx(math.pi)
+    page.focus("#input-slider")
+    for _ in range(k):
+        page.keyboard.press("ArrowRight")
+    wait_drawn(page, lambda: drawn_input(page) == pytest.approx([math.pi]), "go to 180°")
+    page.check("#edit")
+    # (the screen places of the targets in the drawing the drag starts on: the page reads the
+    # pointer in it, while the drawings redrawn meanwhile have layouts of their own)
+    a, b, back = (_client_of(page, xy) for xy in ((-10.0, 0.0), (-25.0, 0.0), (-12.0, 0.0)))
+    page.mouse.move(*a)
+    page.mouse.down()
+    for f in np.linspace(0, 1, 8)[1:]:
+        page.mouse.move(a[0] + f * (b[0] - a[0]), a[1] + f * (b[1] - a[1]))
+        page.wait_for_timeout(40)
+    page.wait_for_selector("#error:not([hidden])", timeout=20_000)
+    assert "cannot be assembled" in page.inner_text("#error")
+    assert page.locator("#drawing.stale").count() == 1  # the last good drawing, greyed
+    # back to a crank that closes: the message goes, the drawing is current again
+    page.mouse.move(*back)
+    page.wait_for_selector("#error[hidden]", state="attached", timeout=20_000)
+    page.mouse.up()
+    assert math.isclose(drawn_input(page)[0], math.pi, abs_tol=0.05)
 
 
 def test_a_bad_file_shows_the_error_message(page):

@@ -26,6 +26,7 @@ export interface MechanismInfo {
   frame: string;
   points: Record<string, XY>;
   links: Record<string, string[]>;
+  owners: Record<string, string>;
   drivers: DriverInfo[];
   layers: string[];
   constructions: string[];
@@ -64,6 +65,7 @@ export interface Drawing {
   status: Status;
   input: (number | null)[];
   points: Record<string, XY | null>;
+  poses: Record<string, [number, number, number] | null>;
   transforms: Record<string, Transform>;
   steps: string[];
   warnings: string[];
@@ -75,6 +77,7 @@ export interface DrawingRequest {
   layers: string[];
   construction?: string;
   fit?: "motion" | "drawing";
+  motion?: boolean;
 }
 
 /** An answer of the API that is not 2xx: its message, as the server wrote it. */

@@ -30,6 +30,7 @@ const ui = {
   layers: $<HTMLFieldSetElement>("layers"),
   edit: $<HTMLInputElement>("edit"),
   numbers: $<HTMLTableElement>("numbers"),
+  structure: $<HTMLDListElement>("structure"),
 };
 
 /** Layers drawn over the mechanism, and the plans (constructions drawn beside it). */
@@ -98,8 +99,10 @@ function inputText(values: (number | null)[]): string {
 function drawingRequest(): DrawingRequest {
   const layers = ["mechanism", ...Array.from(state.layers)];
   const req: DrawingRequest = { source: source(), layers };
-  if (!ui.edit.checked && state.motion) req.at = sampleInput(state.index);
+  if (state.motion) req.at = sampleInput(state.index);
   if (state.plan) req.construction = state.plan;
+  // while dragging, the frames leave the whole motion out: they follow the pointer sooner
+  if (dragging) req.motion = false;
   return req;
 }
 
@@ -184,6 +187,7 @@ async function open(base: Source): Promise<void> {
     ui.title.textContent = info.name;
     ui.description.textContent = info.description;
     buildLayers(info);
+    void structure(base);
     await loadMotion();
     if (info.warnings.length) showError(info.warnings.join("\n"));
   } catch (e) {
@@ -191,17 +195,74 @@ async function open(base: Source): Promise<void> {
   }
 }
 
-async function loadMotion(): Promise<void> {
+/** The sample of the motion nearest to `values` (angles compared round the circle). */
+function nearestSample(motion: Motion, values: number[]): number {
+  if (!values.length || !state.info) return 0;
+  const kinds = state.info.drivers.map((d) => d.kind);
+  let best = 0;
+  let bestDist = Infinity;
+  motion.samples.forEach((s, k) => {
+    const v = Array.isArray(s.input) ? s.input : [s.input];
+    let d = 0;
+    v.forEach((x, i) => {
+      const e = x - values[i];
+      d += kinds[i] === "revolute" ? Math.abs(Math.atan2(Math.sin(e), Math.cos(e))) : Math.abs(e);
+    });
+    if (d < bestDist - 1e-9) { // the first of equals: a full turn's last sample is its first
+      best = k;
+      bestDist = d;
+    }
+  });
+  return best;
+}
+
+interface StructureDoc {
+  count_mobility: number;
+  real_mobility: number;
+  verdict: string;
+  mechanism_class_roman: string | null;
+  grashof: { name: string }[] | null;
+}
+
+/** Mobility by the count and by the Jacobian, Assur class, Grashof type (`linkwork structure`). */
+async function structure(base: Source): Promise<void> {
+  ui.structure.innerHTML = "";
+  try {
+    const d = await post<StructureDoc>("/api/structure", { source: base });
+    const rows: [string, string][] = [
+      ["mobility (count)", String(d.count_mobility)],
+      ["mobility (real)", String(d.real_mobility)],
+      ["verdict", d.verdict],
+    ];
+    if (d.mechanism_class_roman) rows.push(["Assur class", d.mechanism_class_roman]);
+    for (const loop of d.grashof ?? []) rows.push(["type", loop.name]);
+    for (const [k, v] of rows) {
+      const dt = document.createElement("dt");
+      const dd = document.createElement("dd");
+      dt.textContent = k;
+      dd.textContent = v;
+      ui.structure.append(dt, dd);
+    }
+  } catch (e) {
+    ui.structure.textContent = messageOf(e);
+  }
+}
+
+async function loadMotion(keep = false): Promise<void> {
   const generation = state.generation;
-  const motion = await post<Motion>("/api/motion", { source: source(), detail: "status" });
+  const before = keep ? sampleInput(state.index) : [];
+  const src = source();
+  const motion = await post<Motion>("/api/motion", { source: src, detail: "status" });
   if (generation !== state.generation) return;
   state.motion = motion;
+  ui.slider.dataset.moved = JSON.stringify(src.points ?? {}); // the design the motion is of
   const n = motion.samples.length;
   ui.slider.max = String(Math.max(n - 1, 0));
   ui.strip.innerHTML = motion.samples.map((s) => `<span class="${s.status}" title="${s.status}"></span>`).join("");
-  // start at the sample nearest to the design position (the whole motion starts there)
-  state.index = 0;
-  ui.slider.value = "0";
+  // a new mechanism starts at its design position (the whole motion starts there); an edited
+  // one stays where it was
+  state.index = nearestSample(motion, before);
+  ui.slider.value = String(state.index);
   await redraw();
 }
 
@@ -262,7 +323,7 @@ function sourceOf(value: string): Source {
 let timer: number | undefined;
 
 function play(): void {
-  if (!state.motion || ui.edit.checked) return;
+  if (!state.motion) return;
   state.playing = true;
   ui.play.textContent = "Pause";
   ui.play.setAttribute("aria-pressed", "true");
@@ -299,8 +360,9 @@ function setIndex(k: number): void {
 
 // ------------------------------------------------------------------ editing
 // a drag reads the pointer in the drawing it started on (its screen placement and its world
-// transform), whatever layouts the drawings redrawn meanwhile have
-let dragging: { name: string; transform: Transform; screen: DOMMatrix } | null = null;
+// transform), whatever layouts the drawings redrawn meanwhile have; the point's new design
+// coordinates put it under the pointer in the pose its link had when the drag started
+let dragging: { name: string; transform: Transform; screen: DOMMatrix; pose: [number, number, number] } | null = null;
 
 function screenToSvg(): DOMMatrix | null {
   const ctm = ui.drawing.querySelector("svg")?.getScreenCTM();
@@ -333,15 +395,20 @@ ui.drawing.addEventListener("pointerdown", (ev) => {
   const screen = screenToSvg();
   if (!t || !screen) return;
   const name = nearestPoint(svgPoint(ev, screen), t);
-  if (!name) return;
-  dragging = { name, transform: t, screen };
+  const pose = name && state.info ? state.drawn.poses[state.info.owners[name]] : null;
+  if (!name || !pose) return;
+  pause();
+  dragging = { name, transform: t, screen, pose };
   ui.drawing.setPointerCapture(ev.pointerId);
   ev.preventDefault();
 });
 
 ui.drawing.addEventListener("pointermove", (ev) => {
   if (!dragging) return;
-  state.moved[dragging.name] = toWorld(dragging.transform, svgPoint(ev, dragging.screen));
+  const w = toWorld(dragging.transform, svgPoint(ev, dragging.screen));
+  const [x, y, th] = dragging.pose;
+  const c = Math.cos(th), s = Math.sin(th);
+  state.moved[dragging.name] = [c * (w[0] - x) + s * (w[1] - y), -s * (w[0] - x) + c * (w[1] - y)];
   void redraw();
 });
 
@@ -349,7 +416,7 @@ const endDrag = () => {
   if (!dragging) return;
   dragging = null;
   state.generation += 1;
-  void loadMotion().catch((e) => showError(messageOf(e)));
+  void loadMotion(true).catch((e) => showError(messageOf(e)));
 };
 ui.drawing.addEventListener("pointerup", endDrag);
 ui.drawing.addEventListener("pointercancel", endDrag);
@@ -387,11 +454,7 @@ ui.slider.addEventListener("input", () => {
   setIndex(Number(ui.slider.value));
 });
 ui.edit.addEventListener("change", () => {
-  pause();
   ui.drawing.classList.toggle("editing", ui.edit.checked);
-  ui.slider.disabled = ui.edit.checked;
-  ui.play.disabled = ui.edit.checked;
-  void redraw();
 });
 ui.mechanism.addEventListener("change", () => void open(sourceOf(ui.mechanism.value)));
 ui.upload.addEventListener("change", async () => {

@@ -26,6 +26,14 @@ if TYPE_CHECKING:
 err_console = Console(stderr=True)
 
 
+def recording_console(width: int, *, markup: bool = True) -> Console:
+    """A console that only records (for `export_text`): tables laid out at `width` columns,
+    written nowhere."""
+    import io
+
+    return Console(record=True, width=width, file=io.StringIO(), markup=markup)
+
+
 def print_message(kind: str, message: str) -> None:
     """One line on stderr, `error: …` or `warning: …`: the message printed as it is (a TOML
     section such as `[links]` in it is text, not Rich markup)."""

@@ -22,6 +22,7 @@ from rich.table import Table
 from ..errors import InputError
 from ..forces import ForceAnalysis, kinetostatics
 from ..forces.export import CONVENTION, columns, to_csv_text, to_document
+from ..forces.reduced import flywheel, reduced_inertia
 from ..io import load_dynamics
 from ..kinematics import solve, whole_motion
 from ..model import Prismatic
@@ -121,12 +122,27 @@ def plot(fa: ForceAnalysis, path: str | Path) -> Path:
     return save(fig, path)
 
 
+def _flywheel(fa: ForceAnalysis, fluctuation: float) -> dict:
+    """The flywheel for the driving torque over the whole motion, which must be one turn."""
+    mech = fa.dynamics.mechanism
+    d = mech.drivers[0]
+    q = fa.solution.inputs[:, 0]
+    w = fa.solution.pose_derivatives(d.driven)[1, :, 2]
+    if isinstance(mech.joint(d.joint), Prismatic) or not np.isclose(abs(q[-1] - q[0]), 2 * np.pi):
+        raise InputError("--flywheel: the driver does not turn fully (a flywheel evens out a crank's turn)")
+    sign = 1.0 if q[-1] > q[0] else -1.0
+    fw = flywheel(sign * q, sign * fa.effort, mean_speed=float(np.mean(np.abs(w))), fluctuation=fluctuation)
+    return {"fluctuation": fluctuation, "mean_speed": float(np.mean(np.abs(w))),
+            "mean_torque": sign * fw.mean_effort, "energy_fluctuation": fw.energy_fluctuation,
+            "inertia": fw.inertia}
+
+
 def register(app: typer.Typer) -> None:
     """Add `forces` to the `linkwork` application."""
 
     @app.command("forces")
     def forces_cmd(
-        mechanism: str = typer.Argument(..., help="a mechanism file with [masses] (and [loads]), or library:NAME"),
+        mechanism: str = typer.Argument(..., help="a mechanism file with its mass data and loads, or library:NAME"),
         at: Optional[list[str]] = typer.Option(None, "--at", help="input values as for `analyze --at`"),
         sweep: Optional[list[str]] = typer.Option(None, "--sweep", help="START:STOP:STEP as for `analyze --sweep`"),
         speed: Optional[list[str]] = typer.Option(None, "--speed", help="driver speed, e.g. '120 rpm' (overrides the file)"),
@@ -134,6 +150,7 @@ def register(app: typer.Typer) -> None:
         fmt: Optional[Format] = typer.Option(None, "--format", help="table, json or csv (default: from the -o suffix, else table)"),
         output: Optional[str] = typer.Option(None, "-o", "--output", help="write to this file (.csv, .json or a table)"),
         plot_file: Optional[str] = typer.Option(None, "--plot", help="also draw the driving torque and the pair forces over the motion (.png, .pdf, .svg)"),
+        fluctuation: Optional[float] = typer.Option(None, "--flywheel", help="size a flywheel for this coefficient of speed fluctuation δ (e.g. 0.02) from the driving torque over one crank turn (whole motion only)"),
     ) -> None:
         """Kinetostatics: the driving torque or force and every pair's reaction, with the
         frame's and shaking loads and the power-balance check. Without --at or --sweep, the
@@ -159,13 +176,24 @@ def register(app: typer.Typer) -> None:
                 else:
                     sol = solve(mech, values, velocities=None if w is None else
                                 np.broadcast_to(w, values.shape).copy())
+            if fluctuation is not None and asked is not None:
+                raise InputError("--flywheel needs the whole motion (one crank turn): drop --at and --sweep")
             fa = kinetostatics(dyn, sol, inertia=not static)
+            extra, summary = {}, {}
+            if len(mech.drivers) == 1 and all(ln in dyn.masses for ln in mech.moving_links):
+                red = reduced_inertia(dyn, sol.inputs[:, 0])
+                extra = {"reduced_inertia": red.inertia, "reduced_inertia_derivative": red.derivative}
+            if fluctuation is not None:
+                summary["flywheel"] = _flywheel(fa, fluctuation)
             if chosen is Format.json:
-                text = json.dumps(to_document(fa), indent=1) + "\n"
+                text = json.dumps(to_document(fa, extra, summary), indent=1) + "\n"
             elif chosen is Format.csv:
-                text = to_csv_text(fa)
+                text = to_csv_text(fa, extra)
             else:
-                text = _table(fa)
+                text = _table(fa) + "".join(
+                    f"flywheel for δ = {fw['fluctuation']:g} at {fw['mean_speed']:.6g} rad/s: mean torque "
+                    f"{fw['mean_torque']:.6g} N·m, energy fluctuation {fw['energy_fluctuation']:.6g} J, "
+                    f"moment of inertia {fw['inertia']:.6g} kg·m²\n" for fw in summary.values())
             write_output(text, output)
             if plot_file:
                 plot(fa, plot_file)

@@ -11,7 +11,6 @@ from typing import Optional
 
 import numpy as np
 import typer
-from rich.console import Console
 from rich.table import Table
 
 from ..errors import InputError
@@ -22,7 +21,7 @@ from ..instant import (agreement, kennedy_poles, pole_line_count, pole_schedule,
                        poles)
 from ..kinematics import Solution, Status, solve
 from ..model import Mechanism
-from .common import load_mechanism, user_errors, write_output
+from .common import load_mechanism, recording_console, user_errors, write_output
 from .inputs import input_values
 
 
@@ -75,7 +74,7 @@ def _input_text(mech: Mechanism, sol: Solution, n: int) -> str:
 
 
 def _render(tables: list) -> str:
-    con = Console(record=True, width=150, file=open("/dev/null", "w"), markup=False)
+    con = recording_console(150, markup=False)
     for t in tables:
         con.print(t)
     return con.export_text()

@@ -18,7 +18,7 @@ import typer
 from rich.console import Console
 from rich.table import Table
 
-from .common import user_errors, write_output
+from .common import recording_console, user_errors, write_output
 
 if TYPE_CHECKING:
     from ..kinematics import Solution
@@ -44,7 +44,7 @@ def _table(sol: Solution) -> str:
 
     mech = sol.mechanism
     # markup off: names from the file ("[A]", "x [mm]") are text
-    out = Console(record=True, width=160, file=open("/dev/null", "w"), markup=False)
+    out = recording_console(160, markup=False)
     unit = mech.length_unit
     single = len(mech.drivers) == 1
 
@@ -175,23 +175,46 @@ def analyze(
 
 
 @app.command()
-def library(name: Optional[str] = typer.Argument(None, help="print this mechanism's file")) -> None:
-    """List the shipped mechanisms, or print one of them (load it as library:NAME)."""
-    import tomllib
+def library(name: Optional[str] = typer.Argument(None, help="print this mechanism's file"),
+            search: Optional[str] = typer.Option(None, "--search", "-s",
+                                                 help="only mechanisms whose name or description contain these words"),
+            category: Optional[str] = typer.Option(None, "--category", "-c",
+                                                   help="only this group (four-bars, slider mechanisms, valve gears, "
+                                                        "straight-line linkages, governors, cams, gears, ...)"),
+            fmt: str = typer.Option("table", "--format", help="table or json")) -> None:
+    """List the shipped mechanisms by group, search them, or print one (load it as library:NAME)."""
+    import json
 
-    from ..io.library import library_names, library_text
+    from ..errors import InputError
+    from ..io.library import library_entries, library_text, search_library
 
     with user_errors():
         if name:
             write_output(library_text(name), None)
             return
+        if fmt not in ("table", "json"):
+            raise InputError(f"--format must be table or json, not '{fmt}'")
+        hits = search_library(search, category)
+        if category and not hits and not search_library(None, category):
+            groups = sorted({e["category"] for e in library_entries()})
+            raise InputError(f"the library has no group '{category}' (groups: {', '.join(groups)})")
+        if fmt == "json":
+            write_output(json.dumps(hits, indent=2, ensure_ascii=False) + "\n", None)
+            return
+        if not hits:
+            console.print(f"no library mechanism matches '{search}'" + (f" in '{category}'" if category else ""))
+            raise typer.Exit(1)
         t = Table(title="linkwork library (use as library:NAME)")
+        t.add_column("group")
         t.add_column("name")
         t.add_column("mechanism")
-        for n in library_names():
-            doc = tomllib.loads(library_text(n))
-            t.add_row(n, doc.get("name", ""))
+        last = None
+        for e in hits:
+            t.add_row(e["category"] if e["category"] != last else "", e["name"], e["title"],
+                      end_section=False)
+            last = e["category"]
         console.print(t)
+        console.print(f"{len(hits)} mechanisms")
 
 
 @app.command()

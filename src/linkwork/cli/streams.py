@@ -23,7 +23,7 @@ from rich.progress import BarColumn, Progress, TextColumn, TimeRemainingColumn
 
 from ..errors import OutputError
 from ..kinematics import Solution, solve
-from ..kinematics.export import iter_samples
+from ..kinematics.export import csv_lines, iter_samples
 
 #: samples solved at a time (and then written before the next chunk is solved)
 CHUNK = 50_000
@@ -45,12 +45,6 @@ def _human(n: float) -> str:
     return f"{n:.3g} TB"  # pragma: no cover
 
 
-def _csv_text(sol: Solution, header: bool) -> Iterator[str]:
-    df = sol.to_pandas()
-    for i in range(0, len(df), PIECE):
-        yield df.iloc[i:i + PIECE].to_csv(index=False, header=header and i == 0)
-
-
 def _lines(sol: Solution, sep: str, first: bool) -> Iterator[str]:
     """Samples as compact JSON, one per line; `sep` before each but the very first."""
     lines: list[str] = []
@@ -68,7 +62,7 @@ def render(sol: Solution, fmt: str, first: bool = True) -> Iterator[str]:
     """The text of `sol` in `fmt` (csv, jsonl, json) in pieces; `first`: whether this is the
     first chunk of the output (CSV header, JSON document head)."""
     if fmt == "csv":
-        yield from _csv_text(sol, first)
+        yield from csv_lines(sol, first, PIECE)
     elif fmt == "jsonl":
         yield from _lines(sol, "", True)
     else:

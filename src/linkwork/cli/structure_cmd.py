@@ -14,13 +14,12 @@ from enum import Enum
 from typing import Optional
 
 import typer
-from rich.console import Console
 from rich.markup import escape
 from rich.table import Table
 
 from ..structure import StructureReport, structure_report
 from ..structure.assur import ROMAN
-from .common import load_mechanism, user_errors, write_output
+from .common import load_mechanism, recording_console, user_errors, write_output
 
 
 class Format(str, Enum):
@@ -167,7 +166,7 @@ def _construction_doc(mech) -> dict:
 
 
 def _text(rep: StructureReport) -> str:
-    con = Console(record=True, width=150, file=open("/dev/null", "w"))
+    con = recording_console(150)
     con.print(_counts_table(rep))
     con.print(_mobility_table(rep))
     if rep.groups is not None:

@@ -10,7 +10,9 @@ positions with two chosen pivots (--centre for a fixed pivot, --circle for a mov
 drawn in the first position), four with two fixed pivots on the centre-point curve (or
 --slider for the curve's point at infinity), five from the Burmester points (every four-bar
 they make, best first). `function` designs a four-bar (or --slider: a slider-crank) whose output
-follows y = f(x) through precision points by Freudenstein's equation.
+follows y = f(x) through precision points by Freudenstein's equation. `dwell` adds Alt's dwell
+dyad to a four-bar at a coupler point (Pöschl §37); `substitute` replaces a crank of a four-bar
+by Pröll's (Rosenauer §29), keeping the coupler's motion to second order.
 
 Every file written is loaded again and solved by the engine at the positions' (or precision
 points') inputs; the deviation is reported and must stay within 1e-9, else the command stops
@@ -103,6 +105,19 @@ def _linkage_table(found, errors) -> Table:
     return t
 
 
+def _summary(title: str, rows: list[tuple[str, str]]) -> Table:
+    t = Table(title=title, show_header=False)
+    t.add_column("quantity")
+    t.add_column("value", justify="right")
+    for r in rows:
+        t.add_row(*r)
+    return t
+
+
+def _xy_text(p) -> str:
+    return f"{p[0]:.9g}, {p[1]:.9g}"
+
+
 def _point_json(p):
     return {"at_infinity": list(map(float, p.direction.xy))} if p.is_infinite else list(map(float, p.xy))
 
@@ -167,6 +182,7 @@ def _range(text: str, what: str, degrees: bool) -> tuple[float, float]:
 def register(app: typer.Typer) -> None:
     synth = typer.Typer(no_args_is_help=True, help="Synthesis: linkages designed from positions or a function.")
     app.add_typer(synth, name="synth")
+    register_curvature_designs(synth)
 
     @synth.command("poses")
     def poses_command(
@@ -211,6 +227,14 @@ def register(app: typer.Typer) -> None:
                     raise InputError(f"{bp.message}, but none is usable (no defect, least transmission angle "
                                      f"≥ {min_transmission:g}°); --all writes them anyway")
             else:
+                if n == 4:  # the curves to choose the pivots from, sampled for drawing
+                    from ..synthesis import centre_point_curve, circle_point_curve, curve_samples
+
+                    for key, curve in (("centre_point_curve", centre_point_curve(pos)),
+                                       ("circle_point_curve", circle_point_curve(pos))):
+                        pts = curve_samples(curve, samples=360)
+                        doc[key] = {"coefficients": curve.coefficients.tolist(),
+                                    "points": [None if not np.isfinite(p).all() else p.tolist() for p in pts]}
                 ds = _dyads(pos, centre, circle, slider)
                 if len(ds) != 2:
                     raise InputError(f"{n} positions: give two pivots (--centre X,Y or --circle X,Y"
@@ -277,9 +301,7 @@ def register(app: typer.Typer) -> None:
             at_points = gen.generated(gen.precision) - task.output(gen.precision)
             scale = 1.0 if not slider else max(abs(v) for v in gen.lengths.values())
             exact = len(gen.precision) == 3
-            t = Table(title=f"{kind} function generator", show_header=False)
-            t.add_column("quantity")
-            t.add_column("value", justify="right")
+            t = _summary(f"{kind} function generator", [])
             for k, v in gen.lengths.items():  # signed: a negative crank's pin is opposite its angle
                 t.add_row(k + (" (signed)" if k in ("input", "output", "offset") else ""), f"{v:.9g} {unit}")
             t.add_row("precision points x", ", ".join(f"{v:.6g}" for v in gen.precision))
@@ -309,3 +331,58 @@ def register(app: typer.Typer) -> None:
                 raise InputError(f"the engine does not meet the precision points with {path} "
                                  f"(off by {np.nanmax(np.abs(at_points)):.3g}): the points lie on different "
                                  "assemblies or out of reach")
+
+
+def _angle_option(text: str, what: str) -> float:
+    return math.radians(_number(text, what))
+
+
+def register_curvature_designs(synth: typer.Typer) -> None:
+    @synth.command("dwell")
+    def dwell_command(
+        mechanism: str = typer.Argument(..., help="a four-bar: a mechanism file, or library:NAME"),
+        at: str = typer.Option(..., "--at", help="DEG: the input angle of the dwell"),
+        point: str = typer.Option(..., "--point", help="the coupler point: its name, or X,Y design coordinates"),
+        pivot: Optional[str] = typer.Option(None, "--pivot", help="X,Y: the output rocker's fixed pivot (default: the rocker at right angles to the dwell link)"),
+        output: str = typer.Option(..., "-o", "--output", help="the six-bar's mechanism file"),
+    ) -> None:
+        """Alt's dwell linkage: a dyad on a coupler point's centre of curvature."""
+        with user_errors():
+            from ..io import load
+            from ..kinematics import solve
+            from ..synthesis.second_order import alt_dwell
+
+            mech = load(mechanism)
+            pt = point if "," not in point else _pair(point, "--point")
+            d = alt_dwell(mech, _angle_option(at, "--at"), pt,
+                          pivot=None if pivot is None else _pair(pivot, "--pivot"))
+            write_output_file(output, d.text)
+            sol = solve(load(output), [d.input], order=3)
+            out = sol.link(d.output_link)
+            Console().print(_summary("Alt's dwell linkage", [
+                ("centre of curvature K", _xy_text(d.centre)), ("dwell link (radius of curvature)", f"{d.radius:.9g}"),
+                ("output pivot E", _xy_text(d.pivot)),
+                ("output ω, α, jerk at the dwell", f"{out.omega[0]:.2e}, {out.alpha[0]:.2e}, {out.jerk[0]:.2e}")]))
+            Console().print(f"wrote {output}")
+
+    @synth.command("substitute")
+    def substitute_command(
+        mechanism: str = typer.Argument(..., help="a four-bar: a mechanism file, or library:NAME"),
+        at: str = typer.Option(..., "--at", help="DEG: the input angle at which the motion is kept"),
+        pivot: str = typer.Option(..., "--pivot", help="X,Y: the new fixed pivot"),
+        replace: str = typer.Option("input", "--replace", help="input (the driven crank) or output (the rocker)"),
+        output: str = typer.Option(..., "-o", "--output", help="the new four-bar's mechanism file"),
+    ) -> None:
+        """Pröll's substitution: a crank from a new pivot with the same pole and inflection circle."""
+        with user_errors():
+            from ..io import load
+            from ..synthesis.second_order import proell_substitution
+
+            mech = load(mechanism)
+            sub = proell_substitution(mech, _angle_option(at, "--at"), _pair(pivot, "--pivot"), replace=replace)
+            write_output_file(output, sub.text)
+            load(output)
+            Console().print(_summary("Pröll's substitution", [
+                ("pole P", _xy_text(sub.pole)), ("inflection pole W", _xy_text(sub.inflection_pole)),
+                ("new fixed pivot C3", _xy_text(sub.pivot)), ("its conjugate A3 (coupler)", _xy_text(sub.moving_pivot))]))
+            Console().print(f"wrote {output}")

@@ -37,6 +37,8 @@ class ScriptDrawer:
         self.aux = {a.name: a for a in script.aux}
         for pair, g1, g2, t, c1, c2 in self.chain.meshes:
             self.pos[t] = self._pitch_point(self.mech.joint(pair), c1, c2)
+        for pair, _, _, k in self.chain.contacts + self.chain.rolls:
+            self.pos[k] = np.asarray(vc.sol.joint(pair)["point"], float)
 
     # ---------------------------------------------------------------- drawing geometry
     def _pitch_point(self, gear: Gear, c1: str, c2: str) -> np.ndarray:
@@ -65,6 +67,8 @@ class ScriptDrawer:
             if not isinstance(j, (Prismatic, Slot)):
                 raise InputError(f"pair {line.pair} has no guide")
             return self.where(line.points[0]), perp(self.vc._axis(j.links[0], j.axis))
+        if line.kind == "contact":
+            return self.where(line.points[0]), np.asarray(self.vc.sol.joint(line.pair)["normal"], float)
         raise InputError("a given velocity direction is not part of a mechanism's data")
 
     # ---------------------------------------------------------------- images
@@ -101,47 +105,52 @@ class ScriptDrawer:
     def text(self, st) -> str:
         return st.text
 
-    def run(self, links: set[str]) -> None:
+    def _one(self, st) -> None:
+        """Draw one step of the script."""
         from ._plan import _meet
+        vc = self.vc
+        key = f"{self.prefix}.direct.{st.link}.{st.point}"
+        lab = self.s.labels.get((st.link, st.point), st.point)
+        # images of earlier links that the step starts from are drawn first, in their own steps
+        for pl in st.lines:
+            self.img(pl.anchor)
+        for n in st.base:
+            self.img((st.link, n))
+        vc.b.step(self.text(st))
+        if st.aux is not None and not self.prefix.startswith("a"):  # drawn once, with the velocities
+            Q = self.where(st.point)
+            for i, ln in enumerate(st.aux.lines):
+                p, d = self.line(ln)
+                vc.b.segment(f"{key}.aux{i}", _pt(p), _pt(Q), kind="line")
+            vc.b.point(f"{key}.pos", _pt(Q), label=st.point)
+        if st.kind == "meet":
+            (p1, d1), (p2, d2) = (self.plan_line(pl, f"{key}.{i}") for i, pl in enumerate(st.lines))
+            image, par = _meet((p1, d1), (p2, d2))
+            vc.b.degenerate(par & ~vc.b.bad, f"step '{st.text}': the two lines are parallel here, "
+                            "the image is undetermined")
+            self.show(key, st, image, lab, (f"{key}.0", f"{key}.1"))
+        elif st.kind == "divide":
+            X, Y = (self.where(n) for n in st.base)
+            x, y = (self.img((st.link, n)) for n in st.base)
+            P = self.where(st.point)
+            t = dot(P - X, Y - X) / dot(Y - X, Y - X)
+            image = x + t[:, None] * (y - x)
+            self.show(key, st, image, lab)
+        elif st.kind == "copy":
+            (X,) = st.base
+            x = self.img((st.link, X))
+            image = x + (self.partner_image(st.partner, st.point) - self.partner_image(st.partner, X))
+            self.show(key, st, image, lab)
+        else:
+            raise InputError(f"the direct construction cannot perform a '{st.kind}' step here")
+        self.keep(st.link, st.point, image)
+
+    def run(self, links: set[str]) -> None:
         vc = self.vc
         for k, st in enumerate(self.s.steps):
             if st.link not in links:
                 continue
-            key = f"{self.prefix}.direct.{st.link}.{st.point}"
-            lab = self.s.labels.get((st.link, st.point), st.point)
-            # images of earlier links that the step starts from are drawn first, in their own steps
-            for pl in st.lines:
-                self.img(pl.anchor)
-            for n in st.base:
-                self.img((st.link, n))
-            vc.b.step(self.text(st))
-            if st.aux is not None and self.prefix == "v":  # drawn once, with the velocities
-                Q = self.where(st.point)
-                for i, ln in enumerate(st.aux.lines):
-                    p, d = self.line(ln)
-                    vc.b.segment(f"{key}.aux{i}", _pt(p), _pt(Q), kind="line")
-                vc.b.point(f"{key}.pos", _pt(Q), label=st.point)
-            if st.kind == "meet":
-                (p1, d1), (p2, d2) = (self.plan_line(pl, f"{key}.{i}") for i, pl in enumerate(st.lines))
-                image, par = _meet((p1, d1), (p2, d2))
-                vc.b.degenerate(par & ~vc.b.bad, f"step '{st.text}': the two lines are parallel here, "
-                                "the image is undetermined")
-                self.show(key, st, image, lab, (f"{key}.0", f"{key}.1"))
-            elif st.kind == "divide":
-                X, Y = (self.where(n) for n in st.base)
-                x, y = (self.img((st.link, n)) for n in st.base)
-                P = self.where(st.point)
-                t = dot(P - X, Y - X) / dot(Y - X, Y - X)
-                image = x + t[:, None] * (y - x)
-                self.show(key, st, image, lab)
-            elif st.kind == "copy":
-                (X,) = st.base
-                x = self.img((st.link, X))
-                image = x + (self.partner_image(st.partner, st.point) - self.partner_image(st.partner, X))
-                self.show(key, st, image, lab)
-            else:
-                raise InputError(f"the direct construction cannot perform a '{st.kind}' step here")
-            self.keep(st.link, st.point, image)
+            self._one(st)
         # the group's links take their hinges' images from the links solved before
         for ln in links:
             for p in self.chain.links[ln]:
@@ -175,7 +184,92 @@ def _pt(xy):
 
 
 #: the pairs the direct construction knows (a gear pair: external or internal wheels)
-KNOWN_PAIRS = ("revolute", "prismatic", "slot", "gear")
+KNOWN_PAIRS = ("revolute", "prismatic", "slot", "gear", "cam", "rolling")
+
+
+class TrialDrawer(ScriptDrawer):
+    """False position (*ähnliche Punktreihen*): the script of the whole chain drawn from a trial
+    rate of another crank (Rosenauer 1937 paper 7, remark on a binary driver), then every image
+    moved along its ray from o in the ratio of the given driver's true to trial velocity. The
+    velocities are proportional to the input rate, so the rows of trial images pass through o
+    and one trial fixes the ratio."""
+
+    prefix = "v.trial"
+
+    def __init__(self, vc, script: VelocityScript, solved: set[str]) -> None:
+        super().__init__(vc, script, solved)
+        self.T: dict[tuple[str, str], np.ndarray] = {}
+
+    def img(self, key: tuple[str, str]) -> np.ndarray:
+        for k in (key,) + tuple(self.s.shared.get(key, ())):
+            if k in self.T:
+                return self.T[k]
+            if k[0] == self.mech.frame:
+                return self.vc.base(self.where(k[1]))
+        raise InputError(f"the trial construction reached {key[1]} ({key[0]}) before it was drawn")
+
+    def keep(self, ln: str, p: str, image: np.ndarray) -> None:
+        for key in ((ln, p),) + tuple(self.s.shared.get((ln, p), ())):
+            self.T.setdefault(key, image)
+
+    def at(self, link: str, X: np.ndarray) -> np.ndarray:
+        """The trial image of the point of ``link`` at X (the link's image is similar to it)."""
+        if link == self.mech.frame:
+            return self.vc.base(X)
+        (X1, x1), (X2, x2) = [(self.where(p), v) for (ln, p), v in self.T.items() if ln == link][:2]
+        z = lambda a: a[:, 0] + 1j * a[:, 1]  # noqa: E731 (a similarity is complex-affine)
+        w = z(x1) + (z(x2) - z(x1)) / (z(X2) - z(X1)) * (z(X) - z(X1))
+        return np.stack([w.real, w.imag], axis=-1)
+
+    def partner_image(self, partner: str, point: str) -> np.ndarray:
+        return self.at(partner, self.where(point))
+
+    def show(self, key: str, st, image: np.ndarray, lab: str, lines=()) -> None:
+        self.vc.b.point(key, _pt(image), label=lab + "*", space=self.vc.space)
+        for k in lines:
+            self.vc.b.extend(k, _pt(image))
+
+    def run(self, links: set[str]) -> None:
+        vc = self.vc
+        t_link, t_pivot, t_ref = self.s.trial
+        d_link, d_pivot, d_ref = self.s.scale_by
+        true_ref = vc.image(d_link, d_ref)
+        # the trial rate: the trial crank's pin as fast as the given driver's (a readable drawing)
+        O, R = self.where(t_pivot), self.where(t_ref)
+        speed = np.linalg.norm(vc.velocity(self.where(d_ref), true_ref), axis=-1)
+        w = speed / np.linalg.norm(R - O, axis=-1)
+        for st in self.s.steps:
+            if st.kind == "driver":
+                vc.b.step(st.text)
+                image = vc.base(R) + vc.kv * vc.M(w[:, None] * perp(R - O))
+                self.keep(t_link, t_pivot, vc.base(O))
+                self.keep(t_link, t_ref, image)
+                self.show(f"{self.prefix}.{t_link}.{t_ref}", st, image, self.s.labels.get((t_link, t_ref), t_ref))
+            elif st.kind == "scale":
+                self._scale(st, links, true_ref, self.img((d_link, d_ref)))
+            else:
+                self._one(st)
+
+    def _scale(self, st, links: set[str], true_ref: np.ndarray, trial_ref: np.ndarray) -> None:
+        vc = self.vc
+        vc.b.step(st.text)
+        base = vc.base(self.where(st.point))
+        k = dot(true_ref - base, trial_ref - base) / dot(trial_ref - base, trial_ref - base)
+        keys = [(ln, p) for ln in links for p in self.chain.links[ln]] + list(self.T)
+        drawn: set[str] = set()
+        for ln, p in dict.fromkeys(keys):
+            if ln not in links or (ln, p) in vc.images:
+                continue
+            t = self.img((ln, p))
+            b = vc.base(self.where(p))
+            image = b + k[:, None] * (t - b)
+            lab = self.s.labels.get((ln, p), p)
+            if lab not in drawn and lab != "o":  # a hinge's image once; the frame's stay at o
+                drawn.add(lab)
+                key = f"{self.prefix}.scaled.{ln}.{p}"
+                vc._line(key + ".ray", b, t - b)
+                vc._point(key, image, lab, lines=(key + ".ray",))
+            vc.set_known(ln, self.where(p), image, p)
 
 
 def draw_group(vc, links: tuple[str, ...], joints: tuple[str, ...], solved: set[str],
@@ -184,9 +278,18 @@ def draw_group(vc, links: tuple[str, ...], joints: tuple[str, ...], solved: set[
     Rosenauer's rule; raise `InputError` where it does not reach them (similar point rows
     would be needed) or the group has pairs the rule does not know."""
     chain = Chain.from_mechanism(vc.mech)
+    # the solver's own (virtual) links of a cam group are no links of the chain
+    links = tuple(ln for ln in links if ln in chain.links)
+    solved = {ln for ln in solved if ln in chain.links}
     sub = chain.restricted(solved | set(links), solved)
     script = plan_velocities(sub)
     missing = [ln for ln in links if ln in script.unreached]
+    if missing and not script.unsupported:
+        # false position: the whole chain from a trial driver, scaled to the given one
+        full = plan_velocities(chain)
+        if full.trial is not None and full.complete:
+            TrialDrawer(vc, full, solved).run(set(links))
+            return full
     bad = [f"{j.name} ({j.kind})" for j in (vc.mech.joint(n) for n in joints)
            if j.kind not in KNOWN_PAIRS or getattr(j, "gear_kind", "external") == "rack"]
     bad += [f"driver {d} (inside the group, between moving links)" for d in drivers]
@@ -310,25 +413,23 @@ class AccelerationDrawer(ScriptDrawer):
                 "plan of relative normal accelerations (ends transferred across each pair): "
                 + st.text + f"; then take away \u03c9\u00b2\u00b7{st.point}O")
 
-    def _second_image(self, ln: str) -> None:
-        ac = self.ac
-        (X, x, name), = ac.known[ln]
-        for pair, G, S, _ in self.chain.slides:
-            partner = G if S == ln else S if G == ln else None
-            if partner is None or not (partner == self.mech.frame or len(ac.known.get(partner, [])) >= 2):
-                continue
-            X2 = X + np.array([self.mech.length_scale, 0.0])
-            gx = ac.image(partner, f"{name}@{partner}", X, draw=False)
-            g2 = ac.image(partner, f"{name}+@{partner}", X2, draw=False)
-            ac.set_known(ln, X2, x + (g2 - gx), name + "+")
-            return
-
 
 def draw_group_acceleration(ac, links: tuple[str, ...], joints: tuple[str, ...], solved: set[str],
                             drivers: tuple[str, ...] = ()) -> VelocityScript:
     """The accelerations of the group ``links`` by the plan of relative normal accelerations,
     along the same script as the velocities (`draw_group`)."""
     chain = Chain.from_mechanism(ac.mech)
+    links = tuple(ln for ln in links if ln in chain.links)
+    solved = {ln for ln in solved if ln in chain.links}
+    cams = [c[0] for c in chain.contacts + chain.rolls if {c[1], c[2]} & set(links)]
+    if cams:
+        raise InputError(f"the acceleration plan of the group {', '.join(links)}: the contact "
+                         f"{', '.join(cams)} needs the curvature of its profiles (its equivalent "
+                         "linkage), which this construction does not draw")
     script = plan_velocities(chain.restricted(solved | set(links), solved))
+    if not script.complete:
+        raise InputError(f"the acceleration plan of the group {', '.join(links)}: its velocity plan "
+                         "needs false position (similar point rows), and the acceleration plan of such "
+                         "a group is not drawn (its normal accelerations do not scale with one trial)")
     AccelerationDrawer(ac, script, solved).run(set(links))
     return script

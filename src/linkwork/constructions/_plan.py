@@ -41,20 +41,8 @@ from ..geometry import Point
 from ..kinematics import Solution
 from ..kinematics.solver import plan as group_plan
 from ..model import Mechanism, Revolute
+from ..topology.constructibility import lower, upper  # the books' labels: B → b, O4 → o_4
 from ._common import cross, dot, norm, perp, rotate
-
-
-def lower(name: str) -> str:
-    """Image label of point ``name``: ``B`` → ``b``, ``O4`` → ``o_4``."""
-    import re
-    m = re.match(r"^([A-Za-z]+)(\d+)$", name)
-    return f"{m.group(1).lower()}_{m.group(2)}" if m else name.lower()
-
-
-def upper(name: str) -> str:
-    import re
-    m = re.match(r"^([A-Za-z]+)(\d+)$", name)
-    return f"{m.group(1)}_{m.group(2)}" if m else name
 
 
 def _meet(l1: np.ndarray, l2: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

@@ -3,7 +3,8 @@
 Owns the elements of higher pairs in the ``mechanism`` layer (`draw_elements`: each profile
 carried by its link, turned and moved with the link's pose at the drawn position — the cam
 disc's outline, a mate profile, a track — and the follower's element: the roller's circle with
-its hinge, the flat face as a line along the contacts' run), and two layers of their own:
+its hinge, the flat face as a line along the contacts' run; a star wheel's tooth flanks,
+`draw_flanks`), and two layers of their own:
 
 * ``contact`` — the contact point and the common normal of every higher pair (the relative pole
   of the two links lies on it), with the pressure angle in the legend;
@@ -21,10 +22,11 @@ import numpy as np
 
 from ..instant.equivalent import equivalent_linkage
 from ..kinematics.contact import is_higher
-from ..model import CamContact, Revolute
+from ..model import CamContact, Revolute, indexing_schedule
 from .svg import Figure, Style
 
 PROFILE_SAMPLES = 720
+FLANK_SAMPLES = 48
 EQUIVALENT = Style(stroke="#8b1a89", width=0.35, dash="2.5 1.2")
 CONTACT = Style(stroke="#b3001b", width=0.25)
 
@@ -112,6 +114,15 @@ def draw_elements(fig: Figure, sc, layer: str = "mechanism") -> None:
     for j in sc.mech.joints:
         if isinstance(j, CamContact) and j.follower == "roller":
             fig.symbol("revolute", at=sc.pos(j.point), layer=layer)
+
+
+def draw_flanks(fig: Figure, sc, j, layer: str = "mechanism") -> None:
+    """The tooth flanks of a star wheel (`IndexingSchedule.flanks`: the epicycloid arcs its
+    pins drive along), turned and moved with the wheel as its slots are; nothing for a
+    Geneva wheel."""
+    for k, xy in enumerate(indexing_schedule(sc.mech, j).flanks(FLANK_SAMPLES)):
+        fig.path(_carry(sc, j.links[1], xy), style=Style(width=0.4), layer=layer,
+                 ident=f"flank-{j.name}-{k}")
 
 
 def draw_higher(fig: Figure, sc, layer: str) -> None:

@@ -214,6 +214,8 @@ def _draw_indexing(fig: Figure, sc: Scene, j, layer: str) -> None:
         fig.symbol("slot", start=C + inner * e, end=C + outer * e, layer=layer,
                    ident=f"joint-{j.name}" if k == 0 else None)
     fig.circle(C, max(o for _, _, o in lines), style=Style(width=0.3), layer=layer)
+    from .higher_layers import draw_flanks
+    draw_flanks(fig, sc, j, layer)
     for p in sch.pins:
         fig.symbol("revolute", at=sc.pos(p), layer=layer)
 

@@ -16,7 +16,7 @@ CONVENTION = ("a pair's reaction is the force (and, for a prismatic pair, the co
               "units (N, N*m, W, J), points in the mechanism's length unit")
 
 
-def columns(fa: ForceAnalysis) -> dict[str, np.ndarray]:
+def columns(fa: ForceAnalysis, extra: dict[str, np.ndarray] | None = None) -> dict[str, np.ndarray]:
     """'input', 'status', '<driver>.torque' or '.force', '<pair>.fx', '.fy', '.couple' (prismatic),
     '.<component>', '.magnitude', frame and shaking loads, kinetic energy, the checks."""
     sol, mech = fa.solution, fa.dynamics.mechanism
@@ -50,6 +50,7 @@ def columns(fa: ForceAnalysis) -> dict[str, np.ndarray]:
     with np.errstate(invalid="ignore", divide="ignore"):
         out["power_residual_relative"] = np.abs(fa.power_residual) / fa.power_scale
     out["condition"] = fa.condition
+    out.update(extra or {})
     return out
 
 
@@ -57,17 +58,19 @@ def _clean(v: float):
     return None if not math.isfinite(v) else v
 
 
-def to_document(fa: ForceAnalysis) -> dict:
+def to_document(fa: ForceAnalysis, extra: dict[str, np.ndarray] | None = None,
+                summary: dict | None = None) -> dict:
+    """The JSON document: `columns` (see `columns`, with `extra` columns) and `summary` keys."""
     mech = fa.dynamics.mechanism
-    cols = columns(fa)
+    cols = columns(fa, extra)
     return {"mechanism": mech.name, "length_unit": mech.length_unit,
             "inertia": fa.inertia, "sign_convention": CONVENTION,
-            "samples": len(fa),
+            "samples": len(fa), **(summary or {}),
             "columns": {k: [_clean(float(x)) for x in v] for k, v in cols.items()}}
 
 
-def to_csv_text(fa: ForceAnalysis) -> str:
-    cols = columns(fa)
+def to_csv_text(fa: ForceAnalysis, extra: dict[str, np.ndarray] | None = None) -> str:
+    cols = columns(fa, extra)
     names = list(cols)
     lines = [",".join(names)]
     data = np.column_stack([np.asarray(cols[k], dtype=float) for k in names])

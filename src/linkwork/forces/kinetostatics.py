@@ -146,24 +146,29 @@ class _System:
         if torque is not None:
             self.b[:, r + 2] -= torque
 
-    def matrix(self) -> np.ndarray:
-        N, M, K = len(self.sol), self.b.shape[1], len(self.columns)
-        A = np.zeros((N, M, K))
+    def matrix(self, sl: slice) -> np.ndarray:
+        """A of the samples `sl` (n, equations, unknowns)."""
+        n = len(range(*sl.indices(len(self.sol))))
+        M, K = self.b.shape[1], len(self.columns)
+        A = np.zeros((n, M, K))
         for k, parts in enumerate(self.columns):
             for ln, d, p, sign in parts:
                 r = self.row[ln]
                 if d is None:
                     A[:, r + 2, k] += sign
                 else:
-                    A[:, r:r + 2, k] += sign * d
-                    A[:, r + 2, k] += sign * _cross(p - self.ref[ln], d)
+                    A[:, r:r + 2, k] += sign * d[sl]
+                    A[:, r + 2, k] += sign * _cross(p[sl] - self.ref[ln][sl], d[sl])
         return A
 
 
-def kinetostatics(dyn: Dynamics, sol: Solution, *, inertia: bool = True) -> ForceAnalysis:
+def kinetostatics(dyn: Dynamics, sol: Solution, *, inertia: bool = True,
+                  virtual_work: bool = True) -> ForceAnalysis:
     """Pair reactions and driver efforts of `dyn` moving as `sol` (solved to accelerations when
     `inertia`); `inertia=False` gives the static equilibrium (*statische Kräfte*) at the same
-    positions. See the module's docstring for the sign convention."""
+    positions. See the module's docstring for the sign convention. `virtual_work=False` skips
+    that check (a second kinematic solve per driver; `ForceAnalysis.virtual_work` is then
+    empty); the power balance is always computed."""
     mech = dyn.mechanism
     if mech is not sol.mechanism and not _same_drawing(mech, sol.mechanism):
         raise ModelError(f"the solution is of mechanism '{sol.mechanism.name}', the mass data "
@@ -180,9 +185,11 @@ def kinetostatics(dyn: Dynamics, sol: Solution, *, inertia: bool = True) -> Forc
         system.load(c.link, None, None, c.torque)
     pairs = {j.name: _pair_columns(system, j) for j in mech.joints}
     drivers = {d.joint: _driver_column(system, d) for d in mech.drivers}
-    A = system.matrix()
-    x, cond, solved = _solve(A, system.b, mech.length_scale * m, sol)
+    x, cond, solved = _solve(system, mech.length_scale * m, sol)
     reactions = {name: _reaction(x, spec) for name, spec in pairs.items()}
+    if dyn.loads.friction:
+        x, reactions, f_forces, f_couples = _with_friction(dyn, sol, system, x, pairs, reactions)
+        forces, couples = forces + f_forces, couples + f_couples
     efforts = {name: x[:, k] for name, (k, _, _) in drivers.items()}
     frame_force, frame_moment = _on_frame(mech, reactions, efforts, drivers, m)
     rates = {d.joint: _driver_rate(sol, d, m) for d in mech.drivers}
@@ -191,13 +198,90 @@ def kinetostatics(dyn: Dynamics, sol: Solution, *, inertia: bool = True) -> Forc
         [load_power(sol, [], [c], m) for c in couples]
     power_residual = driver_power + sum(p_loads, np.zeros(len(sol)))
     power_scale = np.abs(driver_power) + sum((np.abs(p) for p in p_loads), np.zeros(len(sol)))
-    virtual = _virtual_work(dyn, sol, forces, couples)
+    virtual = _virtual_work(dyn, sol, forces, couples) if virtual_work else {}
     have_masses = all(ln in dyn.masses for ln in mech.moving_links)
     energy = _energy(dyn, sol) if have_masses else (None, None)
     shaking = _shaking(dyn, sol) if have_masses and sol.order >= 2 else (None, None)
     return ForceAnalysis(dyn, sol, inertia, MappingProxyType(reactions), MappingProxyType(efforts),
                          MappingProxyType(virtual), frame_force, frame_moment, *shaking, *energy,
                          driver_power, power_residual, power_scale, cond, solved)
+
+
+#: fixed-point iterations for Coulomb friction, and their relative tolerance
+FRICTION_ITERATIONS, FRICTION_TOLERANCE = 100, 1e-14
+
+
+def _with_friction(dyn: Dynamics, sol: Solution, system: "_System", x: np.ndarray,
+                   pairs: dict, reactions: dict):
+    """Coulomb friction by fixed-point iteration: the friction forces from the reactions of
+    the previous step, moved to the right-hand side, until the reactions stop changing
+    (contraction for μ·(lever arms) small enough: the usual case). The friction becomes part
+    of each pair's reaction (component 'friction': a revolute pair's friction torque on
+    links[1], N·m, signed; a sliding pair's friction force μ·|N|, N, opposing the sliding of
+    links[1]) and of the loads (so that the power balance books its dissipation)."""
+    m, b0 = dyn.metres_per_unit, system.b.copy()
+    L = dyn.mechanism.length_scale * m
+    scale = np.nanmax(np.abs(x), axis=1, initial=0.0)
+    for _ in range(FRICTION_ITERATIONS):
+        f_forces, f_couples, signed = _friction_loads(dyn, sol, reactions)
+        system.b = b0.copy()
+        for f in f_forces:
+            system.load(f.link, f.force, m * sol.point_on(f.link, f.point).position)
+        for c in f_couples:
+            system.load(c.link, None, None, c.torque)
+        with warnings.catch_warnings():  # said once, by the first solve
+            warnings.simplefilter("ignore", LinkworkWarning)
+            x_new, _, _ = _solve(system, L, sol)
+        change = np.nanmax(np.abs(x_new - x), axis=1, initial=0.0)
+        x = x_new
+        reactions = {name: _reaction(x, spec) for name, spec in pairs.items()}
+        if np.all(~(change > FRICTION_TOLERANCE * np.maximum(scale, np.nanmax(np.abs(x), axis=1, initial=0.0)))):
+            break
+    else:
+        warnings.warn(f"Coulomb friction: the reactions did not settle in {FRICTION_ITERATIONS} "
+                      "iterations (friction coefficients too large for this mechanism?); the "
+                      "last iterate is given", LinkworkWarning, stacklevel=3)
+    f_forces, f_couples, signed = _friction_loads(dyn, sol, reactions)
+    for jn, (force, couple, value) in signed.items():
+        r = reactions[jn]
+        reactions[jn] = Reaction(r.joint, r.links, r.point, r.force + force, r.couple + couple,
+                                 MappingProxyType({**r.components, "friction": value}))
+    return x, reactions, f_forces, f_couples
+
+
+def _friction_loads(dyn: Dynamics, sol: Solution, reactions: dict):
+    """The friction of every pair with friction, as loads on both links, and per pair (force on
+    links[1] (N, 2), couple on links[1] (N,), signed value (N,))."""
+    mech, m = dyn.mechanism, dyn.metres_per_unit
+    forces: list[AppliedForce] = []
+    couples: list[AppliedCouple] = []
+    signed = {}
+    N = len(sol)
+    for fr in dyn.loads.friction:
+        j = mech.joint(fr.joint)
+        a, b = j.links
+        r = reactions[fr.joint]
+        if j.kind == "revolute":
+            w = sol.pose_derivatives(b)[1, :, 2] - sol.pose_derivatives(a)[1, :, 2]
+            torque = -fr.coefficient * fr.radius * m * r.magnitude * np.sign(w)
+            couples += [AppliedCouple(b, torque, "friction"), AppliedCouple(a, -torque, "friction")]
+            signed[fr.joint] = (np.zeros((N, 2)), torque, torque)
+            continue
+        normal = np.abs(r.components["normal"] if "normal" in r.components else r.components["radial"])
+        if j.kind == "cam":
+            at = sol.joint(fr.joint)["point"]
+            on_b = sol.local(b, at)
+        else:
+            on_b = np.broadcast_to(mech.points[j.point], (N, 2))
+            at = sol.point_on(b, on_b).position
+        on_a = sol.local(a, at)
+        v = sol.point_on(b, on_b).velocity - sol.point_on(a, on_a).velocity
+        speed = norm(v)
+        t = np.divide(v, speed[:, None], out=np.zeros_like(v), where=speed[:, None] > 0)
+        force = -fr.coefficient * normal[:, None] * t
+        forces += [AppliedForce(b, on_b, force, "friction"), AppliedForce(a, on_a, -force, "friction")]
+        signed[fr.joint] = (force, np.zeros(N), fr.coefficient * normal * (speed > 0))
+    return forces, couples, signed
 
 
 def _same_drawing(a, b) -> bool:
@@ -208,8 +292,8 @@ def _same_drawing(a, b) -> bool:
 
 # ---------------------------------------------------------------------- columns of the pairs
 def _pair_columns(s: _System, j) -> dict:
-    """The unknowns of pair j: {'kind', 'links', 'point' (metres), 'cols': {component: (k,
-    direction or None)}}."""
+    """The unknowns of pair j: {'joint', 'links', 'point' (length unit), 'cols': {component:
+    (column, direction or None for a couple)}}."""
     sol, mech, m = s.sol, s.mech, s.m
     a, b = j.links[0], j.links[1]
     if is_intermittent(j):
@@ -248,7 +332,7 @@ def _pair_columns(s: _System, j) -> dict:
             force("tangential", _perp(n), p)
     else:  # pragma: no cover - every pair kind is handled above
         raise ModelError(f"pair '{j.name}': forces in {j.kind} pairs are not computed")
-    return {"joint": j.name, "links": (a, b), "point": p, "cols": cols}
+    return {"joint": j.name, "links": (a, b), "point": p / m, "cols": cols}
 
 
 def _pitch_point(sol: Solution, g: Gear) -> tuple[np.ndarray, np.ndarray]:
@@ -291,38 +375,55 @@ def _driver_rate(sol: Solution, d, m: float) -> np.ndarray:
 
 
 # ---------------------------------------------------------------------- solving
-def _solve(A: np.ndarray, b: np.ndarray, L: float, sol: Solution
-           ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """x (N, K) of A x = b per sample; moment rows divided by L (and couple columns by L) so
-    that the condition number compares like with like."""
-    N, M, K = A.shape
+#: samples per block of the batched solve: the systems of a block stay in the CPU cache
+BLOCK = 4096
+
+
+def _solve(system: "_System", L: float, sol: Solution) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """x (N, K) of A x = b per sample, block by block; moment rows divided by L (and couple
+    columns multiplied by L) so that the condition number (1-norm) compares like with like."""
+    N, M, K = len(sol), system.b.shape[1], len(system.columns)
     if K < M:
         raise StructureError(
             f"the mechanism has {M - K} more degree(s) of freedom than drivers: its links are "
             "not in equilibrium under arbitrary loads (drive every freedom)")
-    row_scale = np.ones(M)
-    row_scale[2::3] = 1.0 / L
-    col_scale = np.where((np.abs(A[:, 0::3, :]).sum(axis=(0, 1)) + np.abs(A[:, 1::3, :]).sum(axis=(0, 1))) > 0,
-                         1.0, L)
-    As = A * row_scale[None, :, None] * col_scale[None, None, :]
-    bs = b * row_scale
-    ok = np.isfinite(As).all(axis=(1, 2)) & np.isfinite(bs).all(axis=1) & \
-        (sol.status != Status.UNREACHABLE)
-    x = np.full((N, K), np.nan)
-    cond = np.full(N, np.nan)
-    if not ok.any():
-        return x, cond, ok
-    sv = np.linalg.svd(As[ok], compute_uv=False)
-    cond[ok] = sv[:, 0] / np.maximum(sv[:, min(M, K) - 1], np.finfo(float).tiny)
-    solved = ok.copy()
-    solved[ok] = cond[ok] < CONDITION_LIMIT
     if K > M:
         warnings.warn(f"the mechanism is over-closed: {K - M} reaction component(s) are "
                       "statically indeterminate for rigid links; the reactions given are the "
                       "least-squares (minimum-norm) ones", LinkworkWarning, stacklevel=3)
-        x[solved] = np.einsum("nkm,nm->nk", np.linalg.pinv(As[solved]), bs[solved])
-    elif solved.any():
-        x[solved] = np.linalg.solve(As[solved], bs[solved][..., None])[..., 0]
+    row_scale = np.ones(M)
+    row_scale[2::3] = 1.0 / L
+    col_scale = np.array([L if all(d is None for _, d, _, _ in parts) else 1.0
+                          for parts in system.columns])
+    x = np.full((N, K), np.nan)
+    cond = np.full(N, np.nan)
+    solved = np.zeros(N, dtype=bool)
+    for lo in range(0, N, BLOCK):
+        sl = slice(lo, min(N, lo + BLOCK))
+        As = system.matrix(sl) * row_scale[None, :, None] * col_scale[None, None, :]
+        bs = system.b[sl] * row_scale
+        ok = np.isfinite(As).all(axis=(1, 2)) & np.isfinite(bs).all(axis=1) & \
+            (sol.status[sl] != Status.UNREACHABLE)
+        if not ok.any():
+            continue
+        As, bs = As[ok], bs[ok]
+        inv = None
+        if K == M:
+            try:
+                inv = np.linalg.inv(As)
+            except np.linalg.LinAlgError:  # a sample exactly at a dead centre: the SVD below
+                pass
+        if inv is not None:
+            c = np.abs(As).sum(axis=1).max(axis=1) * np.abs(inv).sum(axis=1).max(axis=1)
+        else:
+            sv = np.linalg.svd(As, compute_uv=False)
+            c = sv[:, 0] / np.maximum(sv[:, -1], np.finfo(float).tiny)
+            inv = np.linalg.pinv(As)
+        good = np.isfinite(c) & (c < CONDITION_LIMIT)
+        idx = np.flatnonzero(ok) + lo
+        cond[idx] = c
+        solved[idx] = good
+        x[idx[good]] = np.einsum("nkm,nm->nk", inv[good], bs[good])
     return x * col_scale, cond, solved
 
 
@@ -342,6 +443,7 @@ def _reaction(x: np.ndarray, spec: dict) -> Reaction:
 
 def _on_frame(mech, reactions: dict, efforts: dict, drivers: dict, m: float
               ) -> tuple[np.ndarray, np.ndarray]:
+    # reaction points are in the length unit, driver points (`_driver_column`) in metres
     """Force and moment (about the frame's origin) that the moving links exert on the frame
     through its pairs and drivers."""
     N = len(next(iter(efforts.values())))
@@ -351,7 +453,7 @@ def _on_frame(mech, reactions: dict, efforts: dict, drivers: dict, m: float
         sign = -1.0 if a == mech.frame else 1.0 if b == mech.frame else 0.0
         if sign:
             F += sign * r.force
-            M += sign * (_cross(r.point, r.force) + r.couple)
+            M += sign * (_cross(m * r.point, r.force) + r.couple)
     for d in mech.drivers:
         if d.base != mech.frame:
             continue
@@ -377,7 +479,8 @@ def _virtual_work(dyn: Dynamics, sol: Solution, forces: list[AppliedForce],
     for i, d in enumerate(mech.drivers):
         unit = np.zeros((len(sol), nd))
         unit[:, i] = 1.0
-        vsol = solve(mech, sol.inputs, velocities=unit, accelerations=np.zeros_like(unit), order=1)
+        # order 2: the compiled path of the solver (its accelerations are not used)
+        vsol = solve(mech, sol.inputs, velocities=unit, accelerations=np.zeros_like(unit))
         scale = dyn.metres_per_unit if isinstance(mech.joint(d.joint), Prismatic) else 1.0
         out[d.joint] = -load_power(vsol, forces, couples, dyn.metres_per_unit) / scale
     return out

@@ -16,7 +16,7 @@ import numpy as np
 from ..errors import InputError, MechanismFileError, ModelError
 from ..model import Mechanism
 from ..model.inertia import (STANDARD_GRAVITY, Couple, Dynamics, LinearSpring, Loads, LoadTable,
-                             MassProperties, PointForce, TorsionSpring)
+                             MassProperties, PairFriction, PointForce, TorsionSpring)
 from ..units import parse_quantity
 from . import schema
 from .files import LIBRARY_PREFIX, _did_you_mean, _dotted, _line_of, parse, resolve
@@ -63,12 +63,17 @@ def build_dynamics(mech: Mechanism, spec: schema.MechanismFile, text: str, sourc
             fail(loc, f"link '{name}', which is not in [links]{_did_you_mean(name, mech.link_index)}")
         return name
 
-    def table(t: schema.LoadTableSpec, k: int, loc: tuple, to_si: float = 1.0) -> LoadTable:
+    def joint(loc: tuple, name: str) -> str:
+        if name not in mech.joint_index:
+            fail(loc, f"joint '{name}', which is not in [joints]{_did_you_mean(name, mech.joint_index)}")
+        return name
+
+    def table(t: schema.LoadTableSpec, k: int, loc: tuple) -> LoadTable:
         vals = []
         for i, v in enumerate(t.values):
             if (k == 1) != (not isinstance(v, list)):
                 fail(loc + ("values", i), "a torque's table has numbers, a force's [x, y] pairs")
-            vals.append(tuple(np.atleast_1d(np.asarray(v, dtype=float)) * to_si))
+            vals.append(tuple(np.atleast_1d(np.asarray(v, dtype=float))))
         scale = np.pi / 180 if (t.of == "input" and deg and _revolute_input(mech)) else 1.0
         return LoadTable(t.of, tuple(scale * a for a in t.at), tuple(vals), t.periodic)
 
@@ -118,9 +123,7 @@ def build_dynamics(mech: Mechanism, spec: schema.MechanismFile, text: str, sourc
     torsion = []
     for i, t in enumerate(ls.torsion_springs):
         loc = ("loads", "torsion_springs", i)
-        if t.joint not in mech.joint_index:
-            fail(loc + ("joint",), f"joint '{t.joint}', which is not in [joints]"
-                                   f"{_did_you_mean(t.joint, mech.joint_index)}")
+        joint(loc + ("joint",), t.joint)
         free = t.free_angle
         free = quantity(loc + ("free_angle",), free, "rad", "free angle") if isinstance(free, str) \
             else (np.radians(free) if deg else float(free))
@@ -128,8 +131,14 @@ def build_dynamics(mech: Mechanism, spec: schema.MechanismFile, text: str, sourc
             t.joint, quantity(loc + ("stiffness",), t.stiffness, "N*m/rad", "torsion stiffness"),
             float(free), quantity(loc + ("damping",), t.damping, "N*m*s/rad", "rotary damping"),
             name=f"loads.torsion_springs[{i}]"))
+    friction = []
+    for i, fr in enumerate(ls.friction):
+        loc = ("loads", "friction", i)
+        joint(loc + ("joint",), fr.joint)
+        friction.append(PairFriction(fr.joint, float(fr.coefficient), quantity(
+            loc + ("radius",), fr.radius, length, "journal radius", True)))
     loads = Loads(gravity=g, forces=tuple(forces), couples=tuple(couples), springs=tuple(springs),
-                  torsion_springs=tuple(torsion))
+                  torsion_springs=tuple(torsion), friction=tuple(friction))
     try:
         return Dynamics.build(mech, masses, loads, metres_per_unit=metres)
     except ModelError as exc:

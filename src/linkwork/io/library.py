@@ -6,6 +6,7 @@ Standard library only, so that listing the library costs no NumPy, pydantic or s
 
 from __future__ import annotations
 
+import tomllib
 from importlib import resources
 
 from ..errors import UnknownMechanismError
@@ -28,3 +29,56 @@ def library_text(name: str) -> str:
         hint = f"; did you mean {', '.join(close)}?" if close else "; `linkwork library` lists them"
         raise UnknownMechanismError(f"the library has no mechanism '{name}'{hint}")
     return (resources.files("linkwork") / "library" / f"{name}.toml").read_text(encoding="utf-8")
+
+
+#: the library's groups, in the order `linkwork library` shows them
+CATEGORIES = ("four-bars", "slider mechanisms", "six-bars and multi-loop linkages",
+              "straight-line linkages", "valve gears", "governors", "cams", "gears",
+              "intermittent", "over-closed chains", "several drivers", "other")
+
+
+def _category(doc: dict) -> str:
+    """A file's `category`, or, for a file without one, the group its pairs put it in: a valve
+    gear by its name, then cams, gears (toothed or rolling) and intermittent pairs by their type."""
+    if doc.get("category"):
+        return doc["category"]
+    if "valve gear" in doc.get("name", "").lower():
+        return "valve gears"
+    kinds = {j.get("type") for j in doc.get("joints", {}).values() if isinstance(j, dict)}
+    for kind, group in (("geneva", "intermittent"), ("star-wheel", "intermittent"), ("cam", "cams"),
+                        ("gear", "gears"), ("rolling", "gears")):
+        if kind in kinds:
+            return group
+    return "other"
+
+
+def library_entries() -> list[dict[str, str]]:
+    """Every shipped mechanism as {name, title, category, description}, grouped in the order
+    of `CATEGORIES` (unknown groups after them, alphabetically), by name within a group."""
+    out = []
+    for n in library_names():
+        doc = tomllib.loads(library_text(n))
+        out.append({"name": n, "title": doc.get("name", ""), "category": _category(doc),
+                    "description": doc.get("description", "")})
+    rank = {c: i for i, c in enumerate(CATEGORIES)}
+    return sorted(out, key=lambda e: (rank.get(e["category"], len(rank)), e["category"], e["name"]))
+
+
+def search_library(text: str | None = None, category: str | None = None) -> list[dict[str, str]]:
+    """The library entries whose name, title or description contain every word of `text`
+    (case-insensitive, umlauts folded: 'proell' and 'proll' find Pröll) and whose category starts with
+    `category`."""
+    def fold(s: str) -> str:
+        s = s.lower()
+        for a, b in (("ä", "a"), ("ö", "o"), ("ü", "u"), ("ß", "ss"), ("–", "-"), ("ae", "a"), ("oe", "o"),
+                     ("ue", "u")):
+            s = s.replace(a, b)
+        return s
+
+    words = fold(text or "").split()
+    hits = []
+    for e in library_entries():
+        hay = fold(" ".join((e["name"], e["title"], e["description"])))
+        if all(w in hay for w in words) and (not category or fold(e["category"]).startswith(fold(category))):
+            hits.append(e)
+    return hits

@@ -221,6 +221,13 @@ class TorsionSpringSpec(_Strict):
     damping: Quantity = Field(0.0, description="rotary damping; a bare number is N*m*s/rad")
 
 
+class FrictionSpec(_Strict):
+    joint: str = Field(description="a revolute, prismatic, slot, circular-slot or cam pair")
+    coefficient: PositiveNumber = Field(description="Coulomb friction coefficient")
+    radius: Quantity = Field(0.0, description="journal radius of a revolute pair (friction torque "
+                                              "coefficient*radius*|R|); a bare number is in the length unit")
+
+
 class LoadsSpec(_Strict):
     gravity: Union[Coordinates, Annotated[bool, Strict()]] = Field(
         False, description="acceleration of gravity [gx, gy] in m/s^2, or true for 9.80665 m/s^2 along -y")
@@ -228,6 +235,8 @@ class LoadsSpec(_Strict):
     torques: list[TorqueSpec] = Field(default_factory=list)
     springs: list[SpringSpec] = Field(default_factory=list, description="linear springs and dampers")
     torsion_springs: list[TorsionSpringSpec] = Field(default_factory=list)
+    friction: list[FrictionSpec] = Field(default_factory=list, description="Coulomb friction in pairs "
+                                         "(zero where a pair does not move; an option of the force analysis)")
 
 
 class MechanismFile(_Strict):

@@ -179,17 +179,29 @@ def _start(cf: CamFollower, state, guess: np.ndarray, u0: float):
     return (guess[:, 0, 0] - bx) * ax + (guess[:, 0, 1] - by) * ay, u
 
 
-def positions(cf: CamFollower, state, guess: np.ndarray | None, tol: float
+def positions(cf: CamFollower, state, guess: np.ndarray | None, tol: float, reseat: bool = True
               ) -> tuple[np.ndarray, np.ndarray]:
     """Place the follower and the contact row in Q[0] (Newton from `guess`, the generic
     rows' starting poses); return the samples that converged and the residual (a length) of
-    the equations at the poses placed (the backward error of the estimate in `precision`)."""
+    the equations at the poses placed (the backward error of the estimate in `precision`).
+
+    A roller can reach the end of the contact it follows: bridging a hollow of the profile it
+    touches it at two places, and past that the contact followed on would have it cut into
+    the profile (`contact.interference` marks such samples unreachable). Where the roller
+    stands then, the other touching is the profile's point nearest its centre (deepest in
+    it): the contact is sought again from there (`reseat`), so the motion is picked up where
+    the roller can be, and stays unreachable only where it can touch nowhere."""
     mech = state.mech
     d = contact._design(mech, cf.pair.name)
     N = state.Q.shape[1]
     fi, ri = state.li(cf.follower), state.li(contact.row_name(cf.pair))
     if guess is None:
         guess = np.zeros((N, 2, 3))
+    if reseat and cf.pair.follower in ("roller", "knife"):
+        lost = ~np.isfinite(guess).all(axis=(1, 2))
+        if lost.any():  # beyond where the continuation got: contacts sought over the profile
+            guess = guess.copy()
+            guess[lost] = _seeds(cf, state, guess, lost, d)
     q, u = _start(cf, state, guess, d.u0)
     active = np.isfinite(q) & np.isfinite(u)
     q, u = np.where(active, q, 0.0), np.where(active, u, d.u0)
@@ -255,6 +267,13 @@ def positions(cf: CamFollower, state, guess: np.ndarray | None, tol: float
     _write_pose(cf, state, Jet(q[None]), fi)
     state.Q[0, :, ri, 0] = u - d.u0
     state.Q[0, :, ri, 1:] = np.where(converged, 0.0, np.nan)[:, None]
+    if reseat and cf.pair.follower == "roller" and not contact._convex_outside(mech, cf.pair.name):
+        cut = _cuts(cf, state, converged)
+        if cut.any():
+            u_near = contact.nearest_on_profile(mech, cf.pair.profile, _centre_on_cam(cf, state))[0]
+            guess = state.Q[0][:, [fi, ri]].copy()
+            guess[cut, 1, 0] = u_near[cut] - d.u0
+            return positions(cf, state, guess, tol, reseat=False)
     state.contacts.pop(cf.pair.name, None)
     if kept is not None and fresh[converged].all():
         # with the poses written, to tell whether they are still the ones
@@ -263,9 +282,123 @@ def positions(cf: CamFollower, state, guess: np.ndarray | None, tol: float
     return converged, np.where(converged, err, np.nan)
 
 
+SEED_SAMPLES = 1024  # profile points tried per sample when the contact is sought afresh
+
+
+def _seeds(cf: CamFollower, state, guess: np.ndarray, lost: np.ndarray, d) -> np.ndarray:
+    """Starting guesses (generic rows) at the samples `lost`, which the continuation did not
+    reach (it stops where the contact it follows ends, as a roller bridging a hollow): every
+    place on the profile where the roller's centre (the knife's tip) would lie on the
+    follower's path (its guide's line, its hinge's circle) is a candidate; those at which the
+    roller would overlap the profile elsewhere are dropped, and of the others the one nearest
+    to the follower's position at the nearest reached input is taken. NaN where there is none."""
+    mech = state.mech
+    j = cf.pair
+    prof = mech.profiles[j.profile]
+    out = np.full((int(lost.sum()), 2, 3), np.nan)
+    lo, hi = prof.domain
+    if not (np.isfinite(lo) and np.isfinite(hi)):
+        return out
+    us = np.linspace(lo, hi, SEED_SAMPLES + (0 if prof.closed else 1), endpoint=not prof.closed)
+    D = prof.derivatives(us, 1)
+    nl = np.stack([-D[1][:, 1], D[1][:, 0]], axis=1) / np.hypot(*D[1].T)[:, None]
+    centres = D[0] + d.sign * j.radius * nl  # in the cam's coordinates
+    idx = np.flatnonzero(lost)
+    ax, ay, ac, as_ = (v[idx] for v in _pose(state, cf.cam))
+    wx = ax[:, None] + ac[:, None] * centres[:, 0] - as_[:, None] * centres[:, 1]
+    wy = ay[:, None] + as_[:, None] * centres[:, 0] + ac[:, None] * centres[:, 1]
+    bx, by, bc, bs = (v[idx] for v in _pose(state, cf.base))
+    p = np.asarray(mech.points[j.point], float)
+    if cf.hinge is None:  # the guide's line: C(q) = B + Rb·p + q·Rb·a
+        a = cf.axis * cf.sense
+        ex, ey = (bc * a[0] - bs * a[1])[:, None], (bs * a[0] + bc * a[1])[:, None]
+        ox, oy = (bx + bc * p[0] - bs * p[1])[:, None], (by + bs * p[0] + bc * p[1])[:, None]
+        f = (wx - ox) * ey - (wy - oy) * ex
+        qs = (wx - ox) * ex + (wy - oy) * ey
+    else:  # the hinge's circle
+        hx, hy = (bx + bc * cf.hinge[0] - bs * cf.hinge[1])[:, None], \
+            (by + bs * cf.hinge[0] + bc * cf.hinge[1])[:, None]
+        v = p - cf.hinge
+        f = np.hypot(wx - hx, wy - hy) - np.hypot(*v)
+        qs = np.arctan2(wy - hy, wx - hx) - np.arctan2(v[1], v[0])
+    nxt = np.roll(np.arange(us.size), -1) if prof.closed else np.arange(1, us.size + 1).clip(max=us.size - 1)
+    with np.errstate(invalid="ignore"):
+        cross = (np.sign(f) != np.sign(f[:, nxt])) & np.isfinite(f) & np.isfinite(f[:, nxt])
+    if not prof.closed:
+        cross[:, -1] = False
+    n, i = np.nonzero(cross)
+    if n.size == 0:
+        return out
+    k = nxt[i]
+    w = f[n, i] / (f[n, i] - f[n, k])
+    span = np.where(k > i, us[k] - us[i], us[k] + (hi - lo) - us[i])
+    uc = us[i] + w * span
+    qc = qs[n, i] + w * (qs[n, k] - qs[n, i] if cf.hinge is None
+                         else np.angle(np.exp(1j * (qs[n, k] - qs[n, i]))))
+    if j.follower == "roller":  # a candidate overlapping the profile elsewhere is no contact
+        cx = centres[i] + w[:, None] * (centres[k] - centres[i])
+        _, gap = contact.nearest_on_profile(mech, j.profile, cx)
+        keep = gap >= j.radius * (1 - 1e-3)
+        n, uc, qc = n[keep], uc[keep], qc[keep]
+        if n.size == 0:
+            return out
+    # the follower's position at the nearest reached input (the design's without any)
+    reached = ~lost & np.isfinite(guess).all(axis=(1, 2))
+    x = np.column_stack([c[0] for c in state.inputs.values()])
+    q_ref = np.zeros(idx.size)
+    if reached.any():
+        r_idx = np.flatnonzero(reached)
+        near = r_idx[np.argmin(np.abs(x[idx][:, None, :] - x[r_idx][None]).sum(axis=2), axis=1)]
+        q_ref = _start(cf, state, guess[near], d.u0)[0] if cf.hinge is not None else \
+            _start_at(cf, state, guess, near, d.u0)
+    score = np.abs(qc - q_ref[n]) if cf.hinge is None else np.abs(np.angle(np.exp(1j * (qc - q_ref[n]))))
+    order = np.lexsort((score, n))
+    first = order[np.unique(n[order], return_index=True)[1]]
+    m = n[first]
+    out[m] = 0.0
+    if cf.hinge is None:  # the follower's origin, slid along the guide (as `_start` reads it)
+        out[m, 0, 0] = bx[m] + qc[first] * ex[m, 0]
+        out[m, 0, 1] = by[m] + qc[first] * ey[m, 0]
+    else:
+        out[m, 0, 2] = qc[first]
+    out[m, 1, 0] = uc[first] - d.u0
+    return out
+
+
+def _start_at(cf: CamFollower, state, guess: np.ndarray, rows: np.ndarray, u0: float) -> np.ndarray:
+    """A guide's slide q of the guesses at the sample indices `rows` (their base's poses)."""
+    bx, by, bc, bs = (v[rows] for v in _pose(state, cf.base))
+    a = cf.axis * cf.sense
+    ax, ay = bc * a[0] - bs * a[1], bs * a[0] + bc * a[1]
+    return (guess[rows, 0, 0] - bx) * ax + (guess[rows, 0, 1] - by) * ay
+
+
+def _centre_on_cam(cf: CamFollower, state) -> np.ndarray:
+    """(N, 2) the roller's centre (as placed in Q[0]) in the cam's coordinates."""
+    fx, fy, fc, fs = _pose(state, cf.follower)
+    ax, ay, ac, as_ = _pose(state, cf.cam)
+    p = np.asarray(state.mech.points[cf.pair.point], float)
+    x, y = fx + fc * p[0] - fs * p[1] - ax, fy + fs * p[0] + fc * p[1] - ay
+    return np.stack([ac * x + as_ * y, -as_ * x + ac * y], axis=1)
+
+
+def _cuts(cf: CamFollower, state, converged: np.ndarray) -> np.ndarray:
+    """Samples at which the placed roller overlaps its profile somewhere (another touching)."""
+    _, gap = contact.nearest_on_profile(state.mech, cf.pair.profile, _centre_on_cam(cf, state))
+    with np.errstate(invalid="ignore"):
+        return converged & (gap < cf.pair.radius - 1e-9 * state.mech.length_scale)
+
+
 def _write_pose(cf: CamFollower, state, q: Jet, fi: int) -> None:
     """The follower's pose coefficients (orders 0 … q.order) from the jet of q."""
     K = q.order
+    if cf.base == state.mech.frame and cf.hinge is None:  # the frame's pose is zero
+        a = cf.axis * cf.sense
+        state.Q[: K + 1, :, fi, 0] = q.c * a[0]
+        state.Q[: K + 1, :, fi, 1] = q.c * a[1]
+        state.Q[: K + 1, :, fi, 2] = 0.0
+        state.forget_trig([fi])
+        return
     b = state.Q[: K + 1, :, state.li(cf.base)]
     bx, by, bth = Jet(b[..., 0]), Jet(b[..., 1]), Jet(b[..., 2])
     bc, bs = bth.cos_sin()

@@ -194,22 +194,31 @@ def _roller_cuts_elsewhere(mech: Mechanism, j, poses: np.ndarray) -> np.ndarray:
     """Samples at which the roller of cam pair `j` overlaps its profile somewhere: the profile's
     point nearest to the roller's centre (a KD-tree over a fine polygon, refined by Newton's
     method) is nearer than the radius. For a true contact that nearest point is the contact."""
-    outline = _outline(mech, j.profile)
-    N = poses.shape[0]
-    if outline is None:
-        return np.zeros(N, dtype=bool)
-    us, _, tree = outline
     index = mech.link_index
     a, b = poses[:, index[j.links[0]]], poses[:, index[j.links[1]]]
     C = _rotate(b[:, 2], np.asarray(mech.points[j.point])[None, :]) + b[:, :2]
     local = _rotate(-a[:, 2], C - a[:, :2])  # the roller's centre in the cam's coordinates
+    _, gap = nearest_on_profile(mech, j.profile, local)
+    with np.errstate(invalid="ignore"):
+        return gap < j.radius - 1e-9 * mech.length_scale
+
+
+def nearest_on_profile(mech: Mechanism, name: str, local: np.ndarray
+                       ) -> tuple[np.ndarray, np.ndarray]:
+    """The parameter (N,) of the point of profile `name` nearest to each point of `local`
+    (N, 2; the profile's own coordinates) and the distance to it: a KD-tree over a fine polygon,
+    refined by Newton's method on (c(u) − p)·c′(u) = 0. NaN where a point is not finite or the
+    profile has no finite extent."""
+    N = local.shape[0]
+    u_out, gap_out = np.full(N, np.nan), np.full(N, np.nan)
+    outline = _outline(mech, name)
     finite = np.all(np.isfinite(local), axis=1)
-    out = np.zeros(N, dtype=bool)
-    if not finite.any():
-        return out
+    if outline is None or not finite.any():
+        return u_out, gap_out
+    us, _, tree = outline
     q = local[finite]
     _, k = tree.query(q)
-    prof = mech.profiles[j.profile]
+    prof = mech.profiles[name]
     u = us[k]
     for _ in range(4):  # Newton on (c(u) − q)·c′(u) = 0, from the nearest vertex
         d = prof.derivatives(u, 2)
@@ -219,9 +228,9 @@ def _roller_cuts_elsewhere(mech: Mechanism, j, poses: np.ndarray) -> np.ndarray:
             u = u - np.where(fp > 0, np.einsum("ij,ij->i", r, d[1]) / fp, 0.0)
         if not prof.closed:
             u = np.clip(u, *prof.domain)
-    gap = np.hypot(*(prof.derivatives(u, 0)[0] - q).T)
-    out[finite] = gap < j.radius - 1e-9 * mech.length_scale
-    return out
+    u_out[finite] = u
+    gap_out[finite] = np.hypot(*(prof.derivatives(u, 0)[0] - q).T)
+    return u_out, gap_out
 
 
 @lru_cache(maxsize=256)

@@ -60,9 +60,10 @@ def iter_samples(sol: Solution):
         yield s
 
 
-def to_dataframe(sol: Solution):
-    import pandas as pd
-
+def columns(sol: Solution) -> dict[str, np.ndarray]:
+    """The wide table of a solution as named columns, one row per sample: inputs (and time),
+    status, condition, error bound, every point's x, y and rates, every moving link's angle,
+    ω, α, and every pair's fields."""
     mech = sol.mechanism
     cols: dict[str, np.ndarray] = {}
     for i, d in enumerate(mech.drivers):
@@ -89,4 +90,33 @@ def to_dataframe(sol: Solution):
                 cols[f"{jn}.{k}"] = v
             else:
                 cols[f"{jn}.{k}.x"], cols[f"{jn}.{k}.y"] = v[:, 0], v[:, 1]
-    return pd.DataFrame(cols)
+    return cols
+
+
+def to_dataframe(sol: Solution):
+    """`columns` as a pandas DataFrame."""
+    import pandas as pd
+
+    return pd.DataFrame(columns(sol))
+
+
+def csv_lines(sol: Solution, header: bool = True, piece: int = 4096):
+    """The wide table as CSV text in pieces of `piece` rows (the format of pandas' `to_csv`:
+    shortest round-trip numbers, NaN as an empty field), without pandas."""
+    import csv
+    import io
+
+    cols = columns(sol)
+    text = [np.where(np.isnan(v), "", v.astype(str)) if v.dtype.kind == "f" else v.astype(str)
+            for v in cols.values()]
+    buf = io.StringIO()
+    out = csv.writer(buf, lineterminator="\n")
+    if header:
+        out.writerow(cols)
+    for lo in range(0, len(sol), piece):
+        out.writerows(zip(*(t[lo:lo + piece] for t in text)))
+        yield buf.getvalue()
+        buf.seek(0)
+        buf.truncate()
+    if header and len(sol) == 0:
+        yield buf.getvalue()

@@ -399,6 +399,8 @@ class GroupSolver:
         """Per-group constants of the closed-form hot paths (None: the generic path)."""
         if self.kind == "RRR":
             return self._rrr_constants()
+        if self.kind == "RRP":
+            return self._rrp_constants()
         if self.kind == "driver":
             return self._driver_constants()
         return None
@@ -418,6 +420,18 @@ class GroupSolver:
             mid=0.5 * (L1 * L1 + L2 * L2), hd2=(0.5 * (L1 * L1 - L2 * L2)) ** 2,
             i1=li[p["l1"]], i2=li[p["l2"]],
             iA=li[_other(p["a"], p["l1"])], iC=li[_other(p["c"], p["l2"])])
+
+    def _rrp_constants(self) -> dict:
+        p, P, li = self.parts, self.mech.points, self.mech.link_index
+        A, Pd = P[p["pivot"].point], P[p["hinge"].point]
+        r = float(np.hypot(*(Pd - A)))
+        phi = _angle(Pd - A)
+        axis = np.asarray(p["guide"].axis, dtype=float)
+        return dict(A=A, P=Pd, AP=Pd - A, e0=axis / np.hypot(*axis),
+                    rsq=r * r, tol=-1e-12 * r * r, length=r, phi=phi,
+                    k=np.array([np.cos(phi), np.sin(phi)]),
+                    iA=li[_other(p["pivot"], p["rod"])], ig=li[p["guide"].links[0]],
+                    ir=li[p["rod"]], ib=li[p["block"]])
 
     def _driver_constants(self) -> dict | None:
         mech = self.mech
@@ -548,10 +562,23 @@ class GroupSolver:
         return np.isfinite(Pw).all(axis=1)
 
     def _pos_RRP(self, state: State) -> np.ndarray:
-        Pd, Pw = self._circle_line_point(state)
-        gl = self.parts["guide"].links[0]
-        state.set_pose(self.parts["block"], Pw, Pd, state.Q[0, :, state.li(gl), 2])
-        return np.isfinite(Pw).all(axis=1)
+        """Circle–line intersection (`kernels.rrp_positions`)."""
+        f = self.fast
+        state.cs(f["iA"])
+        state.cs(f["ig"])
+        N = state.Q.shape[1]
+        ok = np.ones(N, dtype=bool)
+        r = np.empty((2, N))
+        Q0 = state.Qm[0]
+        branch = state.branches.get(self.group)
+        if branch is None:  # the design's side everywhere
+            branch = np.broadcast_to(self.design_sign, (N,))
+        from . import kernels
+        kernels.rrp_positions(Q0, state.T, f["iA"], f["A"], f["ig"], f["P"], f["e0"], f["rsq"],
+                              f["tol"], branch, f["ir"], f["ib"], f["k"], r, ok)
+        np.subtract(np.arctan2(r[1], r[0]), f["phi"], out=Q0[f["ir"], 2])
+        state.placed(f["ir"], f["ib"])
+        return ok
 
     def _lever_angle(self, state: State, pivot, lever: str, pin_w: np.ndarray, pin_d: np.ndarray,
                      axis: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -660,6 +687,8 @@ class GroupSolver:
                 budget = ErrorBudget(self.mech, state)
             if self.kind == "RRR":
                 return self._der_RRR(state, ok, budget)
+            if self.kind == "RRP":
+                return self._der_RRP(state, ok, budget)
             return self._der_driver(state, ok, budget)
         if self.cam is not None:
             cond = cam_group.derivatives(self.cam, state, ok, UNRELIABLE_CONDITION)
@@ -719,5 +748,15 @@ class GroupSolver:
         from . import kernels
         kernels.rrr_rates(state.Qm, state.T, f["iA"], f["A"], f["iC"], f["C"], f["i1"], f["i2"],
                           f["BA"], f["BC"], f["mid"], f["hd2"], UNRELIABLE_CONDITION, cond,
+                          self.mech.length_scale, b.omega, b.m, b.E, b.eps)
+        return cond
+
+    def _der_RRP(self, state: State, ok: np.ndarray, b) -> np.ndarray:
+        """Velocities and accelerations of an RRP dyad (`kernels.rrp_rates`)."""
+        f = self.fast
+        cond = np.ones(state.Q.shape[1])
+        from . import kernels
+        kernels.rrp_rates(state.Qm, state.T, f["iA"], f["A"], f["ig"], f["P"], f["e0"], f["AP"],
+                          f["length"], f["ir"], f["ib"], UNRELIABLE_CONDITION, cond,
                           self.mech.length_scale, b.omega, b.m, b.E, b.eps)
         return cond

@@ -1,5 +1,5 @@
-"""Compiled per-sample loops of the closed-form hot paths: the RRR dyad, the revolute driver and
-the motion of a point carried by a link.
+"""Compiled per-sample loops of the closed-form hot paths: the RRR and RRP dyads, the revolute
+driver and the motion of a point carried by a link.
 
 Why compiled (numba): a dyad's positions, velocities and accelerations are some 150 arithmetic
 operations per sample. As NumPy array operations each of them is a Python call and a walk
@@ -201,6 +201,89 @@ def rrr_rates(Q, T, iA, A, iC, C, i1, i2, BA, BC, mid, hd2, unreliable, cond, L,
         inv = 1.0 / omega[n]
         a0, a1, a2 = _sizes_2(Q, i1, n, L, inv)
         b0, b1, b2 = _sizes_2(Q, i2, n, L, inv)
+        _group_error_2(k, m, E, n, eps, max(a0, b0), max(a1, b1), max(a2, b2))
+
+
+@_loop(2)
+def rrp_positions(Q0, T, iA, A, ig, P, e0, rsq, tol, branch, ir, ib, k, r, ok):
+    """Circle–line intersection: the block's point P (design coordinates in the guide link ig
+    and in the block ib) on its track, the line through P's design place along the guide's
+    axis e0 (fixed in ig), at |AP| = √rsq from the rod's pivot A (on link iA), on the side
+    branch[n] = ±1 of the rod's foot on the track. The rod ir turns as the vector A→P, its
+    cos θ and sin θ taken from that vector as in `rrr_positions` (k = (cos φ, sin φ) for the
+    rod drawn at angle φ); the vector goes to r[0:2] for the caller's vectorised arctan2. The
+    block keeps the guide's angle. A squared half chord below zero by rounding only (above tol)
+    counts as zero."""
+    for n in range(Q0.shape[2]):
+        cA, sA, cg, sg = T[iA, 0, n], T[iA, 1, n], T[ig, 0, n], T[ig, 1, n]
+        ax = Q0[iA, 0, n] + cA * A[0] - sA * A[1]
+        ay = Q0[iA, 1, n] + sA * A[0] + cA * A[1]
+        qx = Q0[ig, 0, n] + cg * P[0] - sg * P[1]
+        qy = Q0[ig, 1, n] + sg * P[0] + cg * P[1]
+        ex, ey = cg * e0[0] - sg * e0[1], sg * e0[0] + cg * e0[1]
+        wx, wy = qx - ax, qy - ay
+        b = ex * wx + ey * wy
+        disc = b * b - (wx * wx + wy * wy - rsq)
+        if disc < 0.0 and disc > tol:
+            disc = 0.0
+        lam = branch[n] * math.sqrt(disc) - b  # NaN where the rod's circle misses the track
+        px, py = qx + lam * ex, qy + lam * ey
+        if not (px - px == 0.0 and py - py == 0.0):  # NaN or ∞
+            ok[n] = False
+        rx, ry = px - ax, py - ay
+        nr = 1.0 / math.sqrt(rx * rx + ry * ry)
+        c, sn = (rx * k[0] + ry * k[1]) * nr, (ry * k[0] - rx * k[1]) * nr
+        T[ir, 0, n], T[ir, 1, n], T[ib, 0, n], T[ib, 1, n] = c, sn, cg, sg
+        Q0[ir, 0, n] = ax - (c * A[0] - sn * A[1])
+        Q0[ir, 1, n] = ay - (sn * A[0] + c * A[1])
+        Q0[ib, 0, n] = px - (cg * P[0] - sg * P[1])
+        Q0[ib, 1, n] = py - (sg * P[0] + cg * P[1])
+        Q0[ib, 2, n] = Q0[ig, 2, n]
+        r[0, n], r[1, n] = rx, ry
+
+
+@_loop(3)
+def rrp_rates(Q, T, iA, A, ig, P, e0, AP, length, ir, ib, unreliable, cond, L, omega, m, E,
+              eps):
+    """Velocities and accelerations of the RRP dyad: the rod's ω and α, and with them the motion
+    of P, from the closure vA + ω ⊥r = v_c + λ̇ e (r = P − A = R(θ_rod)·AP, e the track's
+    direction, λ P's place along it from its design place, v_c the velocity of the guide's point
+    under P) and its derivative, aA + α ⊥r − ω² r = a_c + λ̈ e + 2 λ̇ ω_g ⊥e, by Cramer's rule on
+    the 2×2 system [⊥r, −e]. The block turns with the guide (ω_g, α_g). Condition number: that
+    of the system with both columns of the rod's length (σ_max²/|det|, as in `rrr_rates`),
+    (|r| + |r × e|)/|r·e|: infinite where the rod stands square to the track (the dyad's
+    limit position). Error bounds carried on as in `rrr_rates`."""
+    for n in range(Q.shape[3]):
+        vAx, vAy, aAx, aAy = _point_rates(Q, T, iA, A[0], A[1], n)
+        c, sn, cg, sg = T[ir, 0, n], T[ir, 1, n], T[ig, 0, n], T[ig, 1, n]
+        rx, ry = c * AP[0] - sn * AP[1], sn * AP[0] + c * AP[1]
+        ex, ey = cg * e0[0] - sg * e0[1], sg * e0[0] + cg * e0[1]
+        # P's place along the track (the block and the guide have the same angle)
+        lam = (Q[0, ib, 0, n] - Q[0, ig, 0, n]) * ex + (Q[0, ib, 1, n] - Q[0, ig, 1, n]) * ey
+        vcx, vcy, acx, acy = _point_rates(Q, T, ig, P[0] + lam * e0[0], P[1] + lam * e0[1], n)
+        inv = 1.0 / (rx * ex + ry * ey)
+        wx, wy = vcx - vAx, vcy - vAy
+        om = (ex * wy - ey * wx) * inv
+        slide = -(rx * wx + ry * wy) * inv  # λ̇
+        og = Q[1, ig, 2, n]
+        cor, oo = 2.0 * slide * og, om * om
+        w2x = acx - cor * ey - aAx + oo * rx
+        w2y = acy + cor * ex - aAy + oo * ry
+        al = (ex * w2y - ey * w2x) * inv
+        k = (length + abs(rx * ey - ry * ex)) * abs(inv)
+        if not k < math.inf:  # NaN and ∞: at the limit position (or unassembled)
+            k = math.inf
+        if k > cond[n]:
+            cond[n] = k
+        if k >= unreliable:
+            om = al = math.nan
+        _set_rates(Q, T, ir, A[0], A[1], n, vAx, vAy, aAx, aAy, om, al)
+        _set_rates(Q, T, ib, P[0], P[1], n, vAx - om * ry, vAy + om * rx,
+                   aAx - al * ry - om * om * rx, aAy + al * rx - om * om * ry, og,
+                   2.0 * Q[2, ig, 2, n])
+        inv = 1.0 / omega[n]
+        a0, a1, a2 = _sizes_2(Q, ir, n, L, inv)
+        b0, b1, b2 = _sizes_2(Q, ib, n, L, inv)
         _group_error_2(k, m, E, n, eps, max(a0, b0), max(a1, b1), max(a2, b2))
 
 

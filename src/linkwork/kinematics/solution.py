@@ -261,7 +261,10 @@ class Solution:
         return to_dataframe(self)
 
     def to_csv(self, path) -> None:
-        self.to_pandas().to_csv(path, index=False)
+        """The wide table (`to_pandas`'s columns) as CSV, written whole or not at all."""
+        from ..outputs import write_output_file
+        from .export import csv_lines
+        write_output_file(path, csv_lines(self))
 
     def to_parquet(self, path) -> None:
         self.to_pandas().to_parquet(path, index=False)

@@ -126,6 +126,20 @@ class TorsionSpring:
 
 
 @dataclass(frozen=True)
+class PairFriction:
+    """Coulomb friction in pair `joint` (an option of the force analysis): coefficient μ; in a
+    revolute pair the friction torque μ·ρ·|R| with `radius` ρ of the journal (length unit),
+    in a prismatic pair, slot, circular slot or cam contact the force μ·|N| along the relative
+    sliding, opposing it. Where the pair does not move relative to itself the friction is
+    taken as zero (sticking friction is statically indeterminate); a prismatic pair's couple
+    (its edge pressures) adds no friction."""
+
+    joint: str
+    coefficient: float
+    radius: float = 0.0
+
+
+@dataclass(frozen=True)
 class Loads:
     """The loads on a mechanism: gravity (m/s², acting at every centre of mass), point forces,
     couples, linear and torsion springs and dampers."""
@@ -135,6 +149,7 @@ class Loads:
     couples: tuple[Couple, ...] = ()
     springs: tuple[LinearSpring, ...] = ()
     torsion_springs: tuple[TorsionSpring, ...] = ()
+    friction: tuple[PairFriction, ...] = ()
 
     @property
     def has_gravity(self) -> bool:
@@ -142,6 +157,8 @@ class Loads:
 
 
 STANDARD_GRAVITY = 9.80665
+#: pair kinds with a Coulomb friction model
+FRICTION_PAIRS = ("revolute", "prismatic", "slot", "circular-slot", "cam")
 
 
 @dataclass(frozen=True, eq=False)
@@ -202,6 +219,16 @@ class Dynamics:
                                  "pair; a torsion spring sits in a revolute pair")
             for what in ("stiffness", "free_angle", "damping"):
                 _finite(getattr(t, what), f"torsion spring '{t.name}' {what}")
+        for fr in loads.friction:
+            j = mech.joint(fr.joint)
+            _finite(fr.coefficient, f"friction in '{fr.joint}' coefficient", nonnegative=True)
+            _finite(fr.radius, f"friction in '{fr.joint}' journal radius", nonnegative=True)
+            if j.kind not in FRICTION_PAIRS:
+                raise ModelError(f"friction in '{fr.joint}': a {j.kind} pair has no friction "
+                                 f"model (only {', '.join(FRICTION_PAIRS)})")
+            if j.kind == "revolute" and not fr.radius > 0 and fr.coefficient > 0:
+                raise ModelError(f"friction in revolute pair '{fr.joint}' needs the journal "
+                                 "radius (the friction torque is μ·radius·|R|)")
 
     def _need_link(self, ln: str, what: str) -> None:
         if ln not in self.mechanism.link_index:
@@ -218,11 +245,6 @@ class Dynamics:
                              f"{why} need the mass, centre of mass and moment of inertia of "
                              "every moving link (give mass = 0 for a link without mass)")
 
-    def mass(self, link: str) -> MassProperties:
-        mp = self.masses.get(link)
-        return mp if mp is not None else MassProperties(0.0, self.mechanism.points[
-            self.mechanism.link(link).points[0]], 0.0)
 
-
-__all__ = ["Couple", "Dynamics", "LinearSpring", "LoadTable", "LoadValue", "Loads",
+__all__ = ["Couple", "Dynamics", "FRICTION_PAIRS", "PairFriction", "LinearSpring", "LoadTable", "LoadValue", "Loads",
            "MassProperties", "PointForce", "STANDARD_GRAVITY", "TorsionSpring"]

@@ -214,6 +214,39 @@ class IndexingSchedule:
                             D - r, rim))
         return tuple(out)
 
+    def flanks(self, samples: int = 32) -> tuple[np.ndarray, ...]:
+        """The tooth flanks of a star wheel's pin gear (*Zahnflanken der Triebstockverzahnung*),
+        each (samples, 2) in the wheel's drawing coordinates, round the whole wheel: the path
+        of a pin relative to the wheel while it drives. Pin gearing driven by the pin wheel acts
+        in recess only: a group's pins reach the line of centres one after another, each
+        driving from there until the next one arrives (one pin pitch β), so its flank is an
+        epicycloid arc from the pitch circle's foot (D − r from C) outwards. The last pin of a
+        group leaves by the exit slot and draws no flank; a Geneva wheel has none."""
+        design_tau = float(self.advance_at(np.zeros(1))[0])
+        pins = list(self.pins)
+        out = []
+        for m in range(self.slots // self.groups):
+            for ph in self.phases:
+                if ph.kind != GEAR:
+                    continue
+                d0 = self.origin + ph.start + m * TWO_PI  # the leading pin on the line of centres
+                span = ph.end - ph.start
+                v0 = {p: _wrap(self.pins[p][1] + d0) for p in pins
+                      if abs(self.pins[p][0] - ph.radius) <= TOL * self.D}
+                group = sorted((p for p, v in v0.items() if -span - TOL <= v <= TOL),
+                               key=lambda p: -v0[p])
+                beta = span / (len(group) - 1)
+                for i, p in enumerate(group[:-1]):
+                    delta = d0 + beta * (i + np.linspace(0.0, 1.0, samples))
+                    # the pin in the carrier, then in the wheel turned back by its angle
+                    a = self.gamma + self.pins[p][1] + delta
+                    B = self.M + ph.radius * np.stack([np.cos(a), np.sin(a)], axis=1) - self.C
+                    w = -(self.advance_at(delta) - design_tau)
+                    c, s = np.cos(-w), np.sin(-w)
+                    out.append(self.C + np.stack([c * B[:, 0] - s * B[:, 1],
+                                                  s * B[:, 0] + c * B[:, 1]], axis=1))
+        return tuple(out)
+
     def slot(self, m: np.ndarray, idx: np.ndarray) -> np.ndarray:
         """Which slot (entry) of the wheel a sample's phase uses: 0 … slots − 1, −1 locked. The
         one the first group enters in the turn after the origin is 0."""

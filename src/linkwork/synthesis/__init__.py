@@ -11,18 +11,26 @@
   (Grashof type, order, circuit and branch defects, transmission angle, the engine's poses).
 - `function`: function generation with Freudenstein's equation (four-bar, slider-crank):
   precision points, Chebyshev spacing, least squares, the structural error.
+- `path`: path generation: a four-bar's coupler point through target points (least squares
+  from several starts, with or without prescribed timing).
+- `second_order`: Alt's dwell linkage and Pröll's substitution, from curvature theory.
 """
 
 from .burmester import (BurmesterPoints, Cubic, Dyad, burmester_points, centre_point_curve,
                         circle_point_curve, curve_samples, dyad)
 from .cams import (CamReport, analyse, corners, cusps, follower_diagrams, mechanism_text,
                    pressure_angle, radius_of_curvature, smallest_base_radius, with_base_radius)
+from .function import FunctionGenerator, FunctionTask, chebyshev_spacing, freudenstein, function_generator
 from .linkages import Linkage, LinkageCheck, linkages
+from .path import PathGenerator, path_generator
+from .second_order import DwellLinkage, Substitution, alt_dwell, proell_substitution
 from .positions import (Positions, SynthesisError, centre_points, circle_points, image_point,
                         image_pole, pole_triangle)
 
-__all__ = ["BurmesterPoints", "CamReport", "Cubic", "Dyad", "Linkage", "LinkageCheck", "Positions",
-           "SynthesisError", "analyse", "burmester_points", "centre_point_curve", "centre_points",
+__all__ = ["BurmesterPoints", "CamReport", "Cubic", "DwellLinkage", "Dyad", "FunctionGenerator",
+           "FunctionTask", "Linkage", "LinkageCheck", "PathGenerator", "Positions", "Substitution",
+           "SynthesisError", "alt_dwell", "chebyshev_spacing", "freudenstein", "function_generator",
+           "path_generator", "proell_substitution", "analyse", "burmester_points", "centre_point_curve", "centre_points",
            "circle_point_curve", "circle_points", "corners", "curve_samples", "cusps", "dyad",
            "follower_diagrams", "image_point", "image_pole", "linkages", "mechanism_text",
            "pole_triangle", "pressure_angle", "radius_of_curvature", "smallest_base_radius",

@@ -40,7 +40,7 @@ from typing import Callable
 import numpy as np
 
 from ..errors import InputError
-from ._file import point, toml_string
+from ._file import mechanism_file
 from .positions import SynthesisError, wrap
 
 __all__ = ["FunctionGenerator", "FunctionTask", "chebyshev_spacing", "freudenstein",
@@ -190,26 +190,17 @@ class FunctionGenerator:
             f"A {self.kind} function generator from Freudenstein's equation ({len(self.precision)} "
             f"precision points): x from {x0:g} to {xf:g} as the input turns from "
             f"{math.degrees(p0):.6g}° to {math.degrees(pf):.6g}°. Written by linkwork's synthesis.")
-        lines = [f"name = {toml_string(self.name)}", f"description = {toml_string(desc)}",
-                 f'units = {{ length = "{length_unit}" }}', "", "[points]"]
-        lines += [f"{k} = {point(v)}" for k, v in pts.items()]
         if self.kind == "four-bar":
-            lines += ["", "[links]", 'frame = ["O2", "O4"]', 'crank = ["O2", "A"]', 'coupler = ["A", "B"]',
-                      'rocker = ["B", "O4"]', "", "[joints]",
-                      'O2 = { type = "revolute", links = ["frame", "crank"] }',
-                      'A = { type = "revolute", links = ["crank", "coupler"] }',
-                      'B = { type = "revolute", links = ["coupler", "rocker"] }',
-                      'O4 = { type = "revolute", links = ["rocker", "frame"] }']
+            links = {"frame": ["O2", "O4"], "crank": ["O2", "A"], "coupler": ["A", "B"], "rocker": ["B", "O4"]}
+            joints = {"O2": ("revolute", ("frame", "crank"), ""), "A": ("revolute", ("crank", "coupler"), ""),
+                      "B": ("revolute", ("coupler", "rocker"), ""), "O4": ("revolute", ("rocker", "frame"), "")}
         else:
-            lines += ["", "[links]", 'frame = ["O2"]', 'crank = ["O2", "A"]', 'rod = ["A", "B"]',
-                      'block = ["B", "G"]', "", "[joints]",
-                      'O2 = { type = "revolute", links = ["frame", "crank"] }',
-                      'A = { type = "revolute", links = ["crank", "rod"] }',
-                      'B = { type = "revolute", links = ["rod", "block"] }',
-                      'guide = { type = "prismatic", links = ["frame", "block"], axis = [1, 0], point = "B" }']
-        speed = "1 rad/s" if pf > p0 else "-1 rad/s"
-        lines += ["", "[driver]", 'joint = "O2"', f'speed = "{speed}"', ""]
-        return "\n".join(lines)
+            links = {"frame": ["O2"], "crank": ["O2", "A"], "rod": ["A", "B"], "block": ["B", "G"]}
+            joints = {"O2": ("revolute", ("frame", "crank"), ""), "A": ("revolute", ("crank", "rod"), ""),
+                      "B": ("revolute", ("rod", "block"), ""),
+                      "guide": ("prismatic", ("frame", "block"), 'axis = [1, 0], point = "B"')}
+        return mechanism_file(name=self.name, description=desc, length_unit=length_unit, points=pts,
+                              links=links, joints=joints, driver="O2", speed="1 rad/s" if pf > p0 else "-1 rad/s")
 
     def mechanism(self, length_unit: str = "mm"):
         from ..io import load_text

@@ -35,7 +35,7 @@ import numpy as np
 
 from ..errors import StructureError
 from ..structure.grashof import classify_four_bar, classify_slider_crank
-from ._file import number, point, toml_string
+from ._file import mechanism_file, point
 from .burmester import Dyad
 from .positions import SynthesisError, wrap
 
@@ -186,39 +186,29 @@ class Linkage:
         size = pos.size
         Q = P + 0.25 * size * np.array([np.cos(pos.angle[ref]), np.sin(pos.angle[ref])])
         speed = "-1 rad/s" if self._order[3] < 0 else "1 rad/s"
-        pts = [f"A0 = {point(A0)}", f"A = {point(A)}", f"B = {point(B)}"]
+        pts = {"A0": A0, "A": A, "B": B}
+        links = {"frame": ["A0"], "crank": ["A0", "A"], "coupler": ["A", "B", "P", "Q"]}
+        joints = {"A0": ("revolute", ("frame", "crank"), ""), "A": ("revolute", ("crank", "coupler"), "")}
         if self.kind == "four-bar":
-            pts.append(f"B0 = {point(self.output.centre.xy)}")
-            links = ['frame = ["A0", "B0"]', 'crank = ["A0", "A"]', 'coupler = ["A", "B", "P", "Q"]',
-                     'rocker = ["B", "B0"]']
-            joints = ['A0 = { type = "revolute", links = ["frame", "crank"] }',
-                      'A = { type = "revolute", links = ["crank", "coupler"] }',
-                      'B = { type = "revolute", links = ["coupler", "rocker"] }',
-                      'B0 = { type = "revolute", links = ["rocker", "frame"] }']
+            pts["B0"] = self.output.centre.xy
+            links["frame"] = ["A0", "B0"]
+            links["rocker"] = ["B", "B0"]
+            joints["B"] = ("revolute", ("coupler", "rocker"), "")
+            joints["B0"] = ("revolute", ("rocker", "frame"), "")
         else:
             g = self.guide
-            pts.append(f"G = {point(B + 0.25 * size * g)}")  # a point of the block, on the stroke
-            links = ['frame = ["A0"]', 'crank = ["A0", "A"]', 'coupler = ["A", "B", "P", "Q"]',
-                     'block = ["B", "G"]']
-            joints = ['A0 = { type = "revolute", links = ["frame", "crank"] }',
-                      'A = { type = "revolute", links = ["crank", "coupler"] }',
-                      'B = { type = "revolute", links = ["coupler", "block"] }',
-                      f'guide = {{ type = "prismatic", links = ["frame", "block"], axis = {point(g)}, point = "B" }}']
-        pts += [f"P = {point(P)}", f"Q = {point(Q)}"]
-        n = len(pos)
+            pts["G"] = B + 0.25 * size * g  # a point of the block, on the line of stroke
+            links["block"] = ["B", "G"]
+            joints["B"] = ("revolute", ("coupler", "block"), "")
+            joints["guide"] = ("prismatic", ("frame", "block"), f'axis = {point(g)}, point = "B"')
+        pts.update(P=P, Q=Q)
         desc = description or (
-            f"A {self.kind} that guides its coupler (origin P, x-axis towards Q) through {n} "
+            f"A {self.kind} that guides its coupler (origin P, x-axis towards Q) through {len(pos)} "
             f"prescribed positions, drawn in position {ref + 1}; input angles at the positions: "
             + ", ".join(f"{math.degrees(a):.6g}°" for a in self.input_angles())
             + ". Written by linkwork's synthesis.")
-        return "\n".join([
-            f"name = {toml_string(name or self.name)}",
-            f"description = {toml_string(desc)}",
-            f'units = {{ length = "{length_unit}" }}',
-            "", "[points]", *pts,
-            "", "[links]", *links,
-            "", "[joints]", *joints,
-            "", "[driver]", 'joint = "A0"', f'speed = "{speed}"', ""])
+        return mechanism_file(name=name or self.name, description=desc, length_unit=length_unit, points=pts,
+                              links=links, joints=joints, driver="A0", speed=speed)
 
     def mechanism(self, length_unit: str = "mm"):
         """The `Mechanism` of `mechanism_text` (loaded from that text: what is checked is what

@@ -39,7 +39,7 @@ from typing import Mapping
 
 import numpy as np
 
-from ..model import Gear, Mechanism, Prismatic, Revolute, Slot
+from ..model import CamContact, Gear, Mechanism, Prismatic, Revolute, RollingContact, Slot
 
 #: the frame's image, the pole o of the velocity plan
 POLE = "o"
@@ -83,7 +83,13 @@ class Chain:
     directions: tuple[str, ...] = ()
     collinear: tuple[frozenset[str], ...] = ()
     unsupported: tuple[str, ...] = ()  # pairs the test does not know (named in the report)
-    frame: str | None = None  # the link whose images are the pole o (None: a free chain)
+    frame: str | None = None
+    #: cam contacts (pair, cam link, follower link, contact point): the velocities of the two
+    #: links project equally on the common normal at the contact
+    contacts: tuple[tuple[str, str, str, str], ...] = ()
+    #: rolling contacts (pair, link, link, contact point): the point of contact is the two
+    #: links' relative pole, for velocities a hinge
+    rolls: tuple[tuple[str, str, str, str], ...] = ()  # the link whose images are the pole o (None: a free chain)
 
     def restricted(self, links, known) -> "Chain":
         """The part of the chain on ``links`` with the links ``known`` given (a group of the
@@ -94,7 +100,9 @@ class Chain:
                      tuple(s for s in self.slides if {s[1], s[2]} <= keep),
                      tuple(s for s in self.slots if {s[1], s[2]} <= keep),
                      tuple(m for m in self.meshes if {m[1], m[2]} <= keep),
-                     known=tuple(known), collinear=self.collinear, frame=self.frame)
+                     known=tuple(known), collinear=self.collinear, frame=self.frame,
+                     contacts=tuple(c for c in self.contacts if {c[1], c[2]} <= keep),
+                     rolls=tuple(c for c in self.rolls if {c[1], c[2]} <= keep))
 
     @classmethod
     def free(cls, links: Mapping[str, str | tuple[str, ...]], *, given: tuple[str, ...] = (),
@@ -115,7 +123,7 @@ class Chain:
     @classmethod
     def from_mechanism(cls, mech: Mechanism) -> "Chain":
         links = {ln.name: tuple(ln.points) for ln in mech.links}
-        hinges, slides, slots, meshes, unsupported = [], [], [], [], []
+        hinges, slides, slots, meshes, unsupported, contacts, rolls = [], [], [], [], [], [], []
         for j in mech.joints:
             if isinstance(j, Revolute):
                 hinges.append((j.point, *j.links))
@@ -123,6 +131,10 @@ class Chain:
                 slides.append((j.name, j.links[0], j.links[1], j.point))
             elif isinstance(j, Slot):
                 slots.append((j.name, j.links[0], j.links[1], j.point))
+            elif isinstance(j, CamContact):
+                contacts.append((j.name, *j.links, contact_point_name(mech, j)))
+            elif isinstance(j, RollingContact):
+                rolls.append((j.name, *j.links, contact_point_name(mech, j)))
             elif isinstance(j, Gear) and j.gear_kind in ("external", "internal"):
                 c1, c2 = (mech.wheel_centre(j, w) for w in j.links)
                 meshes.append((j.name, *j.links, pitch_point_name(mech, j), c1, c2))
@@ -131,6 +143,17 @@ class Chain:
         for name, g1, g2, t, c1, c2 in meshes:
             links[g1] += (t,)
             links[g2] += (t,)
+        for name, a, b, k in contacts + rolls:
+            links[a] += (k,)
+            links[b] += (k,)
+        collinear = design_collinear(mech, meshes)
+        for name, a, b, k in rolls:
+            # wheels on two pivots of one carrier touch on the line of their centres
+            carrier = getattr(mech.joint(name), "carrier", None)
+            centres = [j.point for j in mech.joints for w in (a, b)
+                       if carrier and isinstance(j, Revolute) and set(j.links) == {w, carrier}]
+            if len(centres) == 2:
+                collinear += (frozenset((k, *centres)),)
         drivers = []
         for d in mech.drivers:
             j = mech.joint(d.joint)
@@ -144,8 +167,13 @@ class Chain:
                 unsupported.append(f"driver {d.joint} ({j.kind})")
         return cls(links, tuple(hinges), tuple(slides), tuple(slots), tuple(meshes),
                    known=(mech.frame,), drivers=tuple(drivers),
-                   collinear=design_collinear(mech, meshes), unsupported=tuple(unsupported),
-                   frame=mech.frame)
+                   collinear=collinear, unsupported=tuple(unsupported),
+                   frame=mech.frame, contacts=tuple(contacts), rolls=tuple(rolls))
+
+
+def contact_point_name(mech: Mechanism, pair) -> str:
+    """The name of a cam contact's point of contact (the pair's name where it is free)."""
+    return pair.name if pair.name not in mech.points else f"{pair.name}_contact"
 
 
 def pitch_point_name(mech: Mechanism, gear: Gear) -> str:
@@ -193,6 +221,8 @@ class MechLine:
             return "".join(upper(p) for p in self.points)
         if self.kind == "normal":
             return f"the normal to {self.pair} at {upper(self.points[0])}"
+        if self.kind == "contact":
+            return f"the common normal of {self.pair} at {upper(self.points[0])}"
         return f"the normal to v_{upper(self.points[0])} at {upper(self.points[0])}"
 
 
@@ -253,13 +283,29 @@ class VelocityScript:
     labels: Mapping[tuple[str, str], str] = field(default_factory=dict)
     #: for each (link, point) the other (link, point) whose image it shares (hinges, pitch points)
     shared: Mapping[tuple[str, str], tuple[tuple[str, str], ...]] = field(default_factory=dict)
+    #: false position (similar point rows): the script is drawn for this trial driver (link,
+    #: pivot, reference) and then scaled about o to the given driver ``scale_by`` (Rosenauer
+    #: 1937 paper 7, remark: a binary link driving)
+    trial: tuple[str, str, str] | None = None
+    scale_by: tuple[str, str, str] | None = None
 
     @property
     def direct(self) -> bool:
         """Rosenauer's rule holds: every link reached without trial (similar point rows)."""
+        return not self.unreached and not self.unsupported and self.trial is None
+
+    @property
+    def complete(self) -> bool:
+        """Every link reached: directly, or by false position from a trial driver."""
         return not self.unreached and not self.unsupported
 
     def verdict(self) -> str:
+        if self.trial is not None:
+            t, d = self.trial, self.scale_by
+            return (f"not directly constructible from the driver {d[0]} (Rosenauer's rule fails); "
+                    f"by false position: a trial rate of {t[0]} about {upper(t[1])} makes the plan "
+                    f"direct, then every image is moved along its ray from o in the ratio of "
+                    f"{d[0]}'s given to its trial velocity (similar point rows)")
         if self.unsupported:
             return ("not decided: the test does not know the pairs " + ", ".join(self.unsupported))
         if self.unreached:
@@ -274,6 +320,8 @@ class VelocityScript:
 
     def as_dict(self) -> dict:
         return {"direct": self.direct, "verdict": self.verdict(),
+                "false_position": None if self.trial is None else
+                {"trial_driver": self.trial[0], "pivot": self.trial[1], "scaled_to": self.scale_by[0]},
                 "auxiliary_points": [{"name": a.name, "link": a.link,
                                       "lines": [ln.text() for ln in a.lines]} for a in self.aux],
                 "order": list(self.order), "unreached": list(self.unreached),
@@ -309,7 +357,7 @@ def wittenbauer_rule(chain: Chain) -> WittenbauerVerdict:
     joints: dict[str, set[str]] = {}
     for p, a, b in chain.hinges:
         joints.setdefault(p, set()).update((a, b))
-    for entry in chain.slides + chain.slots:
+    for entry in chain.slides + chain.slots + chain.contacts:
         joints.setdefault(entry[3], set()).update(entry[1:3])
     # the points whose velocities are given count as joints of the chain (its free ends)
     for p in chain.given + chain.directions:
@@ -376,7 +424,8 @@ class _Planner:
     def __init__(self, chain: Chain) -> None:
         self.c = chain
         # a gear pair's pitch point is the wheels' relative pole: for velocities, a hinge
-        self.hinges = chain.hinges + tuple((t, g1, g2) for _, g1, g2, t, _, _ in chain.meshes)
+        self.hinges = chain.hinges + tuple((t, g1, g2) for _, g1, g2, t, _, _ in chain.meshes) + \
+            tuple((k, a, b) for _, a, b, k in chain.rolls)
         self.lines = _Lines(chain.collinear)
         self.steps: list[Step] = []
         self.aux: list[AuxPoint] = []
@@ -455,6 +504,8 @@ class _Planner:
             return f"({lab} \u27c2 {upper(pair[0])}{upper(pair[1])})"
         if line.kind == "normal":
             return f"({lab} \u2225 {line.pair})"
+        if line.kind == "contact":
+            return f"({lab} \u27c2 n_{line.pair})"
         return f"({lab} \u2225 v_{upper(line.points[0])})"
 
     # ---------------------------------------------------------------- steps
@@ -617,6 +668,12 @@ class _Planner:
                     new |= self.add_cond(T, PlanLine((L, k), self.lines.special("normal", k, pair), ((L, T, pair),)))
                 elif not slide and L == S and X in self.kpoints[S]:
                     new |= self.add_cond(T, PlanLine((L, X), normal, ((L, T, pair),)))
+        for pair, A, B, K in c.contacts:
+            for L, T in ((A, B), (B, A)):
+                if T not in self.known and L in self.known:
+                    self.ensure_image(L, K)
+                    new |= self.add_cond(T, PlanLine((L, K), self.lines.special("contact", K, pair),
+                                                     ((L, T, pair),)))
         return new
 
     # ---------------------------------------------------------------- the run
@@ -679,4 +736,42 @@ def plan_velocities(chain: Chain | Mechanism) -> VelocityScript:
     frame and drivers as given data): Rosenauer's rule as a propagation on the chain's graph."""
     if isinstance(chain, Mechanism):
         chain = Chain.from_mechanism(chain)
-    return _Planner(chain).run()
+    script = _Planner(chain).run()
+    if script.direct or script.unsupported or len(chain.drivers) != 1 or chain.given \
+            or chain.directions or chain.drivers[0][2] is None or chain.frame is None:
+        return script
+    return _false_position(chain) or script
+
+
+def _false_position(chain: Chain) -> VelocityScript | None:
+    """Where one crank drives a chain that Rosenauer's rule does not reach: the velocities are
+    proportional to the driver's rate, so another link on a frame pivot may be given a trial
+    rate; if the plan is direct from it, the true plan is the trial plan scaled about o in the
+    ratio of the driver's given to its trial velocity (one trial: the rows pass through o)."""
+    from dataclasses import replace
+
+    driver = chain.drivers[0]
+    for p, a, b in chain.hinges:
+        if chain.frame not in (a, b):
+            continue
+        link = b if a == chain.frame else a
+        if link == driver[0]:
+            continue
+        ref = next((q for q in chain.links[link] if q != p), None)
+        if ref is None:
+            continue
+        trial = _Planner(replace(chain, drivers=((link, p, ref),))).run()
+        if trial.direct:
+            d, dp, dr = driver
+            first = replace(trial.steps[0], text=(
+                f"trial: {lower(ref)}* = o + ω*·{upper(p)}{upper(ref)} turned 90° "
+                f"(an arbitrary rate of {link} about {upper(p)}; the images that follow are trial "
+                "images x*)"))
+            scale = Step("scale", d, dr, (
+                f"similar point rows: {lower(dr)}* (the trial image of {upper(dr)}) and the given "
+                f"{lower(dr)} = o + ω·{upper(dp)}{upper(dr)} turned 90° lie on one ray "
+                f"from o; every image x lies on the ray o x*, with ox : ox* = o{lower(dr)} : "
+                f"o{lower(dr)}*"))
+            return replace(trial, steps=(first,) + trial.steps[1:] + (scale,),
+                           trial=(link, p, ref), scale_by=driver)
+    return None

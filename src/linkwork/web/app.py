@@ -130,6 +130,7 @@ def mechanism_info(loaded, warned: list[str]) -> dict:
         "frame": mech.frame,
         "points": {p: [float(v) for v in xy] for p, xy in mech.points.items()},
         "links": {ln.name: list(ln.points) for ln in mech.links},
+        "owners": dict(mech.point_owner),
         "joints": [{"name": j.name, "type": j.kind, "links": list(j.links),
                     "point": getattr(j, "point", None)} for j in mech.joints],
         "drivers": [{"joint": d.joint,
@@ -154,6 +155,8 @@ def drawing(mech: Mechanism, req: m.DrawingRequest) -> dict:
     if sol.status[0] == Status.UNREACHABLE:
         raise InputError(f"mechanism '{mech.name}' cannot be assembled at {where}")
     sc = Scene(mech, sol)
+    if not req.motion:
+        sc.motion = None  # what the layers draw when the whole motion is not known
     con = None
     steps: list[str] = []
     if req.construction:
@@ -170,7 +173,7 @@ def drawing(mech: Mechanism, req: m.DrawingRequest) -> dict:
             raise InputError(f"step {req.step}: the construction has {len(steps)} steps (0 to "
                              f"{len(steps) - 1})")
     fig = scene_figure(sc, list(req.layers), construction=con, step=req.step)
-    if req.fit == "motion" and con is None:
+    if req.fit == "motion" and con is None and req.motion:
         fig.view["mechanism"] = sc.box(grow=0.12)
     svg = fig.to_svg()
     return {"svg": svg, "status": str(Status(int(sol.status[0]))),
@@ -178,6 +181,8 @@ def drawing(mech: Mechanism, req: m.DrawingRequest) -> dict:
             "time": None if sol.time is None else float(sol.time[0]),
             "points": {p: (None if not np.all(np.isfinite(xy)) else [float(xy[0]), float(xy[1])])
                        for p in mech.points for xy in [sol.point(p).position[0]]},
+            "poses": {ln: (None if not np.all(np.isfinite(q)) else [float(v) for v in q])
+                      for ln in mech.link_names for q in [sol.pose_derivatives(ln)[0, 0]]},
             "transforms": fig.transforms(), "steps": steps}
 
 

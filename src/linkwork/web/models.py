@@ -109,6 +109,9 @@ class DrawingRequest(At):
     point: Optional[Name] = None
     link: Optional[Name] = None
     step: Optional[int] = Field(None, ge=0, le=1000)
+    motion: bool = Field(
+        True, description="false: leave the whole motion out (no paths; the panel fits the "
+                          "position drawn), for the frames of a drag")
     fit: Literal["motion", "drawing"] = Field(
         "motion", description="motion: the panel fits the whole motion, so that frames of an "
                               "animation share one layout; drawing: it fits what is drawn")
@@ -157,6 +160,7 @@ class MechanismInfo(BaseModel):
     frame: str
     points: dict[str, list[float]]
     links: dict[str, list[str]]
+    owners: dict[str, str] = Field(description="the link each point's design coordinates belong to")
     joints: list[JointInfo]
     drivers: list[DriverInfo]
     layers: list[str]
@@ -196,6 +200,8 @@ class Drawing(BaseModel):
     input: list[Optional[float]]
     time: Optional[float] = None
     points: dict[str, Optional[list[float]]] = Field(description="point positions drawn")
+    poses: dict[str, Optional[list[float]]] = Field(
+        description="each link's pose [x, y, θ]: a point's position is R(θ)·design + (x, y)")
     transforms: dict[str, dict[str, Any]] = Field(
         description="per panel: x_svg = origin[0] + (x − lo[0])/per_mm, "
                     "y_svg = origin[1] + (hi[1] − y)/per_mm")

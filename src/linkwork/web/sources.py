@@ -121,15 +121,19 @@ class Sources:
     def load(self, *, library: str | None = None, file: str | None = None,
              text: str | None = None, name: str | None = None,
              points: dict[str, tuple[float, float]] | None = None) -> Loaded:
-        key = (library, file, text, name, tuple(sorted((points or {}).items())))
+        key = (library, file, text, name,
+               tuple(sorted((k, tuple(map(float, v))) for k, v in (points or {}).items())))
         # a file may change on disk between requests: read it again every time
         if file is None:
             with self._lock:
                 if key in self._cache:
                     self._cache.move_to_end(key)
                     return self._cache[key]
-        base = self._read(library, file, text, name)
-        out = base if not points else Loaded(moved(base.mechanism, points), base.text, base.label)
+        if points:  # the file as read (kept for the next frame of a drag), then moved
+            base = self.load(library=library, file=file, text=text, name=name)
+            out = Loaded(moved(base.mechanism, points), base.text, base.label)
+        else:
+            out = self._read(library, file, text, name)
         if file is None:
             with self._lock:
                 self._cache[key] = out

@@ -134,13 +134,31 @@ class PolarProfile(BaseProfile):
         r = np.asarray(self.radius(u, order, side=side) if self._sided else self.radius(u, order), dtype=float)
         if r.shape != (order + 1,) + u.shape:
             raise ProfileError(f"radius(phi, {order}) must return shape {(order + 1,) + u.shape}, got {r.shape}")
-        out = np.zeros((order + 1,) + u.shape + (2,))
-        turns = _quarter_turns(u, order)
+        out = np.empty((order + 1,) + u.shape + (2,))
+        c, s = np.cos(u), np.sin(u)
         for n in range(order + 1):
+            # c⁽ⁿ⁾ = e^{iφ}·Σ_j C(n, j) r⁽ʲ⁾ i^{n−j}: the sum's real and imaginary parts, then
+            # one turn by φ
+            parts = [None, None]  # (real, imaginary)
             for j in range(n + 1):
-                w = comb(n, j) * r[j]
-                out[n, ..., 0] += w * turns[n - j][0]
-                out[n, ..., 1] += w * turns[n - j][1]
+                w = comb(n, j)
+                term = r[j] if w == 1 else w * r[j]
+                k = (n - j) % 4
+                cur = parts[k % 2]
+                if k < 2:
+                    parts[k % 2] = term if cur is None else cur + term
+                else:
+                    parts[k % 2] = -term if cur is None else cur - term
+            re, im = parts
+            if im is None:
+                out[n, ..., 0] = re * c
+                out[n, ..., 1] = re * s
+            elif re is None:
+                out[n, ..., 0] = -im * s
+                out[n, ..., 1] = im * c
+            else:
+                out[n, ..., 0] = re * c - im * s
+                out[n, ..., 1] = re * s + im * c
         out[0] += self.center
         return out
 

@@ -1,0 +1,232 @@
+"""Running a sweep: every design of a grid or a random sample solved over its motion (the whole
+motion, or given inputs), its metrics computed; designs are spread in chunks over worker
+processes here or over the workers of an existing Dask cluster (`scheduler`), and finished
+chunks are kept in a side file so that an interrupted sweep resumes.
+
+Workers receive the mechanism file's text, not its path, so that a cluster's machines need
+only linkwork installed (profiles read from CSV files must be beside the file on them too).
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+from concurrent.futures import ProcessPoolExecutor, as_completed
+from dataclasses import dataclass, field
+from functools import lru_cache
+from pathlib import Path
+from typing import Callable
+
+import numpy as np
+
+from ..errors import InputError, LinkworkError
+from ..io.files import load, load_text, resolve
+from ..kinematics import solve, whole_motion
+from ..model import Mechanism
+from . import designs as D
+from .metrics import Metric, evaluate, parse_metric
+
+
+@dataclass
+class SweepPlan:
+    """What to sweep: the mechanism (a path or library:NAME, so that workers load it
+    themselves), its parameters and designs (rows), the metrics, and the inputs (None: the
+    whole motion of each design)."""
+
+    spec: str
+    params: list[D.Parameter]
+    designs: np.ndarray
+    metrics: list[Metric]
+    inputs: np.ndarray | None = None
+    mechanism: Mechanism | None = field(default=None, repr=False)
+    text: str = field(default="", repr=False)
+    base_dir: str | None = None
+
+    @property
+    def columns(self) -> list[str]:
+        return [p.name for p in self.params] + [m.name for m in self.metrics] + ["ok", "status"]
+
+    def units(self) -> dict[str, str]:
+        u = self.mechanism.length_unit
+        return {**{p.name: u for p in self.params}, **{m.name: m.unit_in(u) for m in self.metrics},
+                "ok": "fraction of samples"}
+
+
+def plan(spec: str, vary: list[str], metrics: list[str], *, samples: int | None = None,
+         seed: int = 0, inputs: np.ndarray | None = None) -> SweepPlan:
+    """Parse a sweep's arguments: `vary` as NAME=START:STOP:STEP (a grid of every combination)
+    or, with `samples`, NAME=LOW:HIGH (a uniform random sample of that many designs)."""
+    mech = load(spec)
+    if not vary:
+        raise InputError("give at least one --vary NAME=… (a point coordinate P.x, P.y or a distance A-B)")
+    if not metrics:
+        raise InputError("give at least one --metric (see `linkwork sweep --help`)")
+    if samples is None:
+        named = [D.grid_values(v) for v in vary]
+        params = [D.parameter(mech, n) for n, _ in named]
+        rows = D.grid([vals for _, vals in named])
+    else:
+        ranges = [D.random_range(v) for v in vary]
+        params = [D.parameter(mech, n) for n, *_ in ranges]
+        rows = D.random_designs([r[1] for r in ranges], [r[2] for r in ranges], samples, seed)
+    names = [p.name for p in params]
+    if len(set(names)) != len(names):
+        raise InputError(f"--vary names a parameter twice: {', '.join(n for n in names if names.count(n) > 1)}")
+    if len(rows) > 10_000_000:
+        raise InputError(f"the sweep has {len(rows)} designs; at most 10 000 000")
+    if len(mech.drivers) != 1 and inputs is not None:
+        raise InputError("--inputs takes one driver's values; this mechanism has several drivers")
+    base = None if spec.startswith("library:") else str(Path(spec).resolve().parent)
+    return SweepPlan(spec, params, rows, [parse_metric(mech, m) for m in metrics], inputs, mech,
+                     resolve(spec)[1], base)
+
+
+@lru_cache(maxsize=4)
+def _load(spec: str, text: str, base_dir: str | None) -> Mechanism:
+    return load_text(text, source=spec, base_dir=None if base_dir is None else Path(base_dir))
+
+
+def run_designs(spec: str, params: list[D.Parameter], rows: np.ndarray, metrics: list[Metric],
+                inputs: np.ndarray | None, text: str = "", base_dir: str | None = None) -> list[list]:
+    """Rows of [metric values…, ok fraction, status] for the designs `rows` (one process) of
+    the mechanism `text` (read from `spec` if empty)."""
+    import warnings
+    base = _load(spec, text, base_dir) if text else load(spec)
+    out = []
+    for values in rows:
+        try:
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore")  # an over-closed design warns once per solve
+                mech = D.apply(base, params, values)
+                sol = whole_motion(mech, order=2) if inputs is None else solve(mech, inputs, order=2)
+            ok = float(np.mean(sol.status == 0)) if len(sol) else 0.0
+            out.append(evaluate(mech, sol, metrics) + [ok, "ok" if ok > 0 else "unreachable"])
+        except LinkworkError as exc:  # a design that cannot be built or solved is marked, not fatal
+            out.append([math.nan if m.kind != "grashof" else "" for m in metrics]
+                       + [0.0, f"error: {str(exc).splitlines()[0]}"])
+    return out
+
+
+def _chunks(n: int, size: int) -> list[range]:
+    return [range(i, min(i + size, n)) for i in range(0, n, size)]
+
+
+def execute(p: SweepPlan, *, workers: int | None = None, chunk: int | None = None,
+            resume: Path | None = None, progress: Callable[[int, int], None] | None = None,
+            scheduler=None) -> list[list]:
+    """Every design's row (parameters, metrics, ok, status), in design order. `workers`
+    processes (default: all cores; 1 runs here), or the workers of the Dask cluster whose
+    scheduler is at `scheduler` (an address such as tcp://host:8786, or a `distributed.Client`);
+    `resume` is a side file of finished chunks (JSON Lines), read first and appended to, so
+    that a sweep cut off resumes where it stopped."""
+    n = len(p.designs)
+    workers = max(1, workers or os.cpu_count() or 1)
+    if scheduler is not None and chunk is None:
+        chunk = max(1, min(200, math.ceil(n / 64)))
+    chunk = chunk or max(1, min(200, math.ceil(n / (4 * workers))))
+    parts = _chunks(n, chunk)
+    done: dict[int, list] = {}
+    key = {"spec": p.spec, "params": [q.name for q in p.params], "metrics": [m.name for m in p.metrics],
+           "designs": n, "chunk": chunk}
+    if resume is not None and resume.exists():
+        lines = resume.read_text(encoding="utf-8").splitlines()
+        head = json.loads(lines[0]) if lines else None
+        if head != key:
+            raise InputError(f"the resume file {resume} belongs to another sweep (remove it to start afresh)")
+        for ln in lines[1:]:
+            try:
+                rec = json.loads(ln)
+            except json.JSONDecodeError:  # a line cut off by the interruption
+                continue
+            done[rec["chunk"]] = rec["rows"]
+    elif resume is not None:
+        resume.write_text(json.dumps(key) + "\n", encoding="utf-8")
+    todo = [i for i in range(len(parts)) if i not in done]
+    finished = sum(len(parts[i]) for i in done)
+    if progress:
+        progress(finished, n)
+
+    def record(i: int, rows: list[list]) -> None:
+        nonlocal finished
+        done[i] = rows
+        if resume is not None:
+            with open(resume, "a", encoding="utf-8") as fh:
+                fh.write(json.dumps({"chunk": i, "rows": rows}, allow_nan=True) + "\n")
+        finished += len(parts[i])
+        if progress:
+            progress(finished, n)
+
+    args = lambda i: (p.spec, p.params, p.designs[parts[i].start:parts[i].stop], p.metrics, p.inputs,
+                      p.text, p.base_dir)
+    if scheduler is not None:
+        _on_cluster(scheduler, todo, args, record)
+    elif workers == 1 or len(todo) <= 1:
+        for i in todo:
+            record(i, run_designs(*args(i)))
+    else:
+        with ProcessPoolExecutor(max_workers=min(workers, len(todo))) as pool:
+            futures = {pool.submit(run_designs, *args(i)): i for i in todo}
+            for f in as_completed(futures):
+                record(futures[f], f.result())
+    rows = []
+    for i, r in enumerate(parts):
+        for k, vals in zip(r, done[i]):
+            rows.append([float(v) for v in p.designs[k]] + list(vals))
+    return rows
+
+
+def _on_cluster(scheduler, todo: list[int], args, record) -> None:
+    """Run the chunks `todo` on a Dask cluster (dask.distributed), recording each as it ends."""
+    try:
+        from distributed import Client, as_completed as finished
+    except ImportError:  # pragma: no cover - distributed is a dependency
+        raise InputError("--scheduler needs dask.distributed (pip install distributed)") from None
+    own = not hasattr(scheduler, "submit")
+    if own:
+        try:
+            client = Client(scheduler, timeout="5s", set_as_default=False)
+        except (OSError, TimeoutError, ValueError) as exc:
+            raise InputError(f"cannot reach the Dask scheduler at {scheduler}: {exc}") from None
+    else:
+        client = scheduler
+    try:
+        futures = {client.submit(run_designs, *args(i), pure=False): i for i in todo}
+        for f in finished(list(futures), loop=client.loop):
+            record(futures[f], f.result())
+    finally:
+        if own:
+            client.close()
+
+
+def to_frame(p: SweepPlan, rows: list[list]):
+    """The results as a pandas DataFrame (units in `DataFrame.attrs['units']`)."""
+    import pandas as pd
+    df = pd.DataFrame(rows, columns=p.columns)
+    df.attrs["units"] = p.units()
+    return df
+
+
+def write(p: SweepPlan, rows: list[list], path: str | Path) -> None:
+    """CSV (units in the header: `name [unit]`) or Parquet (units in the schema's metadata,
+    key b"linkwork.units"), chosen by the suffix; written whole or not at all."""
+    from ..outputs import output_path
+    path = Path(path)
+    df = to_frame(p, rows)
+    units = p.units()
+    suffix = path.suffix.lower()
+    if suffix == ".csv":
+        df = df.rename(columns={c: f"{c} [{units[c]}]" for c in df.columns if units.get(c)})
+        with output_path(path) as tmp:
+            df.to_csv(tmp, index=False)
+    elif suffix in (".parquet", ".pq"):
+        import pyarrow as pa
+        import pyarrow.parquet as pq
+        table = pa.Table.from_pandas(df, preserve_index=False)
+        meta = dict(table.schema.metadata or {})
+        meta[b"linkwork.units"] = json.dumps(units).encode()
+        meta[b"linkwork.mechanism"] = p.spec.encode()
+        with output_path(path) as tmp:
+            pq.write_table(table.replace_schema_metadata(meta), tmp)
+    else:
+        raise InputError(f"-o {path}: write .csv or .parquet")

@@ -1,0 +1,106 @@
+"""Alt's dwell linkage (Pöschl §37) and Pröll's substitution (Rosenauer §29), checked with the
+engine and with curvature theory computed another way: the dwell link's length against the
+circle through three nearby positions of the coupler point; the output rocker at rest (ω, α
+zero; with a circling point also the jerk) in the engine's solution of the written six-bar;
+the substituted crank's moving pivot has its centre of curvature at the new pivot (osculating
+circle of its path, not Euler–Savary), and the new four-bar gives every coupler point the same
+centre of curvature as the old one."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import linkwork
+from linkwork.errors import InputError
+from linkwork.instant.curvature import curvature_centre, instant
+from linkwork.instant.third_order import stationary_curvature
+from linkwork.kinematics import solve
+from linkwork.synthesis.positions import SynthesisError
+from linkwork.synthesis.second_order import alt_dwell, proell_substitution
+
+MECH = linkwork.load("library:crank-rocker")
+AT = np.radians(60.0)
+
+
+def circle_radius(p, q, r):
+    a, b, c = np.hypot(*(q - r)), np.hypot(*(p - r)), np.hypot(*(p - q))
+    cross = (q - p)[0] * (r - p)[1] - (q - p)[1] * (r - p)[0]
+    return a * b * c / (2 * abs(cross))
+
+
+def test_dwell_link_is_the_radius_of_curvature_and_the_output_rests():
+    d = alt_dwell(MECH, AT, "C")
+    h = 1e-3
+    sol = solve(MECH, [AT - h, AT, AT + h], order=1)
+    C = sol.point("C").position
+    assert d.radius == pytest.approx(circle_radius(*C), rel=1e-5)
+    assert np.allclose(d.coupler_point, C[1], atol=1e-12)
+    six = d.mechanism()
+    assert len(six.links) == 6
+    s = solve(six, [AT], order=3)
+    out = s.link(d.output_link)
+    w = MECH.drivers[0].law.speed
+    assert abs(out.omega[0]) <= 1e-9 * w
+    assert abs(out.alpha[0]) <= 1e-7 * w**2
+    assert abs(out.jerk[0]) > 1e-6 * w**3  # an ordinary point: a second-order dwell only
+    # the six-bar reproduces the four-bar: C moves as before
+    s2 = solve(six, [AT - 0.2, AT + 0.3], order=1)
+    s1 = solve(MECH, [AT - 0.2, AT + 0.3], order=1)
+    assert np.allclose(s2.point("C").position, s1.point("C").position, atol=1e-9)
+
+
+def test_a_circling_point_gives_a_third_order_dwell():
+    sol = solve(MECH, [AT], order=3)
+    cubic = stationary_curvature(sol, "coupler")
+    pts = cubic.points(181)[0]
+    ok = np.isfinite(pts).all(axis=1)
+    centre = sol.point("A").position[0]
+    pick = pts[ok][np.argmin(np.abs(np.hypot(*(pts[ok] - centre).T) - 20.0))]
+    design = sol.local("coupler", pick[None, :])[0]
+    d = alt_dwell(MECH, AT, design)
+    s = solve(d.mechanism(), [AT], order=3)
+    out = s.link(d.output_link)
+    w = MECH.drivers[0].law.speed
+    assert abs(out.omega[0]) <= 1e-9 * w
+    assert abs(out.alpha[0]) <= 1e-7 * w**2
+    assert abs(out.jerk[0]) <= 1e-6 * w**3
+    # the output angle over ±3°: flatter than the second-order dwell's
+    ordinary = alt_dwell(MECH, AT, "C")
+    span = AT + np.radians(np.linspace(-3, 3, 7))
+    flat = np.ptp(solve(d.mechanism(), span, order=1).link(d.output_link).angle)
+    less = np.ptp(solve(ordinary.mechanism(), span, order=1).link(ordinary.output_link).angle)
+    assert flat < less
+
+
+@pytest.mark.parametrize("replace, pivot", [("input", [5.0, -8.0]), ("input", [-6.0, 4.0]),
+                                            ("output", [30.0, -10.0])])
+def test_proell_substitution_keeps_the_coupler_motion_to_second_order(replace, pivot):
+    sub = proell_substitution(MECH, AT, pivot, replace=replace)
+    old = solve(MECH, [AT], order=2)
+    # the new moving pivot's path in the old four-bar: its osculating circle's centre is the pivot
+    a3 = old.local("coupler", sub.moving_pivot[None, :])[0]
+    centre = curvature_centre(old, "coupler", a3).centre.xy[0]
+    assert np.allclose(centre, pivot, atol=1e-9 * 40)
+    new = sub.mechanism()
+    s = solve(new, None, order=2)  # at its design position: the input AT
+    assert np.allclose(s.point("A").position[0], old.point("A").position[0], atol=1e-9)
+    assert np.allclose(instant(s, "coupler").pole.xy, instant(old, "coupler").pole.xy, atol=1e-9)
+    for p in ("A", "B", "C"):
+        here = new.points[p]  # the file is drawn at AT: design = where the point is there
+        want = curvature_centre(old, "coupler", MECH.points[p]).centre.xy[0]
+        got = curvature_centre(s, "coupler", here).centre.xy[0]
+        assert np.allclose(got, want, atol=1e-8 * 40), p
+
+
+def test_bad_requests_are_refused():
+    with pytest.raises(InputError, match="four-bar"):
+        alt_dwell(linkwork.load("library:slider-crank-offset"), 0.3, "B")
+    with pytest.raises(InputError, match="not a point of the coupler"):
+        alt_dwell(MECH, AT, "O4")
+    sol = solve(MECH, [AT], order=2)
+    P = instant(sol, "coupler").pole.xy[0]
+    with pytest.raises(SynthesisError, match="pole"):
+        proell_substitution(MECH, AT, P)
+    with pytest.raises(InputError, match="replace"):
+        proell_substitution(MECH, AT, [1.0, 2.0], replace="coupler")
