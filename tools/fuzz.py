@@ -92,6 +92,11 @@ def main() -> int:
                     stream.flush()
             bad = sum(v for k, v in kinds.items() if k not in ("result", "user-error"))
             bar.update(task, advance=1, found=f"{bad} findings")
+            done = sum(kinds.values())
+            if stream and done % 100 == 0:  # the figures so far, for a run cut short
+                stream.write(json.dumps({"done": done, "outcomes": dict(kinds),
+                                         "seconds": round(time.monotonic() - t0)}) + "\n")
+                stream.flush()
     elapsed = time.monotonic() - t0
     if stream:
         stream.close()

@@ -99,3 +99,26 @@ def test_change_point_scans_run_the_solves_compiled_loops():
     # (and the scan places the dyad where the solve does)
     np.testing.assert_allclose(state.Q[0][:, mech.link_index["coupler"], 2],
                                sol.link("coupler").angle, atol=1e-12)
+
+
+def test_flat_discriminant_is_no_string_of_change_points(monkeypatch):
+    """Found by tools/fuzz.py (seed 11, case 7775, 74 s): the Whitworth quick return with the
+    rod hinged to the frame at C, D and T moved far off. A group then sits at a change position
+    all along: its h² is flat, and every scan point was taken for a touching minimum and refined
+    (2 047 Brent searches). A flat h² defines no change point: a handful of refinements at
+    most, and the case ends in a result or a linkwork error."""
+    import scipy.optimize
+
+    text = TEXTS["whitworth-quick-return"]
+    for old, new in (("D  = [62.648257205314, -20]", "D  = [62.648257205314, 3.0e5]"),
+                     ("T  = [92.648257205314, -30]", "T  = [7.544162531321938e-10, -19.99999999996065]"),
+                     ('C     = { type = "revolute", links = ["lever", "rod"] }',
+                      'C     = { type = "revolute", links = ["frame", "rod"] }')):
+        assert old in text
+        text = text.replace(old, new)
+    searches = []
+    brent = scipy.optimize.minimize_scalar
+    monkeypatch.setattr(scipy.optimize, "minimize_scalar",
+                        lambda *a, **k: (searches.append(1), brent(*a, **k))[1])
+    _assert_fine(run_file_case(text.encode(), random.Random(0)), "whitworth, rod on the frame")
+    assert len(searches) <= 4 * 16

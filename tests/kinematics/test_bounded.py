@@ -61,3 +61,28 @@ def test_a_crawling_march_stops_long_before_its_budget(monkeypatch):
     with pytest.raises(SolveError, match="would take more than 2000 continuation steps"):
         linkwork.solve(mech, [u0 + np.radians(10.0)])
     assert len(attempts) < continuation.MAX_ATTEMPTS / 4
+
+
+def test_roller_centre_on_the_cam_axis_runs_through_its_branch_crossing():
+    """The offset roller cam with its axis O drawn 1e-12 from the roller's centre C (found by
+    scanning near-degenerate drawings): the disc's centre E turns about O at |OE| = R + ρ, so
+    the roller touches the disc wherever the cam stands and the follower hardly moves. Where E
+    passes C's height that motion crosses the other one (the follower thrown by 2·(E − C)_y):
+    the tangent there grows from 1e-12, which the march took for a limit position and closed
+    in on forever (SolveError). It now runs on; the follower's displacement s is the root
+    nearest zero of |E(θ) − C − s·ŷ| = R + ρ, written out here."""
+    _, text = resolve("library:offset-roller-cam")
+    text = text.replace("O = [0, 0]", "O = [15.000000000001, 37.66961640367472]")
+    mech = linkwork.load_text(text)
+    u0 = mech.driver_input_at_design(mech.drivers[0])
+    turn = np.linspace(-np.pi, np.pi, 13)
+    sol = linkwork.solve(mech, u0 + turn)
+    assert (sol.status != linkwork.Status.UNREACHABLE).all()
+    O, E0, C0 = (np.array(mech.points[p], dtype=float) for p in ("O", "E", "C"))
+    c, s = np.cos(turn), np.sin(turn)
+    d = E0 - O
+    w = O + np.stack([c * d[0] - s * d[1], s * d[0] + c * d[1]], axis=-1) - C0
+    root = np.sqrt(w[:, 1] ** 2 - (w ** 2).sum(axis=1) + 38.0 ** 2)
+    lift = np.where(np.abs(w[:, 1] - root) <= np.abs(w[:, 1] + root), w[:, 1] - root, w[:, 1] + root)
+    np.testing.assert_allclose(sol.point("C").position[:, 1] - C0[1], lift, atol=1e-9 * mech.length_scale)
+    np.testing.assert_allclose(sol.point("C").position[:, 0], C0[0], atol=1e-9 * mech.length_scale)

@@ -41,6 +41,7 @@ BRANCHING = ("RRR", "RRP", "rod-in-slot")  # closed forms that choose between tw
 SCAN = 2048  # input samples per turn (or per 8 length scales of a prismatic input)
 TOUCH = 1e-3  # relative discriminant (h²/L1²) below which a local minimum is refined
 CHANGE = 1e-12  # … at the refined minimum below which it is a change point (h < 1e-6 L1)
+MAX_TOUCHES = 16  # more touching minima per scan: a flat, degenerate h² (bounded cost)
 
 
 @dataclass(frozen=True)
@@ -171,7 +172,12 @@ def _touches(fn, grid: np.ndarray, first: int, points: list, merge: float) -> No
     g = fn(grid)
     inner = np.arange(max(1, first), grid.size - 1)
     touch = inner[(g[inner] <= g[inner - 1]) & (g[inner] <= g[inner + 1])
+                  & ((g[inner] < g[inner - 1]) | (g[inner] < g[inner + 1]))
                   & (g[inner] < TOUCH) & (g[inner - 1] > 0) & (g[inner + 1] > 0)]
+    if len(touch) > MAX_TOUCHES:
+        # h² flat and near zero along the scan (a degenerate drawing: the group stays at a
+        # change position), its minima rounding noise: no change point is defined there
+        return
     if len(touch):
         from scipy.optimize import minimize_scalar  # rarely needed; slow to import
     for i in touch:

@@ -55,6 +55,7 @@ CACHE_SIZE = 32
 MAX_ATTEMPTS = 2000                  # steps (accepted or not) per lane and march, plus 4 per
                                      # sample of several drivers: bounded cost
 CRAWL_WINDOW = 100                   # attempts over which a lane's progress is measured
+CRAWL_MARGIN = 10                    # ... and how much faster it might still get
 SCAN_PER_SEGMENT = 2048              # grid points per turn of a path scanned for change points
 PERIOD_TURNS = 4                     # turns of a revolute input searched for the motion's period
 
@@ -379,8 +380,12 @@ class _Lane(InputPath):
         if len(self.lam) >= 2:  # a limit position ahead: close in on it
             g1, g0 = gen.norm(t), gen.norm(self.T[-2])
             lam0 = self.lam[-2]
-            # near a turning point of the path |dq/dλ|⁻² falls linearly to zero at it
-            if np.isfinite(g0) and np.isfinite(g1) and g1 > g0 > 0:
+            # near a turning point of the path |dq/dλ|⁻² falls linearly to zero at it. Poses
+            # that hardly move (a change of less than SLACK over a largest step) turn at no
+            # limit position: a tangent growing from 1e-12 is a degenerate drawing's branch
+            # crossing, which the steps would close in on forever
+            if np.isfinite(g0) and np.isfinite(g1) and g1 > g0 > 0 and \
+                    g1 * CONTINUATION_STEP > SLACK * gen.L:
                 fold = lam + (lam - lam0) * g0 ** 2 / (g1 ** 2 - g0 ** 2)
                 h = min(h, max(FOLD_APPROACH * (fold - lam), MIN_STEP * CONTINUATION_STEP))
         nxt = self.knots[np.searchsorted(self.knots, lam, side="right")]
@@ -570,13 +575,14 @@ def _attempt(mech: Mechanism, solvers, gen: _Generic, schedule: dict, u: np.ndar
 
 def _crawls(trail: list, left: int, target: float) -> bool:
     """Whether a lane that has advanced along `trail` (λ after each attempt) would still be
-    short of `target` after its `left` attempts at the pace of its last `CRAWL_WINDOW` ones.
+    short of `target` after its `left` attempts at `CRAWL_MARGIN` times the pace of its last
+    `CRAWL_WINDOW` ones.
     A narrow passage slows a lane only briefly (the step grows again, doubling every other
     attempt, once it is through), so a window of that length measures a pace that lasts."""
     if len(trail) < CRAWL_WINDOW:
         return False
     pace = (trail[-1] - trail[-CRAWL_WINDOW]) / CRAWL_WINDOW
-    return trail[-1] + pace * left < target
+    return trail[-1] + CRAWL_MARGIN * pace * left < target
 
 
 def _tangents(state: State, solvers, gen: _Generic, jacobians: dict, ok: np.ndarray) -> np.ndarray:

@@ -64,6 +64,10 @@ class LinkMotion:
 class Solution:
     """Kinematics of `mechanism` at N samples. Index a point, link or pair by name."""
 
+    #: several drivers: where the solve left the path of its inputs, for `solve(..., resume=)`
+    #: to go on from (`continuation.PathEnd`); None for one driver
+    path_end = None
+
     def __init__(self, mechanism: Mechanism, inputs: np.ndarray, time: np.ndarray | None,
                  coefficients: np.ndarray, status: np.ndarray, condition: np.ndarray, *,
                  trig: tuple[np.ndarray, np.ndarray] | None = None,
