@@ -24,9 +24,17 @@ __all__ = ["LinkworkError", "Mechanism", "Solution", "Status", "load", "load_tex
            "whole_motion"]
 
 
+#: the layers, loaded as attributes on first use too (`linkwork.instant.poles(...)`)
+_LAYERS = frozenset({"cli", "constructions", "drawing", "forces", "geometry", "instant", "io",
+                     "kinematics", "model", "outputs", "structure", "sweeps", "synthesis",
+                     "topology", "units", "web"})
+
+
 def __getattr__(name: str):
     if name in _HOME:
         return getattr(importlib.import_module(_HOME[name], __name__), name)
+    if name in _LAYERS:
+        return importlib.import_module(f".{name}", __name__)
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 

@@ -28,7 +28,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .construction import Builder, Construction, Role, pt
+from .construction import Builder, Construction, Role, literal, pt
 from ..instant import curvature_centre, instant
 from ..model import Mechanism, Revolute
 from ._common import as_solution, cross, norm, perp, singular_positions
@@ -64,11 +64,11 @@ def hartmann(mech: Mechanism, inputs, *, link: str | None = None, point: str | N
     b.step(f"Given: the velocity v_{nA} of {nA} (\u27c2 ray I). The line from its tip to {cd.centre_names[0]} "
            f"meets the perpendicular to ray I through P in the tip of u_{nA}.")
     ta = pt(A.xy + kv * vA)
-    b.arrow("vA", A, ta, Role.GIVEN, f"v_{nA}", kind="velocity")
+    b.arrow("vA", A, ta, Role.GIVEN, "v_{" + literal(nA) + "}", kind="velocity")
     l1 = b.join("taCa", ta, cd.Ca)
     p1 = b.perpendicular("p1", P, r1)
     tuA = b.meet("tuA", l1, p1, Role.AUXILIARY, None, k1="taCa", k2="p1", finite=False)
-    b.arrow("uA", P, tuA, Role.AUXILIARY, f"u_{nA}", kind="velocity")
+    b.arrow("uA", P, tuA, Role.AUXILIARY, "u_{" + literal(nA) + "}", kind="velocity")
     b.step(f"Velocity of {nB}: the line P to the tip of v_{nA} makes the angle \u03b4 (tan \u03b4 = \u03c9) "
            f"with ray I; lay off \u03b4 at P from ray II; it meets the perpendicular to ray II at {nB} in the "
            f"tip of v_{nB}. The line from that tip to {cd.centre_names[1]} meets the perpendicular to ray "
@@ -79,11 +79,11 @@ def hartmann(mech: Mechanism, inputs, *, link: str | None = None, point: str | N
     nB_ = b.perpendicular("nvB", B, r2)
     tb = b.meet("tb", dline, nB_, Role.AUXILIARY, None, k1="delta2", k2="nvB",
                 why=f"{nB} lies at the pole")
-    b.arrow("vB", B, tb, Role.RESULT, f"v_{nB}", kind="velocity")
+    b.arrow("vB", B, tb, Role.RESULT, "v_{" + literal(nB) + "}", kind="velocity")
     l2 = b.join("tbCb", tb, cd.Cb)
     p2 = b.perpendicular("p2", P, r2)
     tuB = b.meet("tuB", l2, p2, Role.AUXILIARY, None, k1="tbCb", k2="p2", finite=False)
-    b.arrow("uB", P, tuB, Role.AUXILIARY, f"u_{nB}", kind="velocity")
+    b.arrow("uB", P, tuB, Role.AUXILIARY, "u_{" + literal(nB) + "}", kind="velocity")
     b.step("The parallel to ray I through the tip of u_A and the parallel to ray II through the tip of "
            "u_B meet in the tip of the pole-transfer velocity u; its direction is the pole tangent t.")
     q1 = b.parallel("q1", tuA, r1)
@@ -115,7 +115,7 @@ def hartmann(mech: Mechanism, inputs, *, link: str | None = None, point: str | N
     L, o = cd.L, cd.origin
     if cd.C is not None:
         nC = upper(cd.c_name)
-        c = nC.replace("_", "")
+        c = cd.c_name  # the file's name (as written, in the labels below)
         b.step(f"Third point {nC}: its velocity v_{c} by the \u03b4-angle from ray P{nC}; u_{c}, the projection of u "
                f"perpendicular to ray P{nC}; the line through the tips of v_{c} and u_{c} meets the ray in the "
                f"centre of curvature K_{c}.")
@@ -123,11 +123,11 @@ def hartmann(mech: Mechanism, inputs, *, link: str | None = None, point: str | N
         r3 = b.join("ray3", P, C, Role.AUXILIARY, "III")
         dl3 = b.copy_angle("delta3", P, A, ta, P, C, radius=0.25 * norm(A.xy - P.xy))
         tc = b.meet("tc", dl3, b.perpendicular("nvC", C, r3), Role.AUXILIARY, None, k1="delta3", k2="nvC")
-        b.arrow("vC", C, tc, Role.RESULT, f"v_{c}", kind="velocity")
+        b.arrow("vC", C, tc, Role.RESULT, "v_{" + literal(c) + "}", kind="velocity")
         p3 = b.perpendicular("p3", P, r3)
         tuC = b.foot("tuC", tu, p3, Role.AUXILIARY, None, k="p3")
-        b.arrow("uC", P, tuC, Role.AUXILIARY, f"u_{c}", kind="velocity")
-        K = b.meet("KC", b.join("tips", tc, tuC), r3, Role.RESULT, f"K_{c}", k1="tips", k2="ray3",
+        b.arrow("uC", P, tuC, Role.AUXILIARY, "u_{" + literal(c) + "}", kind="velocity")
+        K = b.meet("KC", b.join("tips", tc, tuC), r3, Role.RESULT, "K_{" + literal(c) + "}", k1="tips", k2="ray3",
                    finite=False)
         b.compare_points("KC", f"K_{cd.c_name}", f"centre of curvature of {cd.c_name}", K,
                          curvature_centre(sol, cd.link, cd.c_name).centre, L, o)
