@@ -487,9 +487,7 @@ class GroupSolver:
         ok = np.ones(N, dtype=bool)
         r = np.empty((4, N))
         Q0 = state.Qm[0]
-        branch = state.branches.get(self.group)
-        if branch is None:  # the design's side everywhere
-            branch = np.broadcast_to(f["branch"], (N,))
+        branch = self._branch_signs(state, N)
         from . import kernels
         kernels.rrr_positions(Q0, state.T, f["iA"], f["A"], f["iC"], f["C"], f["i1"], f["i2"],
                               f["diff"], f["L1sq"], f["tol"], branch, f["k1"], f["k2"], r, ok)
@@ -540,6 +538,12 @@ class GroupSolver:
         e = _rot(state.Q[0, :, state.li(gl), 2], line.axis)
         return A, Pd, Aw, q, e, np.hypot(*(Pd - A))
 
+    def _branch_signs(self, state: State, N: int) -> np.ndarray:
+        """The assembly sign per sample: the schedule's across change points, else the design's
+        side everywhere."""
+        branch = state.branches.get(self.group)
+        return np.broadcast_to(self.design_sign, (N,)) if branch is None else branch
+
     @cached_property
     def design_sign(self) -> float:
         """The assembly sign the drawing shows (RRR: side of AC on which B lies; circle–line:
@@ -570,9 +574,7 @@ class GroupSolver:
         ok = np.ones(N, dtype=bool)
         r = np.empty((2, N))
         Q0 = state.Qm[0]
-        branch = state.branches.get(self.group)
-        if branch is None:  # the design's side everywhere
-            branch = np.broadcast_to(self.design_sign, (N,))
+        branch = self._branch_signs(state, N)
         from . import kernels
         kernels.rrp_positions(Q0, state.T, f["iA"], f["A"], f["ig"], f["P"], f["e0"], f["rsq"],
                               f["tol"], branch, f["ir"], f["ib"], f["k"], r, ok)
