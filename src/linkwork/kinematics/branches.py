@@ -96,6 +96,21 @@ def _poses(mech: Mechanism, N: int) -> np.ndarray:
     return np.zeros((1, len(rows(mech)), 3, N)).transpose(0, 3, 1, 2)
 
 
+def placed(mech: Mechanism, solvers, u: np.ndarray, schedule: dict,
+           guesses: dict | None = None) -> tuple[State, np.ndarray]:
+    """Positions only of `solvers` (in the solution order) at inputs u (one driver), with the
+    assembly signs of `schedule` (group → `Schedule`) and, for Newton groups, the starting
+    values `guesses`; and the mask of the samples where every one of them assembles."""
+    N = u.shape[0]
+    state = State(mech, _poses(mech, N), input_coefficients(mech, u[:, None], None, None, None, 0),
+                  branches={g: s.signs(u) for g, s in schedule.items()})
+    ok = np.ones(N, dtype=bool)
+    for s in solvers:
+        ok &= (s.positions(state, (guesses or {}).get(s.group)) if s.kind == "generic"
+               else s.positions(state))
+    return state, ok
+
+
 def _positions(mech: Mechanism, solvers: tuple[GroupSolver, ...], upto: GroupSolver,
                u: np.ndarray, branches: dict) -> State:
     """Positions of every group before and including `upto` at inputs u (one driver); NaN
@@ -104,16 +119,10 @@ def _positions(mech: Mechanism, solvers: tuple[GroupSolver, ...], upto: GroupSol
     so far (all of them upstream of `upto`)."""
     from .continuation import continuation_guesses
 
-    N = u.shape[0]
-    Q = _poses(mech, N)
-    state = State(mech, Q, input_coefficients(mech, u[:, None], None, None, None, 0),
-                  branches={g: s.signs(u) for g, s in branches.items()})
     upstream = solvers[:solvers.index(upto) + 1]
     guesses = (continuation_guesses(mech, upstream, u[:, None], schedule=branches)
                if any(s.kind == "generic" for s in upstream) else {})
-    ok = np.ones(N, dtype=bool)
-    for s in upstream:
-        ok &= s.positions(state, guesses.get(s.group)) if s.kind == "generic" else s.positions(state)
+    state, ok = placed(mech, upstream, u, branches, guesses)
     if not ok.all():
         state.Q[:, ~ok] = np.nan
         state.forget_trig()

@@ -16,10 +16,9 @@ import numpy as np
 
 from ..errors import InputError
 from ..model import ConstantSpeed, Mechanism
-from .branches import branch_schedule
+from .branches import branch_schedule, placed
 from .contact import interference, rows
 from .continuation import march_limit
-from .groups import State, input_coefficients
 from .solution import Solution
 from .solver import plan, solve
 
@@ -35,17 +34,10 @@ def _assembles(mech: Mechanism, solvers, u: np.ndarray) -> np.ndarray:
     """Where the mechanism assembles at inputs u (one driver, closed-form groups): positions
     only, with the assembly branches and the contact check of `solve`, whose status is
     unreachable exactly where this is False (its rates and error bounds do not decide it)."""
-    N = u.shape[0]
-    # zero poses laid out as `solve` lays them out (the sample axis last in memory)
-    Q = np.zeros((1, len(rows(mech)), 3, N)).transpose(0, 3, 1, 2)
-    state = State(mech, Q, input_coefficients(mech, u[:, None], None, None, None, 0),
-                  branches={g: s.signs(u) for g, s in branch_schedule(mech).items()})
-    ok = np.ones(N, dtype=bool)
-    for s in solvers:
-        ok &= s.positions(state)
-    if Q.shape[2] > len(mech.link_names):  # higher pairs: a contact cut into is no contact
-        Q[0, ~ok] = np.nan
-        ok &= ~interference(mech, Q[0])
+    state, ok = placed(mech, solvers, u, branch_schedule(mech))
+    if len(rows(mech)) > len(mech.link_names):  # higher pairs: a contact cut into is no contact
+        state.Q[0, ~ok] = np.nan
+        ok &= ~interference(mech, state.Q[0])
     return ok
 
 
