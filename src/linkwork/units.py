@@ -55,6 +55,10 @@ def registry() -> pint.UnitRegistry:
 _PLAIN_NUMBER = re.compile(r"\s*[+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?\s*")
 
 
+def _plain_number(text: str) -> bool:
+    return len(text) <= MAX_LENGTH and _PLAIN_NUMBER.fullmatch(text) is not None
+
+
 _TOKEN = re.compile(r"\s*(?:(?P<number>(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?)"
                     r"|(?P<name>[^\W\d][\w°]*|°)"
                     r"|(?P<op>\*\*|[*/^()+\-]))")
@@ -202,7 +206,7 @@ def parse_quantity(text: str | float | int, *, default_unit: str, kind: str) -> 
     """
     if not isinstance(text, str):
         return check_number(text, kind)
-    if _PLAIN_NUMBER.fullmatch(text) and len(text) <= MAX_LENGTH:
+    if _plain_number(text):
         return _finite(float(text), kind, text.strip())
     q = read_quantity(text, kind)
     if str(q.units) == "dimensionless":
@@ -220,7 +224,7 @@ def parse_quantity(text: str | float | int, *, default_unit: str, kind: str) -> 
 
 def unit_dimension(text: str, what: str = "quantity") -> str | None:
     """'time', 'angle', 'length' or None for a quantity string without a unit."""
-    if _PLAIN_NUMBER.fullmatch(text) and len(text) <= MAX_LENGTH:
+    if _plain_number(text):
         return None
     ureg = registry()
     q = read_quantity(text, what)

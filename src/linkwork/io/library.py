@@ -20,6 +20,10 @@ def library_names() -> list[str]:
     return sorted(p.name[:-5] for p in root.iterdir() if p.name.endswith(".toml"))
 
 
+def _read(name: str) -> str:
+    return (resources.files("linkwork") / "library" / f"{name}.toml").read_text(encoding="utf-8")
+
+
 def library_text(name: str) -> str:
     """The TOML text of the shipped mechanism `name`; `UnknownMechanismError` with the close
     names for a name the library does not have."""
@@ -28,7 +32,7 @@ def library_text(name: str) -> str:
         close = [n for n in names if name.lower() in n or n in name.lower()]
         hint = f"; did you mean {', '.join(close)}?" if close else "; `linkwork library` lists them"
         raise UnknownMechanismError(f"the library has no mechanism '{name}'{hint}")
-    return (resources.files("linkwork") / "library" / f"{name}.toml").read_text(encoding="utf-8")
+    return _read(name)
 
 
 #: the library's groups, in the order `linkwork library` shows them
@@ -56,8 +60,8 @@ def library_entries() -> list[dict[str, str]]:
     """Every shipped mechanism as {name, title, category, description}, grouped in the order
     of `CATEGORIES` (unknown groups after them, alphabetically), by name within a group."""
     out = []
-    for n in library_names():
-        doc = tomllib.loads(library_text(n))
+    for n in library_names():  # (names just listed: read without listing the folder again)
+        doc = tomllib.loads(_read(n))
         out.append({"name": n, "title": doc.get("name", ""), "category": _category(doc),
                     "description": doc.get("description", "")})
     rank = {c: i for i, c in enumerate(CATEGORIES)}
