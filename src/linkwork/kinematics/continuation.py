@@ -27,13 +27,24 @@ solve gets the same starting values whether the march was kept or not: the limit
 the samples of a whole motion march once. The samples get their starting values by cubic
 Hermite interpolation of the marched poses and tangents. Several drivers: the march goes through
 the samples in their order, subdividing adaptively between them.
+
+A drag in the workbench solves a new mechanism for every frame: the same structure, slightly
+other dimensions. `solve(..., previous=)` starts its march from the previous frame's
+(`_carry`): the accepted points are solved again for the new dimensions all at once, from the
+old poses, and taken in order for as long as each step passes the tests a march's step must
+pass (a contracting corrector, the step bound, smooth both ways). A change of assembly branch
+fails them as it fails a march, and from there the march goes on as it does after a rejected
+step; `carried(mech)` says how far the old march was taken and why not further. Starting values
+from a carried march differ from a fresh one's at the level of the march's accuracy, so the
+solutions agree to rounding, not bit for bit.
 """
 
 from __future__ import annotations
 
 from collections import OrderedDict
 from dataclasses import dataclass
-from threading import Lock
+from functools import wraps
+from threading import Lock, RLock
 
 import numpy as np
 
@@ -104,6 +115,20 @@ def input_weights(mech: Mechanism) -> np.ndarray:
                      if mech.joint(d.joint).kind == "prismatic" else 1.0 for d in mech.drivers])
 
 
+def _serialized(fn):
+    """One march at a time: the marches kept per mechanism are extended in place, and a server
+    solves in several threads."""
+    @wraps(fn)
+    def run(*args, **kwargs):
+        with _marching:
+            return fn(*args, **kwargs)
+    return run
+
+
+_marching = RLock()  # re-entered: a march may find change points, which march upstream groups
+
+
+@_serialized
 def continuation_guesses(mech: Mechanism, solvers, values: np.ndarray,
                          schedule: dict | None = None, *, start: PathEnd | None = None,
                          ends: dict | None = None, previous: Mechanism | None = None) -> dict:
@@ -170,6 +195,7 @@ def continuation_guesses(mech: Mechanism, solvers, values: np.ndarray,
     return gen.split(lane.at_vertices()[1:])
 
 
+@_serialized
 def march_limit(mech: Mechanism, solvers, sense: int, span: float) -> float | None:
     """The input value at which the march of the design's branch stops on one side (`sense`
     +1: upwards, −1: downwards) — a limit position, closed in on to `MIN_STEP` by the step
