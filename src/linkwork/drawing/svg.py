@@ -695,13 +695,12 @@ class Figure:
             # every candidate at once: 8 directions (preferred first), 3 distances each; the
             # box anchored so that its nearest edge is `dist` away in direction (dx, dy)
             cands = np.repeat(np.array(_candidates(lab.prefer)), 3, axis=0)
-            k = np.repeat(np.arange(8), 3)
-            dist = np.tile([lab.clear + 1.0, lab.clear + 2.2, lab.clear + 3.8], 8)
+            dist = lab.clear + _DISTANCES
             cx = a[0] + cands[:, 0] * (dist + w / 2)
             cy = a[1] + cands[:, 1] * (dist + h / 2)
             boxes = np.stack([cx - w / 2, cy - h / 2, cx + w / 2, cy + h / 2], axis=1)
             score = 40.0 * placed.overlap(boxes) / (w * h)
-            score += grid.counts(boxes) * 1.0 + 0.15 * k + 0.6 * dist
+            score += grid.counts(boxes) * 1.0 + _RANK_COST + 0.6 * dist
             if frame is not None:
                 across = ~((frame[0] <= boxes[:, 0]) & (boxes[:, 2] <= frame[2])
                            & (frame[1] <= boxes[:, 1]) & (boxes[:, 3] <= frame[3]))
@@ -847,6 +846,12 @@ def _candidates(prefer: np.ndarray | None) -> list[tuple[float, float]]:
         p = np.asarray(prefer, float) / np.linalg.norm(prefer)
         dirs.sort(key=lambda d: -(d[0] * p[0] + d[1] * p[1]))
     return dirs
+
+
+#: a label's candidate boxes: each direction (in `_candidates`' order) at three distances beyond
+#: the label's clearance, and what a direction's rank adds to its score
+_DISTANCES = np.tile([1.0, 2.2, 3.8], 8)
+_RANK_COST = 0.15 * np.repeat(np.arange(8), 3)
 
 
 class _Boxes:
