@@ -92,8 +92,12 @@ def _compiled() -> dict:
     if not nb.config.CACHE_DIR:
         nb.config.CACHE_DIR = user_cache_dir("linkwork", appauthor=False)
     ns = _bound(dict(globals()))
-    for name in _LOOPS:
-        ns[name] = nb.njit(**_FLAGS)(ns[name])
+    for name, (_, samples_axis) in _LOOPS.items():
+        # the per-sample helpers inlined into the loops by numba itself: LLVM leaves the calls
+        # of the fused loops' large bodies in place, and each call then passes its arrays with
+        # reference counting (atomic) at every sample and group, several times the arithmetic
+        inline = "always" if samples_axis is None else "never"
+        ns[name] = nb.njit(inline=inline, **_FLAGS)(ns[name])
     return ns
 
 
@@ -536,3 +540,94 @@ def _relative_error(E, m, eps, weights, n):
         if not v <= top:  # NaN too
             top = v if v == v else math.inf
     return top + eps
+
+
+# ---------------------------------------------------------------------------- the fused pass
+#: opcodes of `fused_positions` / `fused_rates` (the solution order as tables, `fused.Tables`)
+DRIVER, RRR, RRP = 0, 1, 2
+
+
+@_loop(0)
+def fused_positions(ok, ops, fl, Q0, T, U, signs, R, lo, hi):
+    """Positions of every group of a mechanism at the samples lo … hi − 1 (a block), through
+    the whole solution order (the tables `ops`, `fl` of `fused.tables`: per group its opcode,
+    link indices and constants), each group's loop over the block that of its own kernel
+    (`driver_positions`, `rrr_positions`, `rrp_positions`: the block stays in the CPU's cache,
+    and a loop over samples with the group's constants in registers is what the compiler
+    vectorises). ok[n]: every group assembles. U[driver, k, n]: the inputs' Taylor
+    coefficients; signs[row, n − lo]: the dyads' assembly signs; the dyads' hinge vectors go to
+    R[col …, n − lo] for the caller's vectorised arctan2."""
+    for n in range(lo, hi):
+        ok[n] = True
+    for g in range(ops.shape[0]):
+        op, i1, i2, i3, i4, row, c = (ops[g, 0], ops[g, 1], ops[g, 2], ops[g, 3], ops[g, 4],
+                                      ops[g, 5], ops[g, 6])
+        f0, f1, f2, f3, f4, f5, f6 = fl[g, 0], fl[g, 1], fl[g, 2], fl[g, 3], fl[g, 4], fl[g, 5], \
+            fl[g, 6]
+        f7, f8, f9, f10, f11 = fl[g, 7], fl[g, 8], fl[g, 9], fl[g, 10], fl[g, 11]
+        if op == DRIVER:
+            for n in range(lo, hi):
+                u = U[i3, 0, n]
+                _driver_position(Q0, T, i1, i2, f0, f1, u, f2, n)
+                if not u - u == 0.0:  # NaN or ∞
+                    ok[n] = False
+        elif op == RRR:
+            for n in range(lo, hi):
+                j = n - lo
+                gd, R[c, j], R[c + 1, j], R[c + 2, j], R[c + 3, j] = _rrr_position(
+                    Q0, T, i1, f0, f1, i2, f2, f3, i3, i4, f4, f5, f6, signs[row, j], f8, f9,
+                    f10, f11, n)
+                if not gd:
+                    ok[n] = False
+        else:
+            for n in range(lo, hi):
+                j = n - lo
+                gd, R[c, j], R[c + 1, j] = _rrp_position(
+                    Q0, T, i1, f0, f1, i2, f2, f3, f4, f5, f6, f7, signs[row, j], i3, i4, f9,
+                    f10, n)
+                if not gd:
+                    ok[n] = False
+
+
+@_loop(0)
+def fused_rates(cond, ops, fl, Q, T, U, per, L, eps, m0, unreliable, plain, weighted, err, serr,
+                E0, m, E, lo, hi):
+    """Velocities and accelerations of every group at the samples lo … hi − 1 (a block),
+    through the solution order as in `fused_positions`, with the condition numbers (cond[n]
+    raised to the groups'), the forward error bounds of `precision.ErrorBudget` (work arrays
+    m, E of the block's size; m0: the drawing's coordinates over L) and their relative values
+    (`relative_errors` with the weights `plain` into err, `weighted` into serr); E0[n]: the
+    positions' bound."""
+    for n in range(lo, hi):
+        j = n - lo
+        m[0, j], m[1, j], m[2, j] = m0, 0.0, 0.0
+        E[0, j], E[1, j], E[2, j] = 0.0, 0.0, 0.0
+        E0[n] = 1.0 / _rate_scale(U, per, n)  # 1/Ω here until the end
+    for g in range(ops.shape[0]):
+        op, i1, i2, i3, i4 = ops[g, 0], ops[g, 1], ops[g, 2], ops[g, 3], ops[g, 4]
+        f0, f1, f2, f3, f4, f5 = fl[g, 0], fl[g, 1], fl[g, 2], fl[g, 3], fl[g, 4], fl[g, 5]
+        f11, f12, f13, f14, f15, f16, f17 = fl[g, 11], fl[g, 12], fl[g, 13], fl[g, 14], \
+            fl[g, 15], fl[g, 16], fl[g, 17]
+        if op == DRIVER:
+            for n in range(lo, hi):
+                _driver_rate(Q, T, i1, i2, f0, f1, U[i3, 1, n], U[i3, 2, n], f3, L, E0[n], m, E,
+                             n - lo, eps, n)
+                if f3 > cond[n]:
+                    cond[n] = f3
+        elif op == RRR:
+            for n in range(lo, hi):
+                k = _rrr_rate(Q, T, i1, f0, f1, i2, f2, f3, i3, i4, f12, f13, f14, f15, f16, f17,
+                              unreliable, L, E0[n], m, E, n - lo, eps, n)
+                if k > cond[n]:
+                    cond[n] = k
+        else:
+            for n in range(lo, hi):
+                k = _rrp_rate(Q, T, i1, f0, f1, i2, f2, f3, f4, f5, f11, f12, f13, i3, i4,
+                              unreliable, L, E0[n], m, E, n - lo, eps, n)
+                if k > cond[n]:
+                    cond[n] = k
+    for n in range(lo, hi):
+        j = n - lo
+        err[n] = _relative_error(E, m, eps, plain, j)
+        serr[n] = _relative_error(E, m, eps, weighted, j)
+        E0[n] = E[0, j]
