@@ -122,7 +122,7 @@ class ScriptDrawer:
         for n in st.base:
             self.img((st.link, n))
         vc.b.step(self.text(st))
-        if st.aux is not None and not self.prefix.startswith("a"):  # drawn once, with the velocities
+        if st.aux is not None and self.prefix in ("v", "v.trial", "v.trial1"):  # drawn once
             Q = self.where(st.point)
             for i, ln in enumerate(st.aux.lines):
                 p, d = self.line(ln)
@@ -229,31 +229,132 @@ class TrialDrawer(ScriptDrawer):
     def partner_image(self, partner: str, point: str) -> np.ndarray:
         return self.at(partner, self.where(point))
 
+    star = "*"
+
     def show(self, key: str, st, image: np.ndarray, lab: str, lines=()) -> None:
-        self.vc.b.point(key, _pt(image), label=lab + "*", space=self.vc.space)
+        self.vc.b.point(key, _pt(image), label=lab + self.star, space=self.vc.space)
         for k in lines:
             self.vc.b.extend(k, _pt(image))
 
+    def text(self, st) -> str:
+        return self.heading + super().text(st)
+
     def run(self, links: set[str]) -> None:
+        self.heading = ""
+        if self.s.check is not None:
+            self._run_two(links)
+            return
         vc = self.vc
         t_link, t_pivot, t_ref = self.s.trial
         d_link, d_pivot, d_ref = self.s.scale_by
         true_ref = vc.image(d_link, d_ref)
-        # the trial rate: the trial crank's pin as fast as the given driver's (a readable drawing)
-        O, R = self.where(t_pivot), self.where(t_ref)
-        speed = np.linalg.norm(vc.velocity(self.where(d_ref), true_ref), axis=-1)
-        w = speed / np.linalg.norm(R - O, axis=-1)
         for st in self.s.steps:
             if st.kind == "driver":
                 vc.b.step(st.text)
-                image = vc.base(R) + vc.kv * vc.M(w[:, None] * perp(R - O))
-                self.keep(t_link, t_pivot, vc.base(O))
-                self.keep(t_link, t_ref, image)
-                self.show(f"{self.prefix}.{t_link}.{t_ref}", st, image, self.s.labels.get((t_link, t_ref), t_ref))
+                self._trial_driver(st, 1.0)
             elif st.kind == "scale":
                 self._scale(st, links, true_ref, self.img((d_link, d_ref)))
             else:
                 self._one(st)
+
+    def _trial_driver(self, st, sign: float) -> None:
+        """The trial crank's pin: as fast as the given driver's (a readable drawing), times
+        ``sign`` (the second trial turns the other way)."""
+        vc = self.vc
+        t_link, t_pivot, t_ref = self.s.trial
+        d_link, d_pivot, d_ref = self.s.scale_by
+        O, R = self.where(t_pivot), self.where(t_ref)
+        speed = np.linalg.norm(vc.velocity(self.where(d_ref), vc.image(d_link, d_ref)), axis=-1)
+        w = sign * speed / np.linalg.norm(R - O, axis=-1)
+        image = vc.base(R) + vc.kv * vc.M(w[:, None] * perp(R - O))
+        self.keep(t_link, t_pivot, vc.base(O))
+        self.keep(t_link, t_ref, image)
+        self.show(f"{self.prefix}.{t_link}.{t_ref}", st, image, self.s.labels.get((t_link, t_ref), t_ref))
+
+    def _true_driver(self) -> None:
+        d_link, d_pivot, d_ref = self.s.scale_by
+        self.keep(d_link, d_pivot, self.vc.base(self.where(d_pivot)))
+        self.keep(d_link, d_ref, self.vc.image(d_link, d_ref))
+
+    def _check(self) -> np.ndarray:
+        """The left-out link's condition (m − k)·KM at the trial images (zero when true)."""
+        cut, K, LK, M, LM = self.s.check
+        PK, PM = self.where(K), self.where(M)
+        vk = self.vc.velocity(PK, self.img((LK, K)))
+        vm = self.vc.velocity(PM, self.img((LM, M)))
+        return dot(vm - vk, PM - PK)
+
+    def _run_two(self, links: set[str]) -> None:
+        """Two trials: the script drawn for two trial rates, then every image put at the
+        point of its row where the left-out link's check holds."""
+        vc = self.vc
+        rows, checks = [], []
+        for k, sign in enumerate((1.0, -1.0)):
+            self.T, self.star = {}, "*" * (k + 1)
+            self.prefix = f"v.trial{k + 1}"
+            self.heading = ("first trial: ", "second trial: ")[k]
+            for st in self.s.steps:
+                if st.kind == "driver" and st.link == self.s.trial[0]:
+                    vc.b.step(self.heading + st.text)
+                    self._trial_driver(st, sign)
+                elif st.kind == "driver":
+                    self._true_driver()
+                elif st.kind != "check":
+                    self._one(st)
+            rows.append(self.T)
+            checks.append(self._check())
+        self.heading = ""
+        self._interpolate(links, rows, checks, lambda ln, p, x: vc.set_known(ln, self.where(p), x, p))
+
+    def _interpolate(self, links, rows, checks, keep) -> None:
+        """Similar point rows: t where the check c₁ + t·(c₂ − c₁) vanishes (a vector check by
+        least squares), and every image x = x* + t·(x** − x*)."""
+        b = self.vc.b if hasattr(self.vc, "b") else self.ac.b
+        st = self.s.steps[-1]
+        b.step(st.text)
+        c1, c2 = (np.asarray(c, float) for c in checks)
+        dc = c2 - c1
+        if c1.ndim == 2:
+            den = dot(dc, dc)
+            with np.errstate(divide="ignore", invalid="ignore"):
+                t = -dot(c1, dc) / den
+        else:
+            den = dc * dc
+            with np.errstate(divide="ignore", invalid="ignore"):
+                t = -c1 / dc
+        flat = den <= 1e-24 * np.maximum(1.0, np.max(den))
+        b.degenerate(flat & ~b.bad, "false position: the check does not change between the two trials "
+                                    "here (the rows do not cross the true locus)")
+        self.rows_t = t
+        done: set[str] = set()
+        cut = self.s.check[0] if self.s.check is not None else None
+        chain_pts = [(ln, q) for ln in links if ln in self.chain.links and ln != cut
+                     for q in self.chain.links[ln]]
+        for ln, p in dict.fromkeys(chain_pts + list(rows[0])):
+            x1, x2 = self._row_images(rows, (ln, p))
+            x = x1 + t[:, None] * (x2 - x1)
+            lab = self.s.labels.get((ln, p), p)
+            if lab not in done and lab != "o":
+                done.add(lab)
+                key = f"{self.prefix[:1]}.rows.{ln}.{p}"
+                self._row(key, x1, x2, x, lab)
+            if ln in links:
+                keep(ln, p, x)
+            if cut is not None and cut in links and (ln, p) in ((self.s.check[2], self.s.check[1]),
+                                                                (self.s.check[4], self.s.check[3])):
+                keep(cut, p, x)
+
+    def _row_images(self, rows, key):
+        out = []
+        for row in rows:
+            self.T = row
+            out.append(self.img(key))
+        return out
+
+    def _row(self, key: str, x1, x2, x, lab: str) -> None:
+        vc = self.vc
+        vc._line(key, x1, x2 - x1)
+        vc._point(key + ".pt", x, lab, lines=(key,))
 
     def _scale(self, st, links: set[str], true_ref: np.ndarray, trial_ref: np.ndarray) -> None:
         vc = self.vc

@@ -294,6 +294,10 @@ class VelocityScript:
     #: 1937 paper 7, remark: a binary link driving)
     trial: tuple[str, str, str] | None = None
     scale_by: tuple[str, str, str] | None = None
+    #: false position with two trials: the binary link (name, end K, its link there, end M, its
+    #: link there) left out of the trial chain; the trial rate is found where the trial images
+    #: of K and M again satisfy km ⟂ KM (the check, affine in the trial rate: two trials)
+    check: tuple[str, str, str, str, str] | None = None
 
     @property
     def direct(self) -> bool:
@@ -306,6 +310,14 @@ class VelocityScript:
         return not self.unreached and not self.unsupported
 
     def verdict(self) -> str:
+        if self.check is not None:
+            t, d, c = self.trial, self.scale_by, self.check
+            return (f"not directly constructible from the driver {d[0]} (Rosenauer's rule fails, and "
+                    f"no second crank's trial rate makes it direct); by false position with two trials: "
+                    f"without the binary link {c[0]} the chain is direct from {d[0]} and a trial rate of "
+                    f"{t[0]} about {upper(t[1])}; two trial rates give two rows of images, and the check "
+                    f"{lower(c[1])}{lower(c[3])} ⟂ {upper(c[1])}{upper(c[3])} fixes the point of each "
+                    "row (similar point rows)")
         if self.trial is not None:
             t, d = self.trial, self.scale_by
             return (f"not directly constructible from the driver {d[0]} (Rosenauer's rule fails); "
@@ -327,7 +339,9 @@ class VelocityScript:
     def as_dict(self) -> dict:
         return {"direct": self.direct, "verdict": self.verdict(),
                 "false_position": None if self.trial is None else
-                {"trial_driver": self.trial[0], "pivot": self.trial[1], "scaled_to": self.scale_by[0]},
+                {"trial_driver": self.trial[0], "pivot": self.trial[1], "scaled_to": self.scale_by[0],
+                 "trials": 1 if self.check is None else 2,
+                 "check_link": None if self.check is None else self.check[0]},
                 "auxiliary_points": [{"name": a.name, "link": a.link,
                                       "lines": [ln.text() for ln in a.lines]} for a in self.aux],
                 "order": list(self.order), "unreached": list(self.unreached),
@@ -751,7 +765,7 @@ def plan_velocities(chain: Chain | Mechanism) -> VelocityScript:
     if script.direct or script.unsupported or len(chain.drivers) != 1 or chain.given \
             or chain.directions or chain.drivers[0][2] is None or chain.frame is None:
         return script
-    return _false_position(chain) or script
+    return _false_position(chain) or _two_trials(chain) or script
 
 
 def _false_position(chain: Chain) -> VelocityScript | None:
@@ -785,4 +799,54 @@ def _false_position(chain: Chain) -> VelocityScript | None:
                 f"o{lower(dr)}*"))
             return replace(trial, steps=(first,) + trial.steps[1:] + (scale,),
                            trial=(link, p, ref), scale_by=driver)
+    return None
+
+
+def _two_trials(chain: Chain) -> VelocityScript | None:
+    """False position with two trials (*ähnliche Punktreihen* in their general form): where no
+    second crank's trial rate alone makes the plan direct, leave out a binary link KM and give
+    a second crank a trial rate besides the true driver. The images are then affine in the trial
+    rate, so they move on lines (similar point rows) that do not pass through o; two trials give
+    each row, and the left-out link's check km ⟂ KM picks the point of every row."""
+    from dataclasses import replace
+
+    driver = chain.drivers[0]
+    binary = [ln for ln, pts in chain.links.items() if len(set(pts)) == 2 and ln != chain.frame
+              and ln != driver[0]]
+    cranks = []
+    for p, a, b in chain.hinges:
+        if chain.frame in (a, b):
+            link = b if a == chain.frame else a
+            ref = next((q for q in chain.links[link] if q != p), None)
+            if link != driver[0] and ref is not None:
+                cranks.append((link, p, ref))
+    for cut in binary:
+        K, M = dict.fromkeys(chain.links[cut])
+        ends = []
+        for X in (K, M):
+            ends.append(next((ln for q, a, b in chain.hinges for ln in (a, b)
+                              if q == X and cut in (a, b) and ln != cut), None))
+        if None in ends or chain.frame in ends:
+            continue
+        rest = replace(chain, links={ln: p for ln, p in chain.links.items() if ln != cut},
+                       hinges=tuple(h for h in chain.hinges if cut not in h[1:]))
+        for link, p, ref in cranks:
+            if link == cut:
+                continue
+            trial = _Planner(replace(rest, drivers=(driver, (link, p, ref)))).run()
+            if not trial.direct:
+                continue
+            steps = list(trial.steps)
+            k = next(i for i, s in enumerate(steps) if s.kind == "driver" and s.link == link)
+            steps[k] = replace(steps[k], text=(
+                f"trial: {lower(ref)}* = o + ω*·{upper(p)}{upper(ref)} turned 90° (two "
+                f"arbitrary rates ω* of {link} about {upper(p)}, drawn one after the other; the "
+                f"images that follow are trial images x*, x**; the binary link {cut} is left out)"))
+            check = Step("check", cut, M, (
+                f"check {cut}: the true images satisfy {lower(K)}{lower(M)} ⟂ {upper(K)}{upper(M)}; "
+                f"on the trial rows {lower(K)}*{lower(K)}** and {lower(M)}*{lower(M)}** this holds at one "
+                f"ratio, and every image x divides x*x** in that ratio (similar point rows)"),
+                base=(K,))
+            return replace(trial, steps=tuple(steps) + (check,), trial=(link, p, ref), scale_by=driver,
+                           check=(cut, K, ends[0], M, ends[1]))
     return None
