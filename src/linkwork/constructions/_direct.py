@@ -221,10 +221,7 @@ class TrialDrawer(ScriptDrawer):
         """The trial image of the point of ``link`` at X (the link's image is similar to it)."""
         if link == self.mech.frame:
             return self.vc.base(X)
-        (X1, x1), (X2, x2) = [(self.where(p), v) for (ln, p), v in self.T.items() if ln == link][:2]
-        z = lambda a: a[:, 0] + 1j * a[:, 1]  # noqa: E731 (a similarity is complex-affine)
-        w = z(x1) + (z(x2) - z(x1)) / (z(X2) - z(X1)) * (z(X) - z(X1))
-        return np.stack([w.real, w.imag], axis=-1)
+        return _similar([(self.where(p), v) for (ln, p), v in self.T.items() if ln == link][:2], X)
 
     def partner_image(self, partner: str, point: str) -> np.ndarray:
         return self.at(partner, self.where(point))
@@ -304,7 +301,7 @@ class TrialDrawer(ScriptDrawer):
             rows.append(self.T)
             checks.append(self._check())
         self.heading = ""
-        self._interpolate(links, rows, checks, lambda ln, p, x: vc.set_known(ln, self.where(p), x, p))
+        self._interpolate(links, rows, checks, lambda ln, p, x, src: vc.set_known(ln, self.where(p), x, p))
 
     def _interpolate(self, links, rows, checks, keep) -> None:
         """Similar point rows: t where the check c₁ + t·(c₂ − c₁) vanishes (a vector check by
@@ -339,10 +336,10 @@ class TrialDrawer(ScriptDrawer):
                 key = f"{self.prefix[:1]}.rows.{ln}.{p}"
                 self._row(key, x1, x2, x, lab)
             if ln in links:
-                keep(ln, p, x)
+                keep(ln, p, x, ln)
             if cut is not None and cut in links and (ln, p) in ((self.s.check[2], self.s.check[1]),
                                                                 (self.s.check[4], self.s.check[3])):
-                keep(cut, p, x)
+                keep(cut, p, x, ln)  # the left-out link takes its ends' accelerations
 
     def _row_images(self, rows, key):
         out = []
@@ -539,8 +536,124 @@ def draw_group_acceleration(ac, links: tuple[str, ...], joints: tuple[str, ...],
                          "linkage), which this construction does not draw")
     script = plan_velocities(chain.restricted(solved | set(links), solved))
     if not script.complete:
-        raise InputError(f"the acceleration plan of the group {', '.join(links)}: its velocity plan "
-                         "needs false position (similar point rows), and the acceleration plan of such "
-                         "a group is not drawn (its normal accelerations do not scale with one trial)")
+        full = plan_velocities(chain)
+        if full.trial is not None and full.complete:
+            AccelerationTrialDrawer(ac, full, {ac.mech.frame}).run(set(links))
+            return full
+        raise InputError(f"the acceleration plan of the group {', '.join(links)}: {script.verdict()}")
     AccelerationDrawer(ac, script, solved).run(set(links))
     return script
+
+
+class AccelerationTrialDrawer(AccelerationDrawer):
+    """False position on the plan of relative normal accelerations (paper 4 with the classical
+    similar point rows): the velocity plan is known, so every ω and hence every relative normal
+    and Coriolis term is known, and the accelerations are affine in the trial crank's angular
+    acceleration α*. The script is drawn for two trial values; the ends of the accelerations
+    then lie on rows x*x** (which, unlike the velocities' rows, do not pass through o'), and the
+    check — the given driver's acceleration (one-trial velocity scripts) or the left-out link's
+    km ⟂ KM — picks the point of every row."""
+
+    def __init__(self, ac, script: VelocityScript, solved: set[str]) -> None:
+        super().__init__(ac, script, solved)
+        self.star, self.heading = "*", ""
+
+    # the trial ends live only in self.E until the rows are solved
+    def keep(self, ln: str, p: str, image: np.ndarray) -> None:
+        self.E.setdefault((ln, p), image)
+
+    def text(self, st) -> str:
+        return self.heading + super().text(st)
+
+    def partner_image(self, partner: str, point: str) -> np.ndarray:
+        # the ends of a link's accelerations form a figure similar to the link (turned 90°,
+        # scaled by α): found from two ends already drawn
+        own = [(self.where(p), v) for (ln, p), v in self.E.items() if ln == partner][:2]
+        return _similar(own, self.where(point))
+
+    def show(self, key: str, st, image: np.ndarray, lab: str, lines=()) -> None:
+        b = self.ac.b
+        b.point(key, _pt(image), label=self.ac.lbl(st.point) + self.star, space="acceleration")
+        for k in lines:
+            b.extend(k, _pt(image))
+
+    def _trial_driver(self, sign: float) -> None:
+        t_link, t_pivot, t_ref = self.s.trial
+        O, R = self.where(t_pivot), self.where(t_ref)
+        w2 = self.w2(t_link)
+        # the trial rates: of the order of the crank's ω² (any two distinct values would do)
+        d_link = self.s.scale_by[0]
+        size = w2[:, 0] + abs(self.ac.measured_alpha(d_link)) + np.where(w2[:, 0] == 0, 1.0, 0.0)
+        a_ref = w2 * (O - R) + (sign * size)[:, None] * perp(R - O)
+        self.keep(t_link, t_pivot, self.normal(t_link, O))
+        end = a_ref + self.normal(t_link, R)
+        self.keep(t_link, t_ref, end)
+        b = self.ac.b
+        b.point(f"{self.prefix}.{t_link}.{t_ref}", _pt(end), label=self.ac.lbl(t_ref) + self.star,
+                space="acceleration")
+
+    def _true_end(self) -> np.ndarray:
+        d_link, d_pivot, d_ref = self.s.scale_by
+        R = self.where(d_ref)
+        return self.ac.image(d_link, d_ref, R) + self.normal(d_link, R)
+
+    def _check(self) -> np.ndarray:
+        if self.s.check is None:  # the given driver's end
+            d_link, _, d_ref = self.s.scale_by
+            return self.img((d_link, d_ref)) - self._true_end()
+        cut, K, LK, M, LM = self.s.check
+        PK, PM = self.where(K), self.where(M)
+        ek = self.img((LK, K)) + self.transfer(LK, cut, K)
+        em = self.img((LM, M)) + self.transfer(LM, cut, M)
+        return dot(em - ek, PM - PK)
+
+    def run(self, links: set[str]) -> None:
+        ac = self.ac
+        t_link = self.s.trial[0]
+        rows, checks = [], []
+        for k, sign in enumerate((1.0, -1.0)):
+            self.E, self.star = {}, "*" * (k + 1)
+            self.prefix = f"a.trial{k + 1}"
+            self.heading = ("first trial (accelerations): ", "second trial (accelerations): ")[k]
+            for st in self.s.steps:
+                if st.kind == "driver" and st.link == t_link:
+                    ac.b.step(self.heading + "an arbitrary angular acceleration α* of the trial crank "
+                              f"{t_link}: " + st.text)
+                    self._trial_driver(sign)
+                elif st.kind == "driver":
+                    d_link, d_pivot, d_ref = self.s.scale_by
+                    self.keep(d_link, d_pivot, self.normal(d_link, self.where(d_pivot)))
+                    self.keep(d_link, d_ref, self._true_end())
+                elif st.kind not in ("check", "scale"):
+                    self._one(st)
+            rows.append(self.E)
+            checks.append(self._check())
+        self.heading, self.star = "", ""
+        self.prefix = "a"
+
+        def keep(ln, p, end, src):
+            if (ln, p) not in ac.images:
+                ac.set_known(ln, self.where(p), end - self.normal(src, self.where(p)), p)
+        TrialDrawer._interpolate(self, links, rows, checks, keep)
+
+    def _row_images(self, rows, key):
+        out = []
+        for row in rows:
+            self.E = row
+            out.append(self.img(key))
+        return out
+
+    def _row(self, key: str, x1, x2, x, lab: str) -> None:
+        ac = self.ac
+        ac._line(key, x1, x2 - x1)
+        ac.b.point(key + ".pt", _pt(x), label=None, space="acceleration")
+        ac.b.extend(key, _pt(x))
+
+
+def _similar(own, X: np.ndarray) -> np.ndarray:
+    """The point of a figure similar to a link at the link's point X, from two pairs
+    (link point, figure point): a similarity is complex-affine."""
+    (X1, x1), (X2, x2) = own
+    z = lambda a: a[:, 0] + 1j * a[:, 1]  # noqa: E731
+    w = z(x1) + (z(x2) - z(x1)) / (z(X2) - z(X1)) * (z(X) - z(X1))
+    return np.stack([w.real, w.imag], axis=-1)

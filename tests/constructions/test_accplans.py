@@ -1,0 +1,94 @@
+"""False position with two trials, accelerations after false position and across cam and
+rolling contacts, the chained plan of relative normal accelerations and the papers' special
+drawings (Rosenauer 1937, papers 3, 4, 5, 8; digest 000 §2.5–2.9, §5–7, §10).
+
+Every constructed velocity and acceleration is compared with the engine (the solver's linear
+solves on the constraint Jacobian, an independent method) to 1e-9 relative by
+``Construction.check``; the stated properties (rows, transfer rule, parallelograms, check
+lines) are checked here against the engine's values, never against the construction's own.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import linkwork
+from linkwork.constructions import acceleration_plan, rotated_velocities, velocity_plan
+from linkwork.kinematics import Status, solve
+from linkwork.topology.constructibility import plan_velocities
+
+DATA = Path(__file__).parent / "data"
+
+
+def load(name: str):
+    return linkwork.load(name if name.startswith("library:") else DATA / f"{name}.toml")
+
+
+def positions(mech, spread=0.15):
+    x0 = mech.driver_input_at_design(mech.drivers[0])
+    sol = solve(mech, x0 + np.linspace(-spread, spread, 9))
+    ok = np.asarray(sol.status) == Status.OK
+    assert ok.sum() >= 5
+    return solve(mech, np.asarray(sol.inputs).reshape(len(sol), -1)[ok, 0])
+
+
+# ------------------------------------------------------------------ false position, two trials
+def test_dreispann_on_jkb_needs_two_trials():
+    """Burmester's Dreispann standing on the ternary link JKB and driven by the binary link HJ:
+    Rosenauer's rule fails, and a trial rate of the other cranks (FK, DB) alone does not make it
+    direct either (paper 7's remark is not enough). Leaving out the binary link AC and adding a
+    trial crank makes it direct; the check ac ⟂ AC closes it (digest 000 §2.9)."""
+    s = plan_velocities(load("dreispann-on-jkb"))
+    assert not s.direct and s.complete
+    assert s.check is not None and s.check[0] == "ac"
+    assert s.scale_by[0] == "hj" and s.trial[0] in ("fk", "db")
+    assert s.steps[-1].kind == "check"
+    assert "two trials" in s.verdict()
+    assert s.as_dict()["false_position"]["trials"] == 2
+    # every link but the left-out one is reached by the trial script
+    assert {st.link for st in s.steps} >= {"agh", "efg", "cde"}
+
+
+@pytest.mark.parametrize("build", [velocity_plan, rotated_velocities, acceleration_plan],
+                         ids=["plan", "rotated", "acceleration"])
+def test_two_trial_false_position_matches_the_engine(build):
+    mech = load("dreispann-on-jkb")
+    con = build(mech, positions(mech))
+    con.check()
+    assert con.max_error() <= 1e-9 and not con.degenerate.any()
+    # both trial rows are drawn, and the rows' points are the results
+    keys = set(con.elements)
+    assert any(k.startswith("v.trial2.") for k in keys)
+    assert any(k.startswith("v.rows.") for k in keys)
+    texts = [st.text for st in con.steps]
+    assert any(t.startswith("first trial") for t in texts)
+    assert any(t.startswith("second trial") for t in texts)
+
+
+def test_similar_point_rows_are_straight():
+    """The classical statement behind false position: the images of one point for different
+    trial rates lie on one line (the images are affine in the trial rate). Each drawn result
+    (equal to the engine's velocity, by `check`) lies on the line of its two trial images."""
+    mech = load("dreispann-on-jkb")
+    con = velocity_plan(mech, positions(mech))
+    con.check()
+    rows = [k for k in con.elements if k.startswith("v.rows.") and not k.endswith(".pt")]
+    assert len(rows) == 7  # A, C, D, E, F, G, H: the moving joints
+    for k in rows:
+        tail = k[len("v.rows."):]
+        trials = []
+        for n in (1, 2):
+            key = next((x for x in (f"v.trial{n}.direct.{tail}", f"v.trial{n}.{tail}") if x in con.elements),
+                       None)
+            if key is not None:
+                trials.append(con.elements[key].obj.xy)
+        if tail.endswith(".H"):  # the given driver's pin: the same in both trials, not redrawn
+            assert not trials
+            continue
+        x = con.elements[k + ".pt"].obj.xy
+        d1, d2 = trials[1] - trials[0], x - trials[0]
+        cross = d1[:, 0] * d2[:, 1] - d1[:, 1] * d2[:, 0]
+        assert np.all(abs(cross) <= 1e-9 * np.linalg.norm(d1, axis=1) * (np.linalg.norm(d2, axis=1) + 1)), k
