@@ -10,6 +10,7 @@ lines) are checked here against the engine's values, never against the construct
 
 from __future__ import annotations
 
+import re
 from pathlib import Path
 
 import numpy as np
@@ -77,18 +78,18 @@ def test_similar_point_rows_are_straight():
     con.check()
     rows = [k for k in con.elements if k.startswith("v.rows.") and not k.endswith(".pt")]
     assert len(rows) == 7  # A, C, D, E, F, G, H: the moving joints
+    pat = re.compile(r"^v\.trial(\d)\.(?:direct\.)?[^.]+\.([^.]+)$")
+    trial = {}
+    for key, e in con.elements.items():
+        m = pat.match(key)
+        if m:
+            trial[(int(m.group(1)), m.group(2))] = e.obj.xy
     for k in rows:
-        tail = k[len("v.rows."):]
-        trials = []
-        for n in (1, 2):
-            key = next((x for x in (f"v.trial{n}.direct.{tail}", f"v.trial{n}.{tail}") if x in con.elements),
-                       None)
-            if key is not None:
-                trials.append(con.elements[key].obj.xy)
-        if tail.endswith(".H"):  # the given driver's pin: the same in both trials, not redrawn
-            assert not trials
-            continue
+        P = k.rsplit(".", 1)[1]
         x = con.elements[k + ".pt"].obj.xy
-        d1, d2 = trials[1] - trials[0], x - trials[0]
+        if P == "H":  # the given driver's pin: the same in both trials, not redrawn
+            assert (1, P) not in trial
+            continue
+        d1, d2 = trial[(2, P)] - trial[(1, P)], x - trial[(1, P)]
         cross = d1[:, 0] * d2[:, 1] - d1[:, 1] * d2[:, 0]
         assert np.all(abs(cross) <= 1e-9 * np.linalg.norm(d1, axis=1) * (np.linalg.norm(d2, axis=1) + 1)), k
