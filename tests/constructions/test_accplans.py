@@ -93,3 +93,44 @@ def test_similar_point_rows_are_straight():
         d1, d2 = trial[(2, P)] - trial[(1, P)], x - trial[(1, P)]
         cross = d1[:, 0] * d2[:, 1] - d1[:, 1] * d2[:, 0]
         assert np.all(abs(cross) <= 1e-9 * np.linalg.norm(d1, axis=1) * (np.linalg.norm(d2, axis=1) + 1)), k
+
+
+# ------------------------------------------------------------------ cam and rolling contacts
+CONTACTS = ["rolling-lever-valve-gear", "radial-roller-cam", "offset-roller-cam", "flat-faced-cam",
+            "oscillating-roller-cam", "sulzer-valve-gear", "elliptical-gears", "designed-cam-knife",
+            "poeschl-arc-cam", "proell-schwabe-valve-gear"]
+
+
+@pytest.mark.parametrize("name", CONTACTS)
+def test_accelerations_across_cam_and_rolling_contacts(name):
+    """A cam contact crossed by its equivalent link C₁C₂ between the elements' centres of
+    curvature (Rosenauer 1937 paper 8; §121), in the limits a slider (a flat face, a straight
+    flank) and a point (a knife edge); a rolling contact by the acceleration of the relative
+    pole's point ω_rel²·ρ₁ρ₂/(ρ₁ + ρ₂) along the normal (paper 8's j_p = ω·V_p)."""
+    mech = linkwork.load(f"library:{name}")
+    x0 = mech.driver_input_at_design(mech.drivers[0])
+    sol = solve(mech, x0 + np.array([0.05, 0.4, 1.1, 2.0]))
+    ok = np.asarray(sol.status) == Status.OK
+    con = acceleration_plan(mech, sol)
+    con.check()
+    assert con.max_error() <= 1e-9
+    # only dead centres of the mechanism itself are left out
+    assert not (con.degenerate & ok & ~_dead_centres(con)).any()
+    # the contact's own points were constructed on both sides and checked
+    assert any(k.startswith("a_") and "@" in k for k in con.results)
+
+
+def _dead_centres(con) -> np.ndarray:
+    mask = np.zeros(len(con.degenerate), bool)
+    for note in con.notes:
+        if "dead centre or change point" in note.message:
+            mask |= note.mask
+    return mask
+
+
+def test_roller_centre_lies_on_the_common_normal():
+    """The normal of a roller passes through its centre (a fact of every position): the
+    translating follower's images are copied, never cut from two lines that coincide."""
+    s = plan_velocities(linkwork.load("library:radial-roller-cam"))
+    assert all(st.kind != "meet" for st in s.steps if st.link == "follower" and st.point in ("K", "F", "C")
+               and st.aux is None)

@@ -314,12 +314,6 @@ def test_cam_contact_velocities_through_the_common_normal(name, build):
     assert plan_velocities(mech).direct
 
 
-def test_cam_contact_acceleration_is_refused_with_its_reason():
-    mech = linkwork.load("library:radial-roller-cam")
-    with pytest.raises(linkwork.LinkworkError, match="needs the curvature"):
-        acceleration_plan(mech, [0.3])
-
-
 def test_roemer_coupler_pole_lies_on_the_normal_to_the_slide_at_b():
     """Paper 1, Construction I, step 3: the pole P of the coupler ABC lies on BN, the line through B
     perpendicular to the slide of BL. The pole is read off the drawn images of Q and B (where the

@@ -93,6 +93,9 @@ class Chain:
     #: curved slots (pair, guide link, pin link, pin point, centre point of the guide link): the
     #: relative velocity is tangent to the arc, so both links project equally on its radius
     arcs: tuple[tuple[str, str, str, str, str], ...] = ()  # the link whose images are the pole o (None: a free chain)
+    #: points that lie on a cam contact's common normal at every position (pair, point): a
+    #: roller's centre (the normal of a circle passes through its centre)
+    on_normals: tuple[tuple[str, str], ...] = ()
 
     def restricted(self, links, known) -> "Chain":
         """The part of the chain on ``links`` with the links ``known`` given (a group of the
@@ -106,7 +109,8 @@ class Chain:
                      known=tuple(known), collinear=self.collinear, frame=self.frame,
                      contacts=tuple(c for c in self.contacts if {c[1], c[2]} <= keep),
                      rolls=tuple(c for c in self.rolls if {c[1], c[2]} <= keep),
-                     arcs=tuple(c for c in self.arcs if {c[1], c[2]} <= keep))
+                     arcs=tuple(c for c in self.arcs if {c[1], c[2]} <= keep),
+                     on_normals=self.on_normals)
 
     @classmethod
     def free(cls, links: Mapping[str, str | tuple[str, ...]], *, given: tuple[str, ...] = (),
@@ -128,6 +132,7 @@ class Chain:
     def from_mechanism(cls, mech: Mechanism) -> "Chain":
         links = {ln.name: tuple(ln.points) for ln in mech.links}
         hinges, slides, slots, meshes, unsupported, contacts, rolls, arcs = [], [], [], [], [], [], [], []
+        on_normals = []
         for j in mech.joints:
             if isinstance(j, Revolute):
                 hinges.append((j.point, *j.links))
@@ -137,6 +142,8 @@ class Chain:
                 slots.append((j.name, j.links[0], j.links[1], j.point))
             elif isinstance(j, CamContact):
                 contacts.append((j.name, *j.links, contact_point_name(mech, j)))
+                if j.follower == "roller" and j.point:
+                    on_normals.append((j.name, j.point))
             elif isinstance(j, CircularSlot):
                 arcs.append((j.name, *j.links, j.point, j.center))
             elif isinstance(j, RollingContact):
@@ -174,7 +181,8 @@ class Chain:
         return cls(links, tuple(hinges), tuple(slides), tuple(slots), tuple(meshes),
                    known=(mech.frame,), drivers=tuple(drivers),
                    collinear=collinear, unsupported=tuple(unsupported),
-                   frame=mech.frame, contacts=tuple(contacts), rolls=tuple(rolls), arcs=tuple(arcs))
+                   frame=mech.frame, contacts=tuple(contacts), rolls=tuple(rolls), arcs=tuple(arcs),
+                   on_normals=tuple(on_normals))
 
 
 def contact_point_name(mech: Mechanism, pair) -> str:
@@ -414,8 +422,10 @@ class _Lines:
             self.lines.append((MechLine("join", (pts[0], pts[1])), set(s)))
 
     def join(self, p: str, q: str) -> MechLine:
+        # every line of the drawing is straight: a guide's or a contact's normal through two
+        # known points of it is that line
         for line, members in self.lines:
-            if line.kind == "join" and p in members and q in members:
+            if line.kind != "direction" and p in members and q in members:
                 return line
         line = MechLine("join", (p, q))
         self.lines.append((line, {p, q}))
@@ -447,6 +457,10 @@ class _Planner:
         self.hinges = chain.hinges + tuple((t, g1, g2) for _, g1, g2, t, _, _ in chain.meshes) + \
             tuple((k, a, b) for _, a, b, k in chain.rolls)
         self.lines = _Lines(chain.collinear)
+        for pair, point in chain.on_normals:
+            for name, a, b, k in chain.contacts:
+                if name == pair:
+                    self.lines.members(self.lines.special("contact", k, pair)).add(point)
         self.steps: list[Step] = []
         self.aux: list[AuxPoint] = []
         self.order: list[str] = []
@@ -549,6 +563,13 @@ class _Planner:
         r = self._rfind(ln)
         partner = next((k for k in self.known if self._rfind(k) == r and k != ln
                         and (k in self.c.known or len(self.kpoints[k]) >= 2)), None)
+        if kp and partner is not None and partner in self.c.known:
+            # a link translating with the frame: every image is the known one (no intersection
+            # that the drawing's position could make parallel)
+            self.steps.append(Step("copy", ln, p, f"{self.label(ln, p)} = {self.label(ln, kp[0])} "
+                                   f"({ln} translates with the frame)", base=(kp[0],), partner=partner))
+            self.mark(ln, p)
+            return
         if len(kp) >= 2:
             for i, x in enumerate(kp):
                 for y in kp[i + 1:]:
