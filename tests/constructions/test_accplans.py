@@ -134,3 +134,33 @@ def test_roller_centre_lies_on_the_common_normal():
     s = plan_velocities(linkwork.load("library:radial-roller-cam"))
     assert all(st.kind != "meet" for st in s.steps if st.link == "follower" and st.point in ("K", "F", "C")
                and st.aux is None)
+
+
+# ------------------------------------------------------------------ the chained plan
+def test_chained_plan_has_two_images_where_loops_do_not_close():
+    """Paper 4, Ex. V (the closed 8-link chain): the plan of relative normal accelerations is
+    laid off link after link; it is homothetic to each link with factor ω² (engine ω), and at
+    the hinges that close a loop it does not close: two images j, j′. The triad group (ABC with
+    KA, BL, CM: 4 links, 6 hinges) closes 6 − 4 = 2 loops, so two hinges have two images. The
+    acceleration laid off at either image is the engine's (the transfer rule)."""
+    mech = load("closed-8-link")
+    sol = positions(mech)
+    con = acceleration_plan(mech, sol)
+    con.check()
+    el = con.elements
+    twice = sorted({k.split(".")[2] for k in el if k.startswith("a.twice.")})
+    assert len(twice) == 2 and set(twice) <= {"A", "B", "C"}
+    for P in twice:
+        x1, x2 = el[f"a.twice.{P}.1"].obj.xy, el[f"a.twice.{P}.2"].obj.xy
+        assert np.all(np.linalg.norm(x2 - x1, axis=1) > 1e-6 * np.linalg.norm(x1, axis=1).max())
+        aP = sol.point(P).acceleration
+        scale = np.linalg.norm(aP, axis=1).max()
+        for k in ("a1", "a2"):
+            arrow = el[f"a.twice.{P}.{k}"].obj
+            assert np.allclose(arrow.vector, aP, atol=1e-9 * scale)
+    # the plan figure of ABC: homothetic to the link with factor ω²_ABC
+    w2 = sol.link("abc").omega ** 2
+    pts = {p: el[f"a.direct.abc.{p}.plan"].obj.xy for p in ("A", "B", "C")}
+    for X, Y in (("A", "B"), ("B", "C"), ("C", "A")):
+        d = sol.point(Y).position - sol.point(X).position
+        assert np.allclose(pts[Y] - pts[X], w2[:, None] * d, atol=1e-9 * np.abs(w2[:, None] * d).max())
