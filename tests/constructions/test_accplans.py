@@ -17,7 +17,7 @@ import numpy as np
 import pytest
 
 import linkwork
-from linkwork.constructions import acceleration_plan, rotated_velocities, velocity_plan
+from linkwork.constructions import acceleration_plan, rotated_velocities, slide_pairs, velocity_plan
 from linkwork.kinematics import Status, solve
 from linkwork.topology.constructibility import plan_velocities
 
@@ -164,3 +164,53 @@ def test_chained_plan_has_two_images_where_loops_do_not_close():
     for X, Y in (("A", "B"), ("B", "C"), ("C", "A")):
         d = sol.point(Y).position - sol.point(X).position
         assert np.allclose(pts[Y] - pts[X], w2[:, None] * d, atol=1e-9 * np.abs(w2[:, None] * d).max())
+
+
+# ------------------------------------------------------------------ slides in moving planes
+SLIDES = ["oscillating-crank-slotted-lever", "rotating-crank-slotted-lever", "rosenauer-shaping-machine",
+          "whitworth-quick-return", "poeschl-quick-return-shaper"]
+
+
+def _slide_sol(name):
+    mech = linkwork.load(f"library:{name}")
+    x0 = mech.driver_input_at_design(mech.drivers[0])
+    return mech, solve(mech, x0 + np.array([0.05, 0.4, 1.1, 2.0, -1.0]))
+
+
+@pytest.mark.parametrize("name", SLIDES)
+def test_slide_pair_drawings_match_the_engine(name):
+    """Papers 3 and 5 (M7 oscillating and M8 rotating crank-slotted lever, M9 the shaping
+    machine): the parallelogram's coincident-point velocities and sliding velocity, the
+    half-Coriolis point L (2·AL = j_γ), the double parallelogram's accelerations and sliding
+    acceleration, all against the engine; the check lines (poles on a normal to the slide,
+    ob ⟂ BP, oa′ ⟂ AP) and the perpendicular sides as vanishing cosines."""
+    mech, sol = _slide_sol(name)
+    con = slide_pairs(mech, sol)
+    con.check()
+    assert con.max_error() <= 1e-9 and not con.degenerate.any()
+    kinds = {k.split("_")[0] for k in con.results}
+    assert {"vrel", "cor", "arel", "check"} <= kinds
+    assert sum(k.startswith("check_") for k in con.results) >= 5
+    # both figures are parallelograms: opposite sides equal
+    for key in [k for k in con.elements if k.endswith((".v.parallelogram", ".a.basic", ".a.second"))]:
+        v = [p.xy for p in con.elements[key].obj.vertices]
+        side = np.linalg.norm(v[1] - v[0], axis=1).max() + np.linalg.norm(v[2] - v[1], axis=1).max()
+        assert np.allclose(v[1] - v[0], v[2] - v[3], atol=1e-9 * side), key
+
+
+def test_slotted_lever_parallelograms_are_rectangles():
+    """Paper 3 Ex. 1 / paper 5 Ex. I: the slot passes through the lever's pivot B, so A and B lie
+    on a line parallel to the slide: all three figures are rectangles (special case I)."""
+    mech, sol = _slide_sol("oscillating-crank-slotted-lever")
+    con = slide_pairs(mech, sol)
+    con.check()
+    for key in [k for k in con.elements if k.endswith((".v.parallelogram", ".a.basic", ".a.second"))]:
+        v = [p.xy for p in con.elements[key].obj.vertices]
+        d1, d2 = v[1] - v[0], v[3] - v[0]
+        cos = np.sum(d1 * d2, axis=1) / (np.linalg.norm(d1, axis=1) * np.linalg.norm(d2, axis=1))
+        assert np.all(abs(cos) <= 1e-9), key
+
+
+def test_slide_pairs_needs_a_slide_between_moving_links():
+    with pytest.raises(linkwork.LinkworkError, match="no sliding pair between two moving links"):
+        slide_pairs(linkwork.load("library:slider-crank-centric"), [0.3])
