@@ -80,3 +80,130 @@ def test_bad_input_is_refused():
         differentiate(x[::-1], x, l_t=1, l_x=1, H=1)
     with pytest.raises(InputError, match="leave the given line"):
         integrate(x, x, [-2, 1], l_x=1, l_y=1, H=1)
+
+
+# ---------------------------------------------------------------------------- ch. III: plans
+from linkwork.constructions.motion_calculus import path_jerk, plan, plan_scale, subnormal  # noqa: E402
+
+
+def _angle(a, b):
+    """Angle between the rows of a and b (radians)."""
+    return np.abs(np.arctan2(a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0], np.sum(a * b, 1)))
+
+
+def test_plan_of_the_crank_pin_is_a_circle():
+    # a crank pin r = 0.3 m at ω = 2π/s: v-plan a circle rω about P, its tangent at V is the
+    # centripetal acceleration −ω² r (a quarter turn ahead of v), read at |a| = rω²
+    r, w = 0.3, 2 * PI
+    t = np.linspace(0.0, 1.0, 73)
+    v = r * w * np.stack([-np.sin(w * t), np.cos(w * t)], 1)
+    p = plan(t, v, scale=plan_scale(v))
+    assert p.scale == 0.5  # 1.885 m/s on at most 5 cm: the round scale 0.5 m/s per cm
+    np.testing.assert_allclose(np.linalg.norm(p.W, axis=1), r * w / 0.5, rtol=1e-12)
+    a = -w * w * r * np.stack([np.cos(w * t), np.sin(w * t)], 1)
+    inner = slice(1, -1)
+    assert np.max(_angle(p.tangent()[inner], a[inner])) < 1e-12  # a circle's tangent is exact
+    np.testing.assert_allclose(p.rate()[inner], a[inner], rtol=0, atol=2e-3 * r * w * w)
+
+
+MECHANISMS = [("crank-rocker", "C"), ("slider-crank-offset", "B"), ("jansen-linkage", None),
+              ("watt-i-six-bar", None), ("double-crank", None)]
+
+
+@pytest.mark.parametrize("name,point", MECHANISMS)
+def test_plans_tangents_are_acceleration_and_jerk(name, point):
+    # any point of any mechanism: the v-plan's tangent at V is the engine's acceleration, the
+    # b-plan's the engine's jerk; and those are the finite differences of the engine's velocities
+    # and accelerations (an independent check of the identity the plan draws)
+    import linkwork
+    mech = linkwork.load(f"library:{name}")
+    point = point or list(mech.points)[-1]
+    t = np.linspace(0.0, 0.2, 201)  # a fifth of a turn at the library's speeds, fine steps
+    sol = linkwork.solve(mech, times=t, order=3)
+    assert np.all(sol.status != 2)
+    m = sol.point(point)
+    vp = plan(t, m.velocity, scale=plan_scale(m.velocity))
+    bp = plan(t, m.acceleration, scale=plan_scale(m.acceleration))
+    inner = slice(1, -1)
+    big_a = np.linalg.norm(m.acceleration, axis=1) > 1e-3 * np.max(np.linalg.norm(m.acceleration, axis=1))
+    big_j = np.linalg.norm(m.jerk, axis=1) > 1e-3 * np.max(np.linalg.norm(m.jerk, axis=1))
+    ok_a, ok_j = big_a.copy(), big_j.copy()
+    ok_a[[0, -1]] = ok_j[[0, -1]] = False
+    assert np.max(_angle(vp.tangent()[ok_a], m.acceleration[ok_a])) < 1e-2
+    assert np.max(_angle(bp.tangent()[ok_j], m.jerk[ok_j])) < 1e-2
+    amax, jmax = np.max(np.abs(m.acceleration)), np.max(np.abs(m.jerk))
+    np.testing.assert_allclose(vp.rate()[inner], m.acceleration[inner], atol=1e-3 * amax)
+    np.testing.assert_allclose(bp.rate()[inner], m.jerk[inner], atol=1e-3 * jmax)
+    # the engine against finite differences of its own positions (second method: positions only)
+    h = 1e-4
+    for tk in (0.05, 0.13):
+        P = np.array([linkwork.solve(mech, times=[tk + d * h], order=1).point(point).position[0]
+                      for d in (-2, -1, 0, 1, 2)])
+        fd_a = (P[3] - 2 * P[2] + P[1]) / h ** 2
+        fd_j = (P[4] - 2 * P[3] + 2 * P[1] - P[0]) / (2 * h ** 3)
+        k = int(round(tk / (t[1] - t[0])))
+        np.testing.assert_allclose(m.acceleration[k], fd_a, atol=1e-4 * amax)
+        np.testing.assert_allclose(m.jerk[k], fd_j, atol=2e-3 * jmax)
+
+
+def test_path_jerk_on_a_circle_and_a_line():
+    # uniform circular motion: the jerk vector is −ω² v but s''' = 0
+    r, w = 2.0, 3.0
+    t = np.linspace(0, 1, 11)
+    e = np.stack([-np.sin(w * t), np.cos(w * t)], 1)
+    pos_v, acc = r * w * e, -r * w * w * np.stack([np.cos(w * t), np.sin(w * t)], 1)
+    np.testing.assert_allclose(path_jerk(pos_v, acc, -w * w * pos_v, e), 0.0, atol=1e-12)
+    # a spiral-free check: s = t⁴ along a fixed line → s''' = 24 t
+    d = np.array([0.6, 0.8])
+    tt = np.linspace(0.1, 1, 5)
+    got = path_jerk((4 * tt ** 3)[:, None] * d, (12 * tt ** 2)[:, None] * d, (24 * tt)[:, None] * d,
+                    np.tile(d, (5, 1)))
+    np.testing.assert_allclose(got, 24 * tt, rtol=1e-14)
+
+
+def test_path_jerk_is_the_third_derivative_of_arc_length():
+    # a point on an ellipse x = 3 cos t², y = sin t²: s(t) by quadrature, s''' by differences
+    from scipy.integrate import quad
+    def r(t, k=0):
+        u = t * t
+        du = [u, 2 * t, 2.0, 0.0][k] if k else u
+        c, s_ = np.cos(u), np.sin(u)
+        if k == 0:
+            return np.array([3 * c, s_])
+        d1 = np.array([-3 * s_, c])
+        d2 = np.array([-3 * c, -s_])
+        d3 = np.array([3 * s_, -c])
+        up, upp = 2 * t, 2.0
+        if k == 1:
+            return d1 * up
+        if k == 2:
+            return d2 * up ** 2 + d1 * upp
+        return d3 * up ** 3 + 3 * d2 * up * upp
+    speed = lambda t: np.linalg.norm(r(t, 1))
+    t0 = 0.9
+    v, a, j = r(t0, 1), r(t0, 2), r(t0, 3)
+    got = path_jerk(v[None], a[None], j[None], (v / np.linalg.norm(v))[None])[0]
+    h = 1e-3
+    # s''' = d²|v|/dt² by central differences of the speed (the quadrature's constant drops out)
+    want = (speed(t0 + h) - 2 * speed(t0) + speed(t0 - h)) / h ** 2
+    assert quad(speed, 0, t0)[0] > 0
+    assert got == pytest.approx(want, rel=1e-5)
+
+
+def test_subnormal_of_harmonic_motion():
+    # x = a sin ωt: v² = ω²(a² − x²), so v dv/dx = −ω² x, the acceleration (Pöschl eq. 29)
+    a, w = 10.0, PI
+    x = np.linspace(-9.5, 9.5, 381)
+    v = w * np.sqrt(a * a - x * x)
+    for k in (40, 190, 300):
+        sn = subnormal(x, v, k, l_s=2.5, l_v=2 * PI)
+        assert sn.l_a == pytest.approx((2 * PI) ** 2 / 2.5)
+        # the tangent through three drawn points is off by O(h²) on the ellipse v–s line
+        assert sn.acceleration == pytest.approx(-w * w * x[k], rel=5e-5, abs=1e-9)
+    with pytest.raises(InputError, match="inner point"):
+        subnormal(x, v, 0, l_s=1, l_v=1)
+
+
+def test_plan_refuses_gaps():
+    with pytest.raises(InputError, match="not all finite"):
+        plan(np.arange(3.0), np.array([[0, 1], [np.nan, 1], [1, 1.0]]), scale=1)
