@@ -207,3 +207,101 @@ def test_subnormal_of_harmonic_motion():
 def test_plan_refuses_gaps():
     with pytest.raises(InputError, match="not all finite"):
         plan(np.arange(3.0), np.array([[0, 1], [np.nan, 1], [1, 1.0]]), scale=1)
+
+
+# ---------------------------------------------------------------------------- the seeds' examples
+def _slider_crank(n: float, r: float = 50.0):
+    import linkwork
+    from linkwork.io.files import load_text
+    L = n * r
+    return load_text(f"""
+name = "slider-crank l/r = {n}"
+units = {{ length = "mm" }}
+[points]
+O = [0, 0]
+A = [0, {r}]
+B = [{float(np.sqrt(L * L - r * r))!r}, 0]
+[links]
+frame = ["O"]
+crank = ["O", "A"]
+rod = ["A", "B"]
+block = ["B"]
+[joints]
+O = {{ type = "revolute", links = ["frame", "crank"] }}
+A = {{ type = "revolute", links = ["crank", "rod"] }}
+B = {{ type = "revolute", links = ["rod", "block"] }}
+guide = {{ type = "prismatic", links = ["frame", "block"], axis = [1, 0], point = "B" }}
+[driver]
+joint = "O"
+speed = "1 rad/s"
+"""), linkwork
+
+
+def _piston_stroke(mech, linkwork, phi_deg):
+    # the outward stroke from the outer dead centre: s = −x grows while the crank turns 0 → 180°
+    sol = linkwork.solve(mech, np.radians(phi_deg))
+    m = sol.point("B")
+    return -m.position[:, 0], -m.velocity[:, 0]
+
+
+@pytest.mark.parametrize("n,printed", [(2, (67, 42)), (3, (73, 11)), (4, (76, 43)), (5, (79, 7)),
+                                       (6, (80, 48)), (7, (82, 2)), (8, (82, 59)), (9, (83, 44)),
+                                       (10, (84, 20))])
+def test_greatest_piston_speed_where_the_subnormal_vanishes(n, printed):
+    # steam-engine text §176 (seed 004): the crank angle of the greatest piston speed (zero piston
+    # acceleration) for the rod ratio n = l/r; on the v–s line it is where the subnormal vanishes
+    mech, lw = _slider_crank(n)
+    phi = np.arange(40.0, 100.0, 0.02)
+    s, v = _piston_stroke(mech, lw, phi)
+    a = np.array([subnormal(s, v, k, l_s=10.0, l_v=10.0).acceleration for k in range(1, len(s) - 1)])
+    j = np.flatnonzero(np.diff(np.sign(a)))[0]
+    zero = phi[j + 1] + (phi[j + 2] - phi[j + 1]) * a[j] / (a[j] - a[j + 1])  # a falls through zero
+    # the text's cubic in sin²α, sin⁶α − n² sin⁴α − n⁴ sin²α + n⁴ = 0, has one root in (0, 1)
+    y = [r.real for r in np.roots([1.0, -n ** 2, -n ** 4, n ** 4]) if abs(r.imag) < 1e-12 and 0 < r.real < 1]
+    assert len(y) == 1
+    assert zero == pytest.approx(np.degrees(np.arcsin(np.sqrt(y[0]))), abs=0.1 / 60)
+    # the table is printed to the arc-minute (within about one minute of the exact root)
+    assert abs(zero - (printed[0] + printed[1] / 60)) < 1.1 / 60
+
+
+def test_piston_acceleration_at_the_dead_centres():
+    # seed 004, end of §174: at the dead centres a = 4 r π² n² (1 ± r/l); the library's centric
+    # slider-crank has r = 50 mm, l = 200 mm, 120 rpm (n = 2/s): 800 π²·(1 ± 1/4) mm/s²
+    import linkwork
+    mech = linkwork.load("library:slider-crank-centric")
+    want_outer, want_inner = 800 * PI ** 2 * 1.25, 800 * PI ** 2 * 0.75
+    for start, want in ((0.0, want_outer), (180.0, want_inner)):
+        # the subnormal a little past the dead centre, where v ≠ 0 (at the dead centre the v–s
+        # tangent is vertical and the construction fails, as the text says of Mohr's and Proell's)
+        phi = start + np.arange(0.2, 0.8, 0.01)
+        s, v = _piston_stroke(mech, linkwork, phi)
+        if start:  # the return stroke: s = x grows
+            s, v = -s, -v
+        a = subnormal(s, v, 1, l_s=10.0, l_v=100.0).acceleration
+        assert abs(a) == pytest.approx(want, rel=2e-4)
+
+
+def test_example_2_crank_pin_with_empirical_acceleration():
+    # Pöschl §11 Example 2 (steam-engine crank pin): over the periodic path a = 2 m the driving
+    # acceleration b(x) is integrated with H₁ = 3 cm at l_x = 0.2 m/cm, l_b = 10 m/s² per cm,
+    # so l_{v²/2} = 6; the end ordinate 8.5 cm gives the constant resistance w = 25.5 m/s². The
+    # book's b(x) is in its (missing) figure; here a half sine with the same area, ∫b dx = 51 m²/s².
+    a_path, l_x, l_b = 2.0, 0.2, 10.0
+    c = 51.0 * PI / 4
+    x = np.linspace(0.0, a_path, 2001)
+    z = integrate(x, c * np.sin(PI * x / a_path), np.linspace(0, a_path, 11), l_x=l_x, l_y=l_b, H=3.0)
+    assert z.l_y == pytest.approx(6.0)
+    assert z.Y[-1] == pytest.approx(8.5, rel=1e-6)  # the end ordinate B′B of the book
+    w = z.l_y * z.Y[-1] / a_path
+    assert w == pytest.approx(25.5, rel=1e-6)
+    # v² = v₀² + 2∫(b − w)dx with v₀² = 24 m²/s² (the axis shifted 24/12 = 2 cm at l_{v²} = 12)
+    assert 24.0 / (2 * z.l_y) == pytest.approx(2.0)
+    v = np.sqrt(24.0 + 2 * (c * a_path / PI * (1 - np.cos(PI * x / a_path)) - w * x))
+    assert v[0] == pytest.approx(4.9, abs=0.01) and v[-1] == pytest.approx(v[0], rel=1e-6)
+    # the time by the integral of the reciprocal, H′₂ = 5 cm, l_v = 1 m/s per cm: l_t = 0.04 s/cm
+    t = integrate_reciprocal(x, v, np.linspace(0, a_path, 21), l_x=l_x, l_y=1.0, H=5.0, samples=32)
+    assert t.l_y == pytest.approx(0.04)
+    from scipy.integrate import quad
+    period = quad(lambda xx: 1 / np.sqrt(24.0 + 2 * (c * a_path / PI * (1 - np.cos(PI * xx / a_path))
+                                                        - w * xx)), 0, a_path)[0]
+    assert t.y[-1] == pytest.approx(period, rel=1e-4)
