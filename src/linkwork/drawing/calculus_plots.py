@@ -21,7 +21,7 @@ from ..constructions.scales import nice_ceil
 from ..errors import InputError
 from ..kinematics import Solution, whole_motion
 from ..model import Mechanism
-from .plots import _abscissa, _plt, path_coordinate
+from .plots import _abscissa, _plt, path_coordinate, subscripted
 
 INK, AUX, RES = "#000000", "#6b6b6b", "#b3001b"
 
@@ -184,6 +184,14 @@ def _stroke(mech: Mechanism, point: str, solution: Solution | None):
     with np.errstate(invalid="ignore", divide="ignore"):
         e = m.velocity / speed[:, None] * np.sign(v)[:, None]
     a_t = np.sum(m.acceleration * e, axis=1)
+    closed = bool(np.allclose(m.position[0], m.position[-1], atol=1e-9 * (1 + float(np.ptp(m.position)))))
+    n = len(s)
+    if closed:
+        # a periodic motion: one period more, so that a stroke across the end is whole
+        period = t[-1] - t[0]
+        s = np.concatenate([s, s[1:] + (s[-1] - s[0]) * (not straight)])
+        v, a_t = np.concatenate([v, v[1:]]), np.concatenate([a_t, a_t[1:]])
+        t = np.concatenate([t, t[1:] + period])
     fwd = (v > 0) & np.isfinite(v) & np.isfinite(t)
     # the longest run of forward motion
     edges = np.flatnonzero(np.diff(np.concatenate([[0], fwd.astype(int), [0]])))
@@ -191,23 +199,26 @@ def _stroke(mech: Mechanism, point: str, solution: Solution | None):
     if not runs:
         raise InputError(f"'{point}' does not move along its path: no v–s line")
     i0, i1 = max(runs, key=lambda r: r[1] - r[0])
+    i1 = min(i1, i0 + n)  # one period at most (a loop run forward all round)
     if i1 - i0 < 8:
         raise InputError(f"'{point}' moves forward for a few samples only: no v–s line to construct on")
     sl = slice(i0, i1)
-    s, v, t, a_t = s[sl], v[sl], t[sl], a_t[sl]
+    s, v, t, a_t = s[sl] - s[i0], v[sl], t[sl], a_t[sl]
     if np.any(np.diff(s) <= 0):
         raise InputError(f"the path coordinate of '{point}' does not increase along its stroke")
-    l_s = nice_ceil(float(np.ptp(s)) / 12.0)  # the stroke about 12 cm long
-    l_v = nice_ceil(float(np.max(v)) / 6.0)  # the v–s line about 6 cm high
+    l_s = nice_ceil(float(np.ptp(s)) / 10.0)  # the stroke at most 10 cm long
+    l_v = nice_ceil(float(np.max(v)) / 5.0)  # the v–s line at most 5 cm high
     return s, v, t, a_t, l_s, l_v, straight
 
 
 def vs_steps(mech: Mechanism, point: str, construction: str, *, at: float | None = None,
-             strips: int = 8, H: float = 4.0, solution: Solution | None = None):
+             strips: int = 8, H: float = 2.0, solution: Solution | None = None):
     """A construction on the v–s line of ``point`` drawn step by step: ``subnormal`` (the
     acceleration at the path position nearest ``at``, a fraction 0…1 of the stroke, default
-    0.3) or ``time`` (t = ∫ds/v by strips with harmonic-mean ordinates and the pole at H cm to
-    the right, eq. 26–28, from 5 % to 95 % of the stroke, where v ≠ 0). Returns (figures, step
+    0.8) or ``time`` (t = ∫ds/v by strips with harmonic-mean ordinates and the pole at H′ cm,
+    eq. 26–28, from 5 % to 95 % of the stroke, where v ≠ 0; the pole is laid off to the left
+    and the t–s line grows downward, the book's figure mirrored in the s axis, so that the
+    chords stay perpendicular to their rays without covering the v–s line). Returns (figures, step
     texts, (constructed, exact)): one figure per step, each drawing everything up to that step
     on the same sheet; the last compares the result with the engine's value."""
     s, v, t, a_t, l_s, l_v, straight = _stroke(mech, point, solution)
@@ -216,7 +227,7 @@ def vs_steps(mech: Mechanism, point: str, construction: str, *, at: float | None
     plt = _plt()
     xlim = (-0.5 - (H if construction == "time" else 0.0), S.max() + 1.0)
     if construction == "subnormal":
-        f = 0.3 if at is None else float(at)
+        f = 0.8 if at is None else float(at)
         if not 0.0 < f < 1.0:
             raise InputError(f"--at {at}: give the position on the stroke as a fraction between 0 and 1")
         k = int(np.argmin(np.abs(s - (s[0] + f * np.ptp(s)))))
@@ -241,7 +252,7 @@ def vs_steps(mech: Mechanism, point: str, construction: str, *, at: float | None
                 ax.annotate("A", A, xytext=(4, 4), textcoords="offset points", fontsize=8)
                 ax.annotate("F", F, xytext=(-9, -11), textcoords="offset points", fontsize=8)
             if step >= 2:
-                _tangent_line(ax, A, sn.tangent, 6.0, "tangent")
+                _tangent_line(ax, A, sn.tangent, 4.0, "tangent")
             if step >= 3:
                 ax.plot([A[0], N[0]], [A[1], N[1]], "-.", color=AUX, lw=0.9)
                 ax.plot([A[0] + 0.0], [A[1]], alpha=0)
@@ -268,16 +279,15 @@ def vs_steps(mech: Mechanism, point: str, construction: str, *, at: float | None
              f"{strips} strips from 5 % to 95 % of the stroke (v ≠ 0), each with its mean ordinate "
              "(harmonic mean of 16 ordinates, as 1/v is integrated)",
              "each mean ordinate projected to the v axis (M″); the pole P′ at H′ = "
-             f"{H:g} cm right of the origin, the rays P′M″",
+             f"{H:g} cm from the origin (left: the t–s line is laid off downward), the rays P′M″",
              "in each strip the chord of the t–s line perpendicular to its ray: ΔZ = H′ΔS/V_m (eq. 26)",
              f"t = l_t·Z, l_t = l_s/(H′ l_v) = {l_t:.4g} s per cm (eq. 28): t = {d.y[-1]:.5g} s over the "
              f"strips (engine {exact[-1]:.5g} s)"]
     ylo = -Z.max() - 1.0
     figs = []
-    P = np.array([H, 0.0])
+    P = np.array([-H, 0.0])
     for step in range(len(texts)):
-        fig, ax = _vs_sheet(plt, S, V, (min(xlim[0], -1.0), S.max() + 1.0), (ylo, V.max() + 1.0), texts,
-                            step, point)
+        fig, ax = _vs_sheet(plt, S, V, xlim, (ylo, V.max() + 1.0), texts, step, point)
         X = d.X
         if step >= 1:
             for j in range(strips):
@@ -296,7 +306,8 @@ def vs_steps(mech: Mechanism, point: str, construction: str, *, at: float | None
             ax.annotate("t–s line", (X[-1], -Z[-1]), xytext=(4, 0), textcoords="offset points",
                         fontsize=8, color=RES)
         if step >= 4:
-            ax.plot(s / l_s, -(np.interp(s, s, t) - np.interp(b[0], s, t)) / l_t, color=INK, lw=0.6,
+            inside = (s >= b[0]) & (s <= b[-1])
+            ax.plot(s[inside] / l_s, -(t[inside] - np.interp(b[0], s, t)) / l_t, color=INK, lw=0.6,
                     label="engine: t(s)")
             ax.legend(fontsize=7, loc="lower left")
         figs.append(fig)
@@ -311,23 +322,24 @@ def _positive_H(H: float) -> None:
 def _vs_sheet(plt, S, V, xlim, ylim, texts, step, point):
     """One sheet of a v–s construction, the same size for every step (the drawing does not jump
     when paging): the line, the axes, and the step's sentence under it."""
-    fig, ax = plt.subplots(figsize=(8.0, 6.2))
+    import textwrap
+    # the sheet's size from the drawing's (equal scales on both axes), the same for every step
+    w_cm, h_cm = xlim[1] - xlim[0], ylim[1] - ylim[0]
+    width = 8.0
+    height = min(11.0, max(3.0, width * 0.85 * h_cm / w_cm) + 1.4)
+    fig, ax = plt.subplots(figsize=(width, height))
     ax.plot(S, V, color=INK, lw=1.2)
     ax.axhline(0, color=INK, lw=0.6)
     ax.axvline(0, color=INK, lw=0.6)
     ax.annotate("s", (xlim[1], 0), xytext=(-8, 4), textcoords="offset points", fontsize=9)
-    ax.annotate(f"v$_{{{_esc(point)}}}$", (0, ylim[1]), xytext=(4, -10), textcoords="offset points", fontsize=9)
+    ax.annotate(subscripted("v", point), (0, ylim[1]), xytext=(4, -10), textcoords="offset points", fontsize=9)
     ax.set_xlim(*xlim)
     ax.set_ylim(*ylim)
     ax.set_aspect("equal")
     ax.set_xlabel("cm of drawing", fontsize=7)
     ax.tick_params(labelsize=6)
     ax.grid(True, lw=0.2, alpha=0.5)
-    ax.set_title(f"step {step + 1} of {len(texts)}: {texts[step]}", fontsize=8, wrap=True, loc="left")
-    fig.subplots_adjust(top=0.86)
+    ax.set_title(textwrap.fill(f"step {step + 1} of {len(texts)}: {texts[step]}", 100), fontsize=8,
+                 loc="left")
+    fig.subplots_adjust(left=0.06, right=0.97, bottom=0.1 * 6 / height, top=1 - 0.75 / height)
     return fig, ax
-
-
-def _esc(name: str) -> str:
-    """A user's name inside mathtext, printed as written (``pin_A`` keeps its underscore)."""
-    return "".join("\\" + c if c in "_^{}$\\#%&~" else c for c in name)
