@@ -57,11 +57,17 @@ def _frame(ax, pts: np.ndarray, pad: float = 1.0) -> None:
         s.set_color(AUX)
 
 
+TAN = "#1f4e9c"
+
+
 def _tangent_line(ax, at: np.ndarray, direction: np.ndarray, length: float, label: str) -> None:
+    """The tangent drawn through ``at``, labelled at its forward end (on the side away from the
+    curve's bend, where the label does not sit on the curve)."""
     d = direction / np.linalg.norm(direction)
     a, b = at - d * length / 2, at + d * length / 2
-    ax.plot([a[0], b[0]], [a[1], b[1]], "--", color=AUX, lw=0.8)
-    ax.annotate(label, b, fontsize=7, color=AUX, xytext=(2, 2), textcoords="offset points")
+    ax.plot([a[0], b[0]], [a[1], b[1]], "--", color=TAN, lw=0.9, zorder=4)
+    ax.annotate(label, b, fontsize=7, color=TAN, xytext=(3 * np.sign(d[0] or 1), 3),
+                textcoords="offset points", ha="left" if d[0] >= 0 else "right")
 
 
 def _arrow(ax, tail, head, color, label: str, lw: float = 1.4) -> None:
@@ -133,10 +139,12 @@ def plans_figure(mech: Mechanism, point: str, *, at: float | None = None,
     plt = _plt()
     fig, axes = plt.subplots(1, 3, figsize=(11.0, 4.6))
     O, P, Q = np.zeros(2), np.zeros(2), np.zeros(2)
+    # the tips: the file's point itself and the book's V, B with the point's name as subscript
+    # (so that they are not taken for the file's own points of those names)
     panels = (
-        (axes[0], rp, "r-plan (path)", "O", "A", "l_l", u, tr, "∥ v", "r"),
-        (axes[1], vp, "v-plan (hodograph of v)", "P", "V", "l_v", f"{u}/s", tv, "∥ a", "v"),
-        (axes[2], bp, "b-plan (hodograph of a)", "Q", "B", "l_b", f"{u}/s²", tb, "∥ jerk", "a"),
+        (axes[0], rp, "r-plan (path)", "O", point.replace("$", "\\$"), "l_l", u, tr, "∥ v", "r"),
+        (axes[1], vp, "v-plan (hodograph of v)", "P", subscripted("V", point), "l_v", f"{u}/s", tv, "∥ a", "v"),
+        (axes[2], bp, "b-plan (hodograph of a)", "Q", subscripted("B", point), "l_b", f"{u}/s²", tb, "∥ jerk", "a"),
     )
     for ax, p, title, pole, tip, sym, unit, tan, tan_label, vec in panels:
         W = p.W
@@ -149,10 +157,10 @@ def plans_figure(mech: Mechanism, point: str, *, at: float | None = None,
         _tangent_line(ax, W[k], tan, 0.45 * span, tan_label)
         _scale_bar(ax, p.scale, unit, sym)
     # the acceleration drawn from Q parallel to the v-plan's tangent at V: the associated point B
-    axes[2].annotate(f"QB ∥ tangent at V: {check.tangent_v_vs_acceleration_deg:.2g}° off the engine's a\n"
-                     f"tangent at B: {check.tangent_b_vs_jerk_deg:.2g}° off the engine's jerk",
+    axes[2].annotate(f"the arrow from Q ∥ the v-plan's tangent: {check.tangent_v_vs_acceleration_deg:.2g}° off the engine's a\n"
+                     f"the b-plan's tangent: {check.tangent_b_vs_jerk_deg:.2g}° off the engine's jerk",
                      (0.02, 0.98), xycoords="axes fraction", fontsize=6.5, va="top", color=AUX)
-    fig.suptitle(f"{mech.name}: plans of {point} (Pöschl §13); associated points A, V, B at "
+    fig.suptitle(f"{mech.name}: plans of {point} (Pöschl §13), the associated points at "
                  f"{_input_words(mech, sol, k)}", fontsize=10)
     fig.tight_layout()
     return fig, check
