@@ -134,13 +134,19 @@ def server_parts(name: str, point: str, radius: float, place: float,
     """The server's work per drag frame, timed in this process with the compiled loops: each
     frame a new mechanism (the point moved on round its circle, never to a place it had), solved
     carrying the previous frame's march over, as the server solves it."""
-    from linkwork.drawing import Scene, scene_figure
-    from linkwork.web import models as m
-    from linkwork.web.app import compile_kernels, drawing, solve_at
+    from linkwork.web.app import _warnings, compile_kernels
     from linkwork.web.sources import Sources
 
     compile_kernels()
-    sources = Sources(None)
+    with _warnings():  # as the server runs a request (its loops compiled)
+        return _server_parts(name, point, radius, place, frames, Sources(None))
+
+
+def _server_parts(name, point, radius, place, frames, sources) -> dict[str, np.ndarray]:
+    from linkwork.drawing import Scene, scene_figure
+    from linkwork.web import models as m
+    from linkwork.web.app import drawing, solve_at
+
     base = linkwork.load(f"library:{name}")
     motion = linkwork.whole_motion(base)
     u = motion.inputs[int(round(place * (len(motion) - 1)))]
