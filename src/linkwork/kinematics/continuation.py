@@ -143,6 +143,9 @@ def continuation_guesses(mech: Mechanism, solvers, values: np.ndarray,
     from that one's, carried over (`_carry`; how far: `carried(mech)`)."""
     gen = _Generic(mech, solvers, schedule)
     design = np.array([mech.driver_input_at_design(d) for d in mech.drivers])
+    if previous is None:
+        with _lock:
+            previous = _lineage.get(mech)
     if values.shape[1] == 1:
         lam = (values[:, 0] - design[0]) * gen.weights[0]
         finite = np.isfinite(lam)
@@ -260,8 +263,14 @@ def _one_driver_lanes(mech: Mechanism, solvers, gen: "_Generic", design: np.ndar
         origin = design * gen.weights
         lanes = {s: _Lane(gen, np.vstack([origin, origin + s]), sense=s, ray=True)
                  for s in (+1, -1)}
-        if previous is not None:
-            old = next((v for k, v in list(_marches.items()) if k[0] is previous), None)
+        if previous is not None:  # its march of the same groups (the same solvers, else
+            # one whose Newton groups are these: a march of the groups upstream of a change point)
+            groups = [s.group for s in solvers]
+            generic = [s.group for s in solvers if s.kind == "generic"]
+            kept = [(k, v) for k, v in list(_marches.items()) if k[0] is previous and
+                    [s.group for s in k[1] if s.kind == "generic"] == generic]
+            old = next((v for k, v in kept if [s.group for s in k[1]] == groups),
+                       kept[0][1] if kept else None)
             _note(mech, _compatible(previous, mech) or (
                 "the previous mechanism's march is not kept" if old is None else
                 _carry(mech, solvers, gen, [(old[s], lanes[s], _ray_map(need, s)) for s in (+1, -1)])))
@@ -296,14 +305,25 @@ class Carried:
                 f"({self.carried} of {self.points} points carried over)")
 
 
-#: mechanism -> the `Carried` of its march; mechanism -> its last march of several drivers
+#: mechanism -> the `Carried` of its march; mechanism -> its last march of several drivers;
 _carried: OrderedDict = OrderedDict()
 _paths: OrderedDict = OrderedDict()
+_lineage: OrderedDict = OrderedDict()  # mechanism -> the one it follows (`follow`)
 PATHS_KEPT = 4
 #: a carried step may be this much longer than the step bound the march keeps to
 #: (`MAX_POSE_CHANGE`): the poses' speed differs a little from the previous mechanism's
 CARRY_STEP_SLACK = 1.5
 _lock = Lock()
+
+
+def follow(mech: Mechanism, previous: Mechanism) -> None:
+    """Let every march of `mech` it does not have yet (the solve's, the change points' scans',
+    the whole motion's) start from the corresponding march of `previous`, a mechanism of the
+    same structure solved before (a drag's previous frame), carried over (`_carry`)."""
+    with _lock:
+        _lineage[mech] = previous
+        while len(_lineage) > CACHE_SIZE:
+            _lineage.popitem(last=False)
 
 
 def carried(mech: Mechanism) -> Carried | None:
