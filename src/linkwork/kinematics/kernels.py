@@ -137,12 +137,12 @@ def rrr_positions(Q0, T, iA, A, iC, C, i1, i2, diff, L1sq, tol, branch, k1, k2, 
 
 
 @_loop()
-def _rrr_position(Q0, T, iA, a0, a1, iC, c0, c1, i1, i2, diff, L1sq, tol, sign, k10, k11, k20,
-                  k21, n):
+def _rrr_position(Q0, T, iA, pa0, pa1, iC, pc0, pc1, i1, i2, diff, L1sq, tol, sign, k10, k11,
+                  k20, k21, n):
     """`rrr_positions` at sample n (branch sign `sign`): places i1 and i2; returns whether the
     dyad assembles and the hinge vectors B − A, B − C."""
-    ax, ay = _world(Q0, T, iA, a0, a1, n)
-    cx, cy = _world(Q0, T, iC, c0, c1, n)
+    ax, ay = _world(Q0, T, iA, pa0, pa1, n)
+    cx, cy = _world(Q0, T, iC, pc0, pc1, n)
     dx, dy = cx - ax, cy - ay
     D2 = dx * dx + dy * dy
     inv = 1.0 / math.sqrt(D2)
@@ -158,8 +158,8 @@ def _rrr_position(Q0, T, iA, a0, a1, iC, c0, c1, i1, i2, diff, L1sq, tol, sign, 
     n2 = 1.0 / math.sqrt(r2x * r2x + r2y * r2y)
     c1, s1 = (r1x * k10 + r1y * k11) * n1, (r1y * k10 - r1x * k11) * n1
     c2, s2 = (r2x * k20 + r2y * k21) * n2, (r2y * k20 - r2x * k21) * n2
-    _place(Q0, T, i1, c1, s1, a0, a1, ax, ay, n)
-    _place(Q0, T, i2, c2, s2, c0, c1, cx, cy, n)
+    _place(Q0, T, i1, c1, s1, pa0, pa1, ax, ay, n)
+    _place(Q0, T, i2, c2, s2, pc0, pc1, cx, cy, n)
     return good, r1x, r1y, r2x, r2y
 
 
