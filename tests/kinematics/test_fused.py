@@ -138,3 +138,26 @@ def test_mechanisms_with_other_groups_keep_the_per_group_path():
     for name in ("alt-eight-link", "geneva-4", "swinging-block", "radial-roller-cam"):
         mech = linkwork.load(f"library:{name}")
         assert fused.tables(mech, solver.plan(mech)) is None, name
+
+
+def test_the_loops_run_as_asked(monkeypatch):
+    """`solve(compiled=...)` and `compiled_loops` choose the compiled or the interpreted loops
+    whatever the batch's size (spied on); the default still goes by size."""
+    mech = linkwork.load("library:crank-rocker")
+    linkwork.solve(mech, [0.1])  # the branch scan is done once per mechanism, before
+    ran = []
+    for kind in ("_interpreted", "_compiled"):
+        real = getattr(kernels, kind)
+        monkeypatch.setattr(kernels, kind, lambda real=real, kind=kind: ran.append(kind) or real())
+    many, few = np.linspace(0.0, 6.0, kernels.INTERPRETED_UP_TO + 1), np.array([0.2, 0.3])
+    for kw, u, want in ((dict(compiled=True), few, "_compiled"),
+                        (dict(compiled=False), many, "_interpreted"),
+                        ({}, few, "_interpreted"), ({}, many, "_compiled")):
+        ran.clear()
+        a = linkwork.solve(mech, u, **kw)
+        assert set(ran) == {want}, kw
+    ran.clear()
+    with linkwork.kinematics.compiled_loops(True):
+        b = linkwork.solve(mech, u)
+    assert set(ran) == {"_compiled"}
+    np.testing.assert_array_equal(a.status, b.status)

@@ -12,7 +12,8 @@ has this one implementation; the generic path (constraints on jets and a linear 
 A batch of a few thousand samples or fewer runs the same loops interpreted (`_loop`): numba's
 import and the loading of its cached machine code cost a second or more per process, more than
 the interpreted loops take for a command asking for a few positions or one turn
-(tests/kinematics/test_kernel_modes.py holds the two executions to each other).
+(tests/kinematics/test_kernel_modes.py holds the two executions to each other). The choice can
+be made explicitly: `compiled_loops(True)` (or `solve(..., compiled=True)`) for every batch.
 
 Array conventions (as in `groups.State`): Q[k, link, (x, y, θ), n] holds the k-th Taylor
 coefficient q⁽ᵏ⁾/k! of every link pose, the sample axis last; T[link, (cos θ, sin θ), n].
@@ -25,6 +26,8 @@ from __future__ import annotations
 
 import math
 import types
+from contextlib import contextmanager
+from contextvars import ContextVar
 from functools import lru_cache, wraps
 
 import numpy as np
@@ -35,6 +38,21 @@ import numpy as np
 #: inputs) should not pay. The same source either way; the compiled loops may differ in the
 #: last bits (numba contracts a·b + c to one fused multiply-add).
 INTERPRETED_UP_TO = 4096
+#: the choice of `compiled_loops` in force: None (by batch size), True or False
+_CHOICE: ContextVar[bool | None] = ContextVar("linkwork_compiled_loops", default=None)
+
+
+@contextmanager
+def compiled_loops(compiled: bool | None = True):
+    """Within this context the loops run compiled (True: a server that has loaded them once
+    wants them for every batch), interpreted (False: no numba at all) or by batch size (None,
+    the default: batches of at most `INTERPRETED_UP_TO` samples interpreted). A context
+    variable: it holds for this thread (or task) only, and nests."""
+    token = _CHOICE.set(compiled)
+    try:
+        yield
+    finally:
+        _CHOICE.reset(token)
 
 _FLAGS = dict(cache=True, nogil=True, error_model="numpy", fastmath={"contract", "arcp", "nsz"})
 #: every loop of this module by name: (its Python function, the axis of its first argument
@@ -53,7 +71,9 @@ def _loop(samples_axis: int | None = None):
 
         @wraps(fn)
         def entry(*args):
-            if args[0].shape[samples_axis] <= INTERPRETED_UP_TO:
+            choice = _CHOICE.get()
+            small = args[0].shape[samples_axis] <= INTERPRETED_UP_TO
+            if (not choice) if choice is not None else small:
                 with np.errstate(all="ignore"):  # as the compiled loops: inf and NaN, quietly
                     return _interpreted()[fn.__name__](*args)
             return _compiled()[fn.__name__](*args)

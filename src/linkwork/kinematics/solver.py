@@ -16,7 +16,7 @@ from ..errors import InputError, StructureError
 from ..model import ConstantSpeed, Mechanism, Prismatic
 from ..topology import solution_order
 from .branches import branch_schedule, path_schedule
-from . import fused
+from . import fused, kernels
 from .contact import interference, rows
 from .continuation import PathEnd, continuation_guesses
 from .groups import GroupSolver, State, input_coefficients
@@ -102,7 +102,8 @@ def _plain_numbers(mech: Mechanism, inputs, times, *rates) -> tuple:
 
 
 def solve(mech: Mechanism, inputs=None, *, times=None, velocities=None, accelerations=None,
-          jerks=None, snaps=None, order: int = 2, resume: PathEnd | None = None) -> Solution:
+          jerks=None, snaps=None, order: int = 2, resume: PathEnd | None = None,
+          compiled: bool | None = None) -> Solution:
     """Solve `mech` at the given input values (shape (N,) for one driver, (N, drivers) else) or
     at `times` (each driver's law evaluated at those times).
 
@@ -123,7 +124,16 @@ def solve(mech: Mechanism, inputs=None, *, times=None, velocities=None, accelera
     `path_end` is where it left off: `resume=` that in the next solve goes on from there
     instead of from the design input, so that samples solved in chunks are solved as in one
     piece. (One driver: every sample is solved on its own; `path_end` is None.)
+
+    `compiled`: run the numba-compiled loops (True), their interpreted source (False: no numba
+    import, for a few samples), or choose by the batch's size (None; see
+    `kernels.compiled_loops`, which sets the same choice for a whole block of calls).
     """
+    if compiled is not None:
+        with kernels.compiled_loops(compiled):
+            return solve(mech, inputs, times=times, velocities=velocities,
+                         accelerations=accelerations, jerks=jerks, snaps=snaps, order=order,
+                         resume=resume)
     if order not in (1, 2, 3, 4):
         raise InputError("order must be 1 (velocities), 2 (accelerations), 3 (jerks) or 4 "
                          "(snaps)")
