@@ -616,13 +616,13 @@ def fused_rates(cond, ops, fl, Q, T, U, per, L, eps, m0, unreliable, plain, weig
     through the solution order as in `fused_positions`, with the condition numbers (cond[n]
     raised to the groups'), the forward error bounds of `precision.ErrorBudget` (work arrays
     m, E of the block's size; m0: the drawing's coordinates over L) and their relative values
-    (`relative_errors` with the weights `plain` into err, `weighted` into serr); E0[n]: the
-    positions' bound."""
+    (`relative_errors` with the weights `plain` into err, `weighted` into serr); E0[n − lo]:
+    the positions' bound."""
     for n in range(lo, hi):
         j = n - lo
         m[0, j], m[1, j], m[2, j] = m0, 0.0, 0.0
         E[0, j], E[1, j], E[2, j] = 0.0, 0.0, 0.0
-        E0[n] = 1.0 / _rate_scale(U, per, n)  # 1/Ω here until the end
+        E0[j] = 1.0 / _rate_scale(U, per, n)  # 1/Ω here until the end
     for g in range(ops.shape[0]):
         op, i1, i2, i3, i4 = ops[g, 0], ops[g, 1], ops[g, 2], ops[g, 3], ops[g, 4]
         f0, f1, f2, f3, f4, f5 = fl[g, 0], fl[g, 1], fl[g, 2], fl[g, 3], fl[g, 4], fl[g, 5]
@@ -630,24 +630,24 @@ def fused_rates(cond, ops, fl, Q, T, U, per, L, eps, m0, unreliable, plain, weig
             fl[g, 15], fl[g, 16], fl[g, 17]
         if op == DRIVER:
             for n in range(lo, hi):
-                _driver_rate(Q, T, i1, i2, f0, f1, U[i3, 1, n], U[i3, 2, n], f3, L, E0[n], m, E,
-                             n - lo, eps, n)
+                _driver_rate(Q, T, i1, i2, f0, f1, U[i3, 1, n], U[i3, 2, n], f3, L, E0[n - lo], m,
+                             E, n - lo, eps, n)
                 if f3 > cond[n]:
                     cond[n] = f3
         elif op == RRR:
             for n in range(lo, hi):
                 k = _rrr_rate(Q, T, i1, f0, f1, i2, f2, f3, i3, i4, f12, f13, f14, f15, f16, f17,
-                              unreliable, L, E0[n], m, E, n - lo, eps, n)
+                              unreliable, L, E0[n - lo], m, E, n - lo, eps, n)
                 if k > cond[n]:
                     cond[n] = k
         else:
             for n in range(lo, hi):
                 k = _rrp_rate(Q, T, i1, f0, f1, i2, f2, f3, f4, f5, f11, f12, f13, i3, i4,
-                              unreliable, L, E0[n], m, E, n - lo, eps, n)
+                              unreliable, L, E0[n - lo], m, E, n - lo, eps, n)
                 if k > cond[n]:
                     cond[n] = k
     for n in range(lo, hi):
         j = n - lo
         err[n] = _relative_error(E, m, eps, plain, j)
         serr[n] = _relative_error(E, m, eps, weighted, j)
-        E0[n] = E[0, j]
+        E0[j] = E[0, j]

@@ -242,14 +242,20 @@ def solve(mech: Mechanism, inputs=None, *, times=None, velocities=None, accelera
             Q[:, cut] = np.nan
             T[:, :, cut] = np.nan
             assembled &= ~cut
-    # in place: no N-long temporaries beyond the masks
-    status = np.full(N, Status.OK, dtype=np.int8)
+    sol = _solution(mech, values, t, Q, T, assembled, condition, errors, status_errors)
+    sol.path_end = path_end
+    return sol
+
+
+def _solution(mech: Mechanism, values, t, Q, T, assembled, condition, errors,
+              status_errors) -> Solution:
+    """The `Solution` of a solved batch: the status per sample from its error bound (in
+    place: no N-long temporaries beyond the masks), NaN where it did not assemble."""
+    status = np.full(len(assembled), Status.OK, dtype=np.int8)
     status[status_errors > TOLERANCE] = Status.SINGULAR
     unassembled = ~assembled
     status[unassembled] = Status.UNREACHABLE
     condition[unassembled] = np.nan
     errors[unassembled] = np.nan
-    sol = Solution(mech, values, t, Q, status, condition, trig=(T[:, 0].T, T[:, 1].T),
-                   errors=errors)
-    sol.path_end = path_end
-    return sol
+    return Solution(mech, values, t, Q, status, condition, trig=(T[:, 0].T, T[:, 1].T),
+                    errors=errors)
