@@ -103,7 +103,7 @@ def _plain_numbers(mech: Mechanism, inputs, times, *rates) -> tuple:
 
 def solve(mech: Mechanism, inputs=None, *, times=None, velocities=None, accelerations=None,
           jerks=None, snaps=None, order: int = 2, resume: PathEnd | None = None,
-          compiled: bool | None = None) -> Solution:
+          previous: Mechanism | None = None, compiled: bool | None = None) -> Solution:
     """Solve `mech` at the given input values (shape (N,) for one driver, (N, drivers) else) or
     at `times` (each driver's law evaluated at those times).
 
@@ -125,6 +125,10 @@ def solve(mech: Mechanism, inputs=None, *, times=None, velocities=None, accelera
     instead of from the design input, so that samples solved in chunks are solved as in one
     piece. (One driver: every sample is solved on its own; `path_end` is None.)
 
+    `previous`: a mechanism of the same structure solved before, with other dimensions (the
+    last frame of a drag): the Newton-solved groups' march starts from its march, checked step
+    by step (`continuation._carry`; what was taken: `continuation.carried(mech)`).
+
     `compiled`: run the numba-compiled loops (True), their interpreted source (False: no numba
     import, for a few samples), or choose by the batch's size (None; see
     `kernels.compiled_loops`, which sets the same choice for a whole block of calls).
@@ -133,7 +137,7 @@ def solve(mech: Mechanism, inputs=None, *, times=None, velocities=None, accelera
         with kernels.compiled_loops(compiled):
             return solve(mech, inputs, times=times, velocities=velocities,
                          accelerations=accelerations, jerks=jerks, snaps=snaps, order=order,
-                         resume=resume)
+                         resume=resume, previous=previous)
     if order not in (1, 2, 3, 4):
         raise InputError("order must be 1 (velocities), 2 (accelerations), 3 (jerks) or 4 "
                          "(snaps)")
@@ -170,7 +174,7 @@ def solve(mech: Mechanism, inputs=None, *, times=None, velocities=None, accelera
 
         def branches_in(sl: slice) -> dict:  # the signs of a block only (no N-long temporaries)
             return {g: sch.signs(values[sl, 0]) for g, sch in schedules.items()}
-        guesses = continuation_guesses(mech, solvers, values) if generic else {}
+        guesses = continuation_guesses(mech, solvers, values, previous=previous) if generic else {}
     else:  # a path through the samples
         schedules, lam, path = path_schedule(mech, solvers, values, resume)
         branches = {g: sch.signs(lam) for g, sch in schedules.items()}
@@ -179,7 +183,7 @@ def solve(mech: Mechanism, inputs=None, *, times=None, velocities=None, accelera
             return {g: b[sl] for g, b in branches.items()}
         ends: dict = {}
         guesses = continuation_guesses(mech, solvers, values, schedules, start=resume,
-                                       ends=ends) if generic else {}
+                                       ends=ends, previous=previous) if generic else {}
         if np.isfinite(values).all() and len(path.vertices) > 0:
             end = path.knots[len(path.vertices) - 1]
             prev = len(path.vertices) >= 2
