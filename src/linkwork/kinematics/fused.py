@@ -163,7 +163,8 @@ def solve_designs(mechs, inputs, *, velocities=None, accelerations=None,
     if not mechs:
         return []
     first = mechs[0]
-    tabs = [tables(m, plan(m)) if len(m.drivers) == 1 else None for m in mechs]
+    plans = [plan(m) for m in mechs]  # once per design (more designs than plan's cache holds)
+    tabs = [tables(m, p) if len(m.drivers) == 1 else None for m, p in zip(mechs, plans)]
     same = all(t is not None and t.ops.shape == tabs[0].ops.shape and
                (t.ops == tabs[0].ops).all() and m.link_names == first.link_names and
                m.length_unit == first.length_unit for t, m in zip(tabs, mechs))
@@ -192,14 +193,14 @@ def solve_designs(mechs, inputs, *, velocities=None, accelerations=None,
     condition, errors, status_errors = np.ones(D * N), np.zeros(D * N), np.zeros(D * N)
     out = []
     with kernels.compiled_loops(compiled):  # by default by the size of the whole batch
-        for d, (m, tab) in enumerate(zip(mechs, tabs)):
+        for d, (m, tab, solvers) in enumerate(zip(mechs, tabs, plans)):
             lo = d * N
             schedules = branch_schedule(m)
 
             def branches_in(sl: slice, lo=lo, schedules=schedules) -> dict:
                 return {g: sch.signs(values[sl.start - lo:sl.stop - lo, 0])
                         for g, sch in schedules.items()}
-            solve_blocks(m, tab, plan(m), Q, T, inputs_all, branches_in, assembled, condition,
+            solve_blocks(m, tab, solvers, Q, T, inputs_all, branches_in, assembled, condition,
                          errors, status_errors, polishable(m), U=coef, start=lo, stop=lo + N)
     for d, m in enumerate(mechs):
         sl = slice(d * N, (d + 1) * N)
