@@ -32,9 +32,10 @@ from .groups import UNRELIABLE_CONDITION, GroupSolver
 from .precision import (_PLAIN, _STATUS_WEIGHTS, EPS, POLISH_LIMIT, TOLERANCE, coordinate_size,
                         polish)
 
-#: samples per block: the hinge vectors and assembly signs are block-sized, and a block's poses
-#: are still in the CPU's cache when the rates pass reads them
-BLOCK = 4096
+#: samples per block: the hinge vectors, assembly signs and error-bound work arrays are
+#: block-sized, not batch-sized (as `solver.KERNEL_BLOCK`; smaller blocks that stay in the CPU's
+#: cache between the two passes measured no faster)
+BLOCK = 1 << 17
 
 
 @dataclass(frozen=True)
