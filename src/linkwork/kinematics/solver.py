@@ -16,7 +16,7 @@ from ..errors import InputError, StructureError
 from ..model import ConstantSpeed, Mechanism, Prismatic
 from ..topology import solution_order
 from .branches import branch_schedule, path_schedule
-from . import fused
+from . import fused, kernels
 from .contact import interference, rows
 from .continuation import PathEnd, continuation_guesses, follow
 from .groups import GroupSolver, State, input_coefficients
@@ -103,7 +103,7 @@ def _plain_numbers(mech: Mechanism, inputs, times, *rates) -> tuple:
 
 def solve(mech: Mechanism, inputs=None, *, times=None, velocities=None, accelerations=None,
           jerks=None, snaps=None, order: int = 2, resume: PathEnd | None = None,
-          previous: Mechanism | None = None) -> Solution:
+          previous: Mechanism | None = None, compiled: bool | None = None) -> Solution:
     """Solve `mech` at the given input values (shape (N,) for one driver, (N, drivers) else) or
     at `times` (each driver's law evaluated at those times).
 
@@ -128,7 +128,16 @@ def solve(mech: Mechanism, inputs=None, *, times=None, velocities=None, accelera
     `previous`: a mechanism of the same structure solved before, with other dimensions (the
     last frame of a drag): the Newton-solved groups' march starts from its march, checked step
     by step (`continuation.follow`; what was taken: `continuation.carried(mech)`).
+
+    `compiled`: run the numba-compiled loops (True), their interpreted source (False: no numba
+    import, for a few samples), or choose by the batch's size (None; see
+    `kernels.compiled_loops`, which sets the same choice for a whole block of calls).
     """
+    if compiled is not None:
+        with kernels.compiled_loops(compiled):
+            return solve(mech, inputs, times=times, velocities=velocities,
+                         accelerations=accelerations, jerks=jerks, snaps=snaps, order=order,
+                         resume=resume, previous=previous)
     if order not in (1, 2, 3, 4):
         raise InputError("order must be 1 (velocities), 2 (accelerations), 3 (jerks) or 4 "
                          "(snaps)")
@@ -239,14 +248,20 @@ def solve(mech: Mechanism, inputs=None, *, times=None, velocities=None, accelera
             Q[:, cut] = np.nan
             T[:, :, cut] = np.nan
             assembled &= ~cut
-    # in place: no N-long temporaries beyond the masks
-    status = np.full(N, Status.OK, dtype=np.int8)
+    sol = _solution(mech, values, t, Q, T, assembled, condition, errors, status_errors)
+    sol.path_end = path_end
+    return sol
+
+
+def _solution(mech: Mechanism, values, t, Q, T, assembled, condition, errors,
+              status_errors) -> Solution:
+    """The `Solution` of a solved batch: the status per sample from its error bound (in
+    place: no N-long temporaries beyond the masks), NaN where it did not assemble."""
+    status = np.full(len(assembled), Status.OK, dtype=np.int8)
     status[status_errors > TOLERANCE] = Status.SINGULAR
     unassembled = ~assembled
     status[unassembled] = Status.UNREACHABLE
     condition[unassembled] = np.nan
     errors[unassembled] = np.nan
-    sol = Solution(mech, values, t, Q, status, condition, trig=(T[:, 0].T, T[:, 1].T),
-                   errors=errors)
-    sol.path_end = path_end
-    return sol
+    return Solution(mech, values, t, Q, status, condition, trig=(T[:, 0].T, T[:, 1].T),
+                    errors=errors)
