@@ -675,7 +675,7 @@ class Figure:
 
     def _place_labels(self, tfs: dict, panels: dict, samples: list, animate: float | None) -> list[str]:
         grid = _Grid(samples)
-        placed: list[tuple[float, float, float, float]] = []
+        placed = _Boxes()
         out = []
         cut = {n: self._cut(n) for n in panels}
         for lab in self.labels:
@@ -692,23 +692,23 @@ class Figure:
                 if not (frame[0] <= a[0] <= frame[2] and frame[1] <= a[1] <= frame[3]):
                     continue  # its point is cut off with the drawing at the frame
             w, h = text_width(lab.text, lab.size, lab.italic) + 0.4, lab.size * 0.95
-            best, best_score = None, math.inf
-            cands = _candidates(lab.prefer)
-            for k, (dx, dy) in enumerate(cands):
-                for dist in (lab.clear + 1.0, lab.clear + 2.2, lab.clear + 3.8):
-                    # box anchored so that its nearest edge is `dist` away in direction (dx, dy)
-                    cx = a[0] + dx * (dist + w / 2)
-                    cy = a[1] + dy * (dist + h / 2)
-                    box = (cx - w / 2, cy - h / 2, cx + w / 2, cy + h / 2)
-                    score = 40.0 * sum(_overlap(box, q) for q in placed) / (w * h)
-                    score += grid.count(box) * 1.0 + 0.15 * k + 0.6 * dist
-                    if frame is not None and not (frame[0] <= box[0] and box[2] <= frame[2]
-                                                  and frame[1] <= box[1] and box[3] <= frame[3]):
-                        score += 1e4  # across the frame
-                    if score < best_score:
-                        best, best_score = box, score
-            placed.append(best)
-            x0, y0, x1, y1 = best
+            # every candidate at once: 8 directions (preferred first), 3 distances each; the
+            # box anchored so that its nearest edge is `dist` away in direction (dx, dy)
+            cands = np.repeat(np.array(_candidates(lab.prefer)), 3, axis=0)
+            dist = lab.clear + _DISTANCES
+            cx = a[0] + cands[:, 0] * (dist + w / 2)
+            cy = a[1] + cands[:, 1] * (dist + h / 2)
+            boxes = np.stack([cx - w / 2, cy - h / 2, cx + w / 2, cy + h / 2], axis=1)
+            score = 40.0 * placed.overlap(boxes) / (w * h)
+            score += grid.counts(boxes) * 1.0 + _RANK_COST + 0.6 * dist
+            if frame is not None:
+                across = ~((frame[0] <= boxes[:, 0]) & (boxes[:, 2] <= frame[2])
+                           & (frame[1] <= boxes[:, 1]) & (boxes[:, 3] <= frame[3]))
+                score[across] += 1e4  # across the frame
+            # the first candidate of the lowest score (a NaN score is never chosen)
+            best = int(np.argmin(np.where(np.isnan(score), np.inf, score)))
+            x0, y0, x1, y1 = boxes[best]
+            placed.add(boxes[best])
             ident = f' id="{lab.ident}"' if lab.ident else ""
             style = ' font-style="italic"' if lab.italic else ""
             el = (f'<text{ident} x="{sym._f(x0 + 0.2)}" y="{sym._f(y1 - 0.22 * lab.size)}" '
@@ -848,32 +848,45 @@ def _candidates(prefer: np.ndarray | None) -> list[tuple[float, float]]:
     return dirs
 
 
-def _overlap(a, b) -> float:
-    w = min(a[2], b[2]) - max(a[0], b[0])
-    h = min(a[3], b[3]) - max(a[1], b[1])
-    return w * h if w > 0 and h > 0 else 0.0
+#: a label's candidate boxes: each direction (in `_candidates`' order) at three distances beyond
+#: the label's clearance, and what a direction's rank adds to its score
+_DISTANCES = np.tile([1.0, 2.2, 3.8], 8)
+_RANK_COST = 0.15 * np.repeat(np.arange(8), 3)
+
+
+class _Boxes:
+    """The label boxes placed so far (x0, y0, x1, y1), to score how much a candidate covers."""
+
+    def __init__(self) -> None:
+        self.a = np.empty((0, 4))
+
+    def add(self, box: np.ndarray) -> None:
+        self.a = np.vstack([self.a, box[None]])
+
+    def overlap(self, boxes: np.ndarray) -> np.ndarray:
+        """For each of `boxes` (M, 4), the areas it shares with the placed boxes, summed one
+        after the other in the order they were placed (a cumulative sum: the same rounding as
+        adding them up one by one)."""
+        if not len(self.a):
+            return np.zeros(len(boxes))
+        b, q = boxes[:, None, :], self.a[None, :, :]
+        w = np.minimum(b[..., 2], q[..., 2]) - np.maximum(b[..., 0], q[..., 0])
+        h = np.minimum(b[..., 3], q[..., 3]) - np.maximum(b[..., 1], q[..., 1])
+        return np.cumsum(np.where((w > 0) & (h > 0), w * h, 0.0), axis=1)[:, -1]
 
 
 class _Grid:
-    """Sample points of the drawn geometry in 2 mm buckets, to count what a label would cover."""
+    """Sample points of the drawn geometry, sorted by x, to count what a label would cover."""
 
-    def __init__(self, pts: list, cell: float = 2.0) -> None:
-        self.cell = cell
-        self.b: dict[tuple[int, int], list] = {}
-        if not len(pts):
-            return
-        # at once for all points (a drawing has thousands; one NumPy call each cost milliseconds)
+    def __init__(self, pts: list) -> None:
         a = np.asarray(pts, dtype=float).reshape(-1, 2)
         a = a[np.all(np.isfinite(a), axis=1)]
-        for key, p in zip(np.floor_divide(a, cell).astype(np.int64).tolist(), a.tolist()):
-            self.b.setdefault(tuple(key), []).append(p)
+        self.p = a[np.argsort(a[:, 0], kind="stable")]
 
-    def count(self, box) -> int:
-        x0, y0, x1, y1 = box
-        n = 0
-        for i in range(int(x0 // self.cell), int(x1 // self.cell) + 1):
-            for j in range(int(y0 // self.cell), int(y1 // self.cell) + 1):
-                for p in self.b.get((i, j), ()):
-                    if x0 <= p[0] <= x1 and y0 <= p[1] <= y1:
-                        n += 1
-        return n
+    def counts(self, boxes: np.ndarray) -> np.ndarray:
+        """The points inside each of `boxes` (M, 4), edges included."""
+        lo = np.searchsorted(self.p[:, 0], boxes[:, 0].min(), side="left")
+        hi = np.searchsorted(self.p[:, 0], boxes[:, 2].max(), side="right")
+        x, y = self.p[lo:hi, 0][None], self.p[lo:hi, 1][None]
+        b = boxes[:, :, None]
+        return ((b[:, 0] <= x) & (x <= b[:, 2]) & (b[:, 1] <= y) & (y <= b[:, 3])).sum(axis=1)
