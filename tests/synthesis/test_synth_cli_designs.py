@@ -64,3 +64,16 @@ def test_mistakes_give_one_message(tmp_path, monkeypatch, args, message):
     assert r.exit_code == 2, r.output
     assert message in r.output
     assert "Traceback" not in r.output
+
+
+def test_substitute_to_third_order(tmp_path):
+    out = tmp_path / "sub.toml"
+    r = run("synth", "substitute", "library:crank-rocker", "--at", "60", "--pivot", "30,-10", "--replace",
+            "output", "--order", "3", "-o", out)
+    assert r.exit_code == 0, r.output
+    old, new = analyze_at("library:crank-rocker", [60.0])[0], analyze_at(out, [60.0])[0]
+    for q in ("position", "velocity", "acceleration"):
+        assert new["points"]["C"][q] == pytest.approx(old["points"]["C"][q], abs=1e-9 * 40 * 40)
+    r = run("synth", "substitute", "library:crank-rocker", "--at", "60", "--pivot", "30,-10", "--order", "4",
+            "-o", out)
+    assert r.exit_code == 2 and "order 2 or 3" in r.output

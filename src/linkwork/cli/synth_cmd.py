@@ -14,7 +14,7 @@ FILE.svg draws the positions, poles, pole triangles, for four positions the cent
 circle-point curves, and the pivots used (five: the Burmester points). `function` designs a four-bar (or --slider: a slider-crank) whose output
 follows y = f(x) through precision points by Freudenstein's equation. `dwell` adds Alt's dwell
 dyad to a four-bar at a coupler point (Pöschl §37); `substitute` replaces a crank of a four-bar
-by Pröll's (Rosenauer §29), keeping the coupler's motion to second order. `path` finds a
+by Pröll's (Rosenauer §29), keeping the coupler's motion to second order (--order 3: to the jerk). `path` finds a
 four-bar whose coupler point passes through target points (least squares from several starts);
 `cognates` writes the Roberts–Chebyshev cognates of a four-bar's coupler point.
 
@@ -456,15 +456,17 @@ def register_curvature_designs(synth: typer.Typer) -> None:
         at: str = typer.Option(..., "--at", help="DEG: the input angle at which the motion is kept"),
         pivot: str = typer.Option(..., "--pivot", help="X,Y: the new fixed pivot"),
         replace: str = typer.Option("input", "--replace", help="input (the driven crank) or output (the rocker)"),
+        order: int = typer.Option(2, "--order", help="2: same pole and inflection circle; 3: the pivot moved along its ray from the pole onto the centre-point curve, the motion kept to the jerk"),
         output: str = typer.Option(..., "-o", "--output", help="the new four-bar's mechanism file"),
     ) -> None:
-        """Pröll's substitution: a crank from a new pivot with the same pole and inflection circle."""
+        """Pröll's substitution: a crank from a new pivot with the same pole and inflection circle (--order 3: and the same jerk)."""
         with user_errors():
             from ..io import load
             from ..synthesis.second_order import proell_substitution
 
             mech = load(mechanism)
-            sub = proell_substitution(mech, _angle_option(at, "--at"), _pair(pivot, "--pivot"), replace=replace)
+            sub = proell_substitution(mech, _angle_option(at, "--at"), _pair(pivot, "--pivot"), replace=replace,
+                                      order=order)
             write_output_file(output, sub.text)
             load(output)
             Console().print(_summary("Pröll's substitution", [
