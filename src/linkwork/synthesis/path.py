@@ -34,19 +34,26 @@ MARGIN = 1e-4  # h² the chain must keep at every target (in the targets' size s
 PENALTY = 1e3  # weight of the assembly constraint's residual
 
 
+def _meet(c1: np.ndarray, r1: float, c2: np.ndarray, r2: float, sigma: float):
+    """The pin of a dyad: the meet of the circles about c1 (radius r1) and c2 (radius r2), each
+    (N, 2), on the side sigma = ±1 of c1→c2, and the squared half-chord h² (< 0: no meet; the
+    pin is then the foot of the chord, for the penalty to pull from)."""
+    v = c2 - c1
+    d2 = np.sum(v * v, axis=1)
+    d = np.sqrt(d2)
+    along = (r1 * r1 - r2 * r2 + d2) / (2 * d)
+    h2 = r1 * r1 - along**2
+    u = v / d[:, None]
+    n = np.column_stack([-u[:, 1], u[:, 0]])
+    return c1 + along[:, None] * u + sigma * np.sqrt(np.maximum(h2, 0.0))[:, None] * n, h2
+
+
 def _coupler_points(x: np.ndarray, theta: np.ndarray, sigma: float):
     """Pins and coupler points at crank angles theta for the parameters x (see the module)."""
     A0, B0 = x[0:2], x[2:4]
     a, b, c, p, q = x[4:9]
     A = A0 + a * np.column_stack([np.cos(theta), np.sin(theta)])
-    v = B0 - A
-    d2 = np.sum(v * v, axis=1)
-    d = np.sqrt(d2)
-    along = (b * b - c * c + d2) / (2 * d)
-    h2 = b * b - along**2
-    u = v / d[:, None]
-    n = np.column_stack([-u[:, 1], u[:, 0]])
-    B = A + along[:, None] * u + sigma * np.sqrt(np.maximum(h2, 0.0))[:, None] * n
+    B, h2 = _meet(A, b, np.broadcast_to(B0, A.shape), c, sigma)
     e = (B - A) / b
     C = A + p * e + q * np.column_stack([-e[:, 1], e[:, 0]])
     return A, B, C, h2
