@@ -77,3 +77,21 @@ def test_substitute_to_third_order(tmp_path):
     r = run("synth", "substitute", "library:crank-rocker", "--at", "60", "--pivot", "30,-10", "--order", "4",
             "-o", out)
     assert r.exit_code == 2 and "order 2 or 3" in r.output
+
+
+def test_six_bar_path_command(tmp_path):
+    from test_six_bar_path import sampled
+
+    T, th = sampled("watt", 5)
+    out = tmp_path / "six.toml"
+    args = [a for p in T for a in ("--point", f"{float(p[0])!r},{float(p[1])!r}")]
+    r = run("synth", "six-bar-path", "--kind", "watt", *args, "--timing",
+            ",".join(repr(float(np.degrees(t - th[0]))) for t in th), "-o", out)
+    assert r.exit_code == 0, r.output
+    import linkwork
+
+    mech = linkwork.load(out)
+    # the file is drawn at the first target: its tracer is there
+    assert np.allclose(mech.points["P"], T[0], atol=1e-9 * 50)
+    r = run("synth", "six-bar-path", "--kind", "klann", *args, "-o", out)
+    assert r.exit_code == 2 and "choose one of" in r.output

@@ -16,7 +16,10 @@ follows y = f(x) through precision points by Freudenstein's equation. `dwell` ad
 dyad to a four-bar at a coupler point (Pöschl §37); `substitute` replaces a crank of a four-bar
 by Pröll's (Rosenauer §29), keeping the coupler's motion to second order (--order 3: to the jerk). `path` finds a
 four-bar whose coupler point passes through target points (least squares from several starts);
-`cognates` writes the Roberts–Chebyshev cognates of a four-bar's coupler point.
+`six-bar-path` does the same with a Watt I or Stephenson III six-bar; `cognates` writes the
+Roberts–Chebyshev cognates of a four-bar's coupler point; `straight-line` designs Watt's,
+Chebyshev's and Evans's linkages from a stroke, a Ball-point tracer or Hart's exact line from a
+four-bar, and `straightness` measures any point path against its best line.
 
 Every file written is loaded again and solved by the engine at the positions' (or precision
 points') inputs; the deviation is reported and must stay within 1e-9, else the command stops
@@ -428,6 +431,36 @@ def register_curvature_designs(synth: typer.Typer) -> None:
                 ("Grashof type", c.name), ("defects", ", ".join(n.split(" (")[0] for n in c.notes) or "none"),
                 ("least transmission angle", f"{math.degrees(c.min_transmission):.2f}°"),
                 ("largest distance from the targets (engine)", f"{engine:.3g} {unit}")]))
+            Console().print(f"wrote {output}")
+
+    @synth.command("six-bar-path")
+    def six_bar_path_command(
+        kind: str = typer.Option("stephenson", "--kind", help="watt (Watt I: dyad between crank and coupler) or stephenson (Stephenson III: dyad from the coupler to a frame pivot)"),
+        point: Optional[list[str]] = typer.Option(None, "--point", help="X,Y: a target point of the tracer's path; repeat (at least 3), in order"),
+        timing: Optional[str] = typer.Option(None, "--timing", help="DEG,DEG,…: the crank angle at each target (prescribed timing), relative to the first"),
+        starts: int = typer.Option(12, "--starts", help="starting points of the search (the best-fitting random six-bars)"),
+        unit: str = typer.Option("mm", "--unit", help="length unit of the file"),
+        name: Optional[str] = typer.Option(None, "--name", help="the mechanism's name"),
+        output: str = typer.Option(..., "-o", "--output", help="the six-bar's mechanism file"),
+    ) -> None:
+        """A Watt or Stephenson six-bar whose tracer P passes through target points (least squares)."""
+        with user_errors():
+            from ..io import load
+            from ..synthesis.six_bar_path import six_bar_path_generator
+            from ..units import check_length_unit
+
+            check_length_unit(unit)
+            targets = np.array([_pair(p, "--point") for p in point or []])
+            if len(targets) < 3:
+                raise InputError(f"give at least three target points (--point X,Y), got {len(targets)}")
+            tm = None if timing is None else np.radians([_number(v, f"--timing {timing}") for v in timing.split(",")])
+            gen = six_bar_path_generator(targets, kind, timing=tm, starts=starts, name=name, length_unit=unit)
+            write_output_file(output, gen.text)
+            load(output)
+            Console().print(_summary(f"path generator ({kind} six-bar)", [
+                ("crank angles at the targets", ", ".join(f"{math.degrees(a):.6g}°" for a in gen.angles)),
+                ("assemblies (four-bar, dyad)", f"{gen.assembly[0]:+d}, {gen.assembly[1]:+d}"),
+                ("largest distance from the targets (engine)", f"{gen.engine_error:.3g} {unit}")]))
             Console().print(f"wrote {output}")
 
     @synth.command("cognates")
