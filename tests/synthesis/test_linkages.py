@@ -173,3 +173,24 @@ def test_five_positions_of_a_slider_crank_give_the_slider(tmp_path):
 
 def test_five_general_positions_have_no_slider():
     assert not any(d.is_slider for d in burmester_points(FIVE).dyads)
+
+
+def test_the_ranking_screen_agrees_with_the_engine_check():
+    """`linkages` ranks by `Linkage.screen` (closed form, no engine): its branch defect and
+    least transmission angle are the engine's (`check`) for every candidate of an automatic
+    four-position search."""
+    from linkwork.synthesis.linkages import four_position_linkages
+
+    pos, _, _ = generated([10, 45, 80, 120])
+    found = four_position_linkages(pos, candidates=6)
+    checked = [lk for lk in found if lk.geometry_ok]
+    assert len(checked) >= 4
+    for lk in checked:
+        branch, mu = lk.screen
+        c = lk.check
+        assert branch == c.branch_defect
+        if not branch:
+            assert mu == pytest.approx(c.min_transmission, abs=1e-9)
+    # ranked: usable ones (by the screen) first
+    flags = [lk.geometry_ok and not lk.screen[0] and lk.screen[1] >= np.radians(30) for lk in found]
+    assert flags == sorted(flags, reverse=True)

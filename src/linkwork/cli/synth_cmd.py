@@ -248,10 +248,16 @@ def register(app: typer.Typer) -> None:
                     with err_console.status("trying pairs of centre points along the centre-point curve …"):
                         found = four_position_linkages(pos, name=name)
                     what = f"{len(found)} linkages from points of the centre-point curve"
-                usable = [lk for lk in found if lk.geometry_ok and lk.check.usable(math.radians(min_transmission))]
-                chosen = found if all_ else usable
                 limit = best if best is not None else (None if n == 5 else 3)
-                chosen = chosen[:limit]
+                if all_:
+                    chosen = found[:limit]
+                else:  # found is ranked without the engine: its check confirms the first usable ones
+                    chosen = []
+                    for lk in found:
+                        if limit is not None and len(chosen) >= limit:
+                            break
+                        if lk.geometry_ok and lk.check.usable(math.radians(min_transmission)):
+                            chosen.append(lk)
                 if not chosen:
                     shown = [lk for lk in found if lk.geometry_ok][:10]
                     if shown:
