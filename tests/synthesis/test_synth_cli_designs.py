@@ -95,3 +95,14 @@ def test_six_bar_path_command(tmp_path):
     assert np.allclose(mech.points["P"], T[0], atol=1e-9 * 50)
     r = run("synth", "six-bar-path", "--kind", "klann", *args, "-o", out)
     assert r.exit_code == 2 and "choose one of" in r.output
+
+
+def test_poles_command_draws_the_steps(tmp_path):
+    out = tmp_path / "hamilton.svg"
+    r = run("synth", "poles", "--pose", "0,0,0", "--pose", "1,0.4,20", "--pose", "1.8,1.2,45", "--steps", "-o", out)
+    assert r.exit_code == 0, r.output
+    files = sorted(tmp_path.glob("hamilton-*.svg"))
+    assert len(files) == 8
+    assert "P_13" in r.output and "relative error" in r.output
+    r = run("synth", "poles", "--pose", "0,0,0", "--pose", "1,0,0", "--pose", "2,0,0", "-o", out)
+    assert r.exit_code == 2 and "translation" in r.output

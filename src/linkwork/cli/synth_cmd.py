@@ -5,7 +5,8 @@
     linkwork synth function --function "log10(x)" --x 1:2 --input-range 30:120 \\
         --output-range 60:150 --points 3 -o log.toml
 
-`poses` guides a plane (a coupler) through prescribed positions x, y, angle (degrees): three
+`poles` draws Hamilton's construction of the poles, the pole triangle and homologous points
+by reflections (Pöschl §57), with --steps one drawing per step. `poses` guides a plane (a coupler) through prescribed positions x, y, angle (degrees): three
 positions with two chosen pivots (--centre for a fixed pivot, --circle for a moving pivot
 drawn in the first position), four with two fixed pivots on the centre-point curve (or
 --slider for the curve's point at infinity) or, without them, the best pairs of points along
@@ -298,6 +299,59 @@ def register(app: typer.Typer) -> None:
             if bad:
                 raise InputError("the engine does not reproduce the positions with " + ", ".join(bad)
                                  + f" (beyond {TOLERANCE:g}): not a usable design")
+
+    @synth.command("poles")
+    def poles_command(
+        pose: Optional[list[str]] = typer.Option(None, "--pose", help="X,Y,ANGLE: a position of the moving plane (degrees); repeat, 3 to 5 times"),
+        poses_file: Optional[str] = typer.Option(None, "--poses", help="a CSV file of positions x,y,angle (degrees), one a line"),
+        point: Optional[str] = typer.Option(None, "--point", help="X,Y: the point D1 of the first position whose homologous points are found (default: the middle of its segment)"),
+        triple: str = typer.Option("1,2,3", "--triple", help="I,J,K: the three positions of the construction (numbered from 1)"),
+        steps: bool = typer.Option(False, "--steps", help="one drawing per construction step (FILE-01.svg, …)"),
+        unit: str = typer.Option("mm", "--unit", help="length unit of the drawing"),
+        output: str = typer.Option(..., "-o", "--output", help="FILE.svg (.png, .pdf): the positions with Hamilton's construction"),
+    ) -> None:
+        """Hamilton's construction (Pöschl §57): poles, pole triangle, homologous points by reflections."""
+        with user_errors():
+            from ..constructions.scales import Scales
+            from ..drawing.layers import construction_box, construction_extent, draw_construction
+            from ..drawing.svg import Figure
+            from ..synthesis.reflections import pole_construction
+            from ..units import check_length_unit
+
+            check_length_unit(unit)
+            if Path(output).suffix.lower() not in (".svg", ".png", ".pdf"):
+                raise InputError(f"-o {output}: write .svg, .png or .pdf")
+            pos = _poses(pose, poses_file)
+            try:
+                t = tuple(int(v) - 1 for v in triple.split(","))
+            except ValueError:
+                raise InputError(f"--triple {triple}: write three position numbers I,J,K") from None
+            con = pole_construction(pos, None if point is None else _pair(point, "--point"), triple=t)
+            con.require(0)
+            con.check()
+            Console().print(con.describe(), highlight=False)
+            con = con.sample(0)  # the drawing takes single items
+            out = Path(output)
+            scales = Scales.auto(unit, 1.2 * construction_extent(con))
+
+            def figure():  # the construction draws the positions itself (step 1)
+                fig = Figure(scales, title="Hamilton's construction (Pöschl §57)")
+                fig.clip["mechanism"] = construction_box(con)
+                return fig
+            if steps:
+                written = []
+                for k in range(len(con.steps)):
+                    fig = figure()
+                    draw_construction(fig, con, upto=k, highlight=k)
+                    p = out.with_name(f"{out.stem}-{k + 1:02d}{out.suffix}")
+                    fig.save(p)
+                    written.append(p)
+                Console().print(f"wrote {len(written)} drawings {written[0]} … {written[-1]}")
+            else:
+                fig = figure()
+                draw_construction(fig, con)
+                fig.save(out)
+                Console().print(f"wrote {out}")
 
     @synth.command("function")
     def function_command(

@@ -5,6 +5,8 @@
   circle, and the mechanism file of the designed cam.
 - `positions`: finite positions of a moving plane: poles, rotation angles, the pole triangle,
   image poles, Pöschl's image point, circle point ↔ centre point (two and three positions).
+- `reflections`: Hamilton's construction (Pöschl §57) of the poles, the pole triangle and
+  homologous points by reflections, step by step (`constructions` model, checked).
 - `burmester`: the centre-point and circle-point cubics of four positions, the Burmester points
   of five (polynomial roots), dyads.
 - `linkages`: four-bars and slider-cranks from two dyads, their mechanism files and checks
