@@ -429,6 +429,18 @@ def _angle_option(text: str, what: str) -> float:
     return math.radians(_number(text, what))
 
 
+def _targets(unit: str, point, timing):
+    """The path commands' targets (--point, at least three) and timing (--timing, degrees)."""
+    from ..units import check_length_unit
+
+    check_length_unit(unit)
+    targets = np.array([_pair(p, "--point") for p in point or []])
+    if len(targets) < 3:
+        raise InputError(f"give at least three target points (--point X,Y), got {len(targets)}")
+    tm = None if timing is None else np.radians([_number(v, f"--timing {timing}") for v in timing.split(",")])
+    return targets, tm
+
+
 def register_curvature_designs(synth: typer.Typer) -> None:
     @synth.command("dwell")
     def dwell_command(
@@ -471,13 +483,8 @@ def register_curvature_designs(synth: typer.Typer) -> None:
             from ..io import load
             from ..kinematics import solve
             from ..synthesis.path import path_generator
-            from ..units import check_length_unit
 
-            check_length_unit(unit)
-            targets = np.array([_pair(p, "--point") for p in point or []])
-            if len(targets) < 3:
-                raise InputError(f"give at least three target points (--point X,Y), got {len(targets)}")
-            tm = None if timing is None else np.radians([_number(v, f"--timing {timing}") for v in timing.split(",")])
+            targets, tm = _targets(unit, point, timing)
             if starts < 1:
                 raise InputError(f"--starts {starts}: give at least 1")
             gen = path_generator(targets, timing=tm, starts=starts, name=name)
@@ -507,13 +514,8 @@ def register_curvature_designs(synth: typer.Typer) -> None:
         with user_errors():
             from ..io import load
             from ..synthesis.six_bar_path import six_bar_path_generator
-            from ..units import check_length_unit
 
-            check_length_unit(unit)
-            targets = np.array([_pair(p, "--point") for p in point or []])
-            if len(targets) < 3:
-                raise InputError(f"give at least three target points (--point X,Y), got {len(targets)}")
-            tm = None if timing is None else np.radians([_number(v, f"--timing {timing}") for v in timing.split(",")])
+            targets, tm = _targets(unit, point, timing)
             gen = six_bar_path_generator(targets, kind, timing=tm, starts=starts, name=name, length_unit=unit)
             write_output_file(output, gen.text)
             load(output)

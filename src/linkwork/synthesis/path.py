@@ -59,6 +59,29 @@ def _coupler_points(x: np.ndarray, theta: np.ndarray, sigma: float):
     return A, B, C, h2
 
 
+def _targets(targets, timing):
+    """The targets (N, 2), the timing relative to the first (None: free), their size and
+    middle, and the targets on the unit scale (the search works there); errors name the
+    mistake."""
+    T = np.asarray(targets, dtype=float)
+    if T.ndim != 2 or T.shape[1] != 2 or T.shape[0] < 3:
+        raise InputError(f"give at least three target points as an (N, 2) array, got shape {T.shape}")
+    if not np.isfinite(T).all():
+        raise InputError("the target points must be finite")
+    N = T.shape[0]
+    dt = None
+    if timing is not None:
+        dt = np.asarray(timing, dtype=float).ravel()
+        if dt.shape != (N,) or not np.isfinite(dt).all():
+            raise InputError(f"timing: give {N} crank angles (radians), one per target")
+        dt = dt - dt[0]
+    size = float(np.ptp(T, axis=0).max())
+    if size <= 0:
+        raise SynthesisError("the target points coincide")
+    centre = T.mean(axis=0)
+    return T, dt, size, centre, (T - centre) / size
+
+
 @dataclass(frozen=True)
 class PathGenerator:
     """The best four-bar found: its parameters, crank angles, the largest distance of its
@@ -79,22 +102,8 @@ def path_generator(targets, *, timing=None, starts: int = 24, seed: int = 0,
     0) to prescribe the timing, else the angles are free."""
     from scipy.optimize import least_squares
 
-    T = np.asarray(targets, dtype=float)
-    if T.ndim != 2 or T.shape[1] != 2 or T.shape[0] < 3:
-        raise InputError(f"give at least three target points as an (N, 2) array, got shape {T.shape}")
-    if not np.isfinite(T).all():
-        raise InputError("the target points must be finite")
+    T, dt, size, centre, Tn = _targets(targets, timing)
     N = T.shape[0]
-    if timing is not None:
-        dt = np.asarray(timing, dtype=float).ravel()
-        if dt.shape != (N,) or not np.isfinite(dt).all():
-            raise InputError(f"timing: give {N} crank angles (radians), one per target")
-        dt = dt - dt[0]
-    size = float(np.ptp(T, axis=0).max())
-    if size <= 0:
-        raise SynthesisError("the target points coincide")
-    centre = T.mean(axis=0)
-    Tn = (T - centre) / size  # work on the unit scale
 
     def angles(z):
         return z[9] + dt if timing is not None else z[9:]

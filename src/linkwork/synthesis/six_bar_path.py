@@ -35,7 +35,7 @@ import numpy as np
 
 from ..errors import InputError
 from ._file import mechanism_file
-from .path import MARGIN, PENALTY, _coupler_points, _meet
+from .path import MARGIN, PENALTY, _coupler_points, _meet, _targets
 from .positions import SynthesisError
 
 __all__ = ["SixBarPath", "six_bar_path_generator", "KINDS"]
@@ -94,25 +94,10 @@ def six_bar_path_generator(targets, kind: str = "stephenson", *, timing=None, st
 
     if kind not in KINDS:
         raise InputError(f"six-bar kind '{kind}': choose one of {', '.join(KINDS)}")
-    T = np.asarray(targets, dtype=float)
-    if T.ndim != 2 or T.shape[1] != 2 or T.shape[0] < 3:
-        raise InputError(f"give at least three target points as an (N, 2) array, got shape {T.shape}")
-    if not np.isfinite(T).all():
-        raise InputError("the target points must be finite")
     if starts < 1:
         raise InputError(f"starts {starts}: give at least 1")
+    T, dt, size, centre, Tn = _targets(targets, timing)
     N = T.shape[0]
-    dt = None
-    if timing is not None:
-        dt = np.asarray(timing, dtype=float).ravel()
-        if dt.shape != (N,) or not np.isfinite(dt).all():
-            raise InputError(f"timing: give {N} crank angles (radians), one per target")
-        dt = dt - dt[0]
-    size = float(np.ptp(T, axis=0).max())
-    if size <= 0:
-        raise SynthesisError("the target points coincide")
-    centre = T.mean(axis=0)
-    Tn = (T - centre) / size
 
     def angles(z):
         return z[UNKNOWNS] + dt if dt is not None else z[UNKNOWNS:]
