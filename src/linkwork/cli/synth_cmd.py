@@ -43,7 +43,7 @@ from rich.table import Table
 from ..errors import InputError
 from ..outputs import write_output_file
 from .cam_cmd import _number, _pair
-from .common import err_console, user_errors
+from .common import err_console, output_format, user_errors
 
 TOLERANCE = 1e-9
 
@@ -211,6 +211,7 @@ def register(app: typer.Typer) -> None:
     ) -> None:
         """Guide a plane through 3–5 prescribed positions with a four-bar or slider-crank."""
         with user_errors():
+            output_format(None, output, ("toml",), "toml")  # a mechanism file
             from ..synthesis import Linkage, burmester_points, linkages
             from ..units import check_length_unit
 
@@ -371,6 +372,7 @@ def register(app: typer.Typer) -> None:
     ) -> None:
         """A four-bar or slider-crank whose output follows y = f(x): Freudenstein's equation."""
         with user_errors():
+            output_format(None, out, ("toml",), "toml")  # a mechanism file
             from ..io import load
             from ..synthesis.function import FunctionTask, function_generator
             from ..units import check_length_unit
@@ -452,6 +454,7 @@ def register_curvature_designs(synth: typer.Typer) -> None:
     ) -> None:
         """Alt's dwell linkage: a dyad on a coupler point's centre of curvature."""
         with user_errors():
+            output_format(None, output, ("toml",), "toml")  # a mechanism file
             from ..io import load
             from ..kinematics import solve
             from ..synthesis.second_order import alt_dwell
@@ -480,6 +483,7 @@ def register_curvature_designs(synth: typer.Typer) -> None:
     ) -> None:
         """A four-bar whose coupler point passes through target points (least squares)."""
         with user_errors():
+            output_format(None, output, ("toml",), "toml")  # a mechanism file
             from ..io import load
             from ..kinematics import solve
             from ..synthesis.path import path_generator
@@ -533,6 +537,7 @@ def register_curvature_designs(synth: typer.Typer) -> None:
     ) -> None:
         """The Roberts–Chebyshev cognates: two more four-bars tracing the same coupler curve."""
         with user_errors():
+            output_format(None, output, ("toml",), "toml")  # a mechanism file
             from ..io import load
             from ..synthesis.cognates import cognates
 
@@ -556,6 +561,7 @@ def register_curvature_designs(synth: typer.Typer) -> None:
     ) -> None:
         """Pröll's substitution: a crank from a new pivot with the same pole and inflection circle (--order 3: and the same jerk)."""
         with user_errors():
+            output_format(None, output, ("toml",), "toml")  # a mechanism file
             from ..io import load
             from ..synthesis.second_order import proell_substitution
 
