@@ -332,7 +332,7 @@ def watt_linkage(stroke: float, *, deviation: float | None = None, arm: float | 
             try:
                 return path_straightness(load_text(text, source="Watt"), "Q", stroke=s).deviation
             except SynthesisError:
-                return math.inf  # too short to run the stroke
+                return 1e300  # too short to run the stroke: worse than any requirement
 
         # the leading term solved for the unknown: a start inside the bracket
         if r is None:
@@ -425,7 +425,7 @@ def evans_linkage(stroke: float, *, angle: float = math.radians(45.0), fraction:
     text = _four_bar_text(name, desc, unit, pts, ("E", "D"), ("E", "A"), ("A", "C", "B"), ("D", "C"),
                           "D", "10 rpm")
     lengths = {"bar": L, "fraction": k, "arm": float(np.hypot(*(A_mid - E))),
-               "rocker": float(abs(C_mid[0] - xD) if C_mid[1] == 0 else np.hypot(*(C_mid - [xD, 0.0])))}
+               "rocker": float(np.hypot(*(C_mid - [xD, 0.0])))}
     return _finish(f"Evans linkage ({form} form)", text, "B", lengths, pts, s * (1 - 1e-9))
 
 
@@ -456,7 +456,9 @@ def hart_straight_line(mech: Mechanism, at: float | None = None, *,
     Q, and Q's straightness over the whole motion (engine)."""
     from .second_order import _speed
 
-    u0 = mech.driver_input_at_design(mech.drivers[0]) if at is None and mech.drivers else at
+    if len(mech.drivers) != 1:
+        raise InputError(f"mechanism '{mech.name}': give a four-bar of revolute pairs with one driver")
+    u0 = mech.driver_input_at_design(mech.drivers[0]) if at is None else float(at)
     fb = _four_bar_at(mech, u0, 1)
     O1, A, B, O2 = fb.A0, fb.A, fb.B, fb.B0
     scale = max(np.hypot(*(O2 - O1)), np.hypot(*(B - A)))
