@@ -210,9 +210,21 @@ def test_straightness_closed_forms():
         straightness([[1.0, 2.0]])
 
 
+def test_watt_from_stroke_and_overall_size():
+    des = watt_linkage(20.0, frame=130.0, coupler=50.0)
+    assert des.lengths["arm"] == pytest.approx(60.0, rel=1e-12)  # 4·60² + 50² = 130²
+    mech = des.mechanism()
+    assert np.hypot(*np.subtract(mech.points["Cb"], mech.points["Ca"])) == pytest.approx(130.0, rel=1e-12)
+    assert des.straightness.deviation == pytest.approx(watt_closed_form(20.0, 60.0, 50.0), rel=0.05)
+
+
 def test_bad_requests_are_refused():
     with pytest.raises(InputError, match="two of"):
         watt_linkage(10.0, arm=5.0)
+    with pytest.raises(InputError, match="two of"):
+        watt_linkage(10.0, frame=50.0, deviation=0.1)
+    with pytest.raises(InputError, match="farther apart"):
+        watt_linkage(10.0, frame=50.0, arm=30.0)
     with pytest.raises(InputError, match="positive"):
         chebyshev_linkage(-1.0)
     with pytest.raises(InputError, match="midpoint"):

@@ -595,6 +595,7 @@ def register_straight_lines(synth: typer.Typer) -> None:
         deviation: Optional[float] = typer.Option(None, "--deviation", help="L: watt: the largest deviation allowed over the stroke"),
         arm: Optional[float] = typer.Option(None, "--arm", help="L: watt: the arms' length"),
         coupler: Optional[float] = typer.Option(None, "--coupler", help="L: watt: the coupler's length"),
+        frame: Optional[float] = typer.Option(None, "--frame", help="L: watt: the overall size, the fixed pivots' distance"),
         angle: float = typer.Option(45.0, "--angle", help="DEG: evans: the bar's swing about the horizontal"),
         fraction: float = typer.Option(0.7, "--fraction", help="evans: C = A + FRACTION·(B − A) (0–1 first form, > 1 second, < 0 third)"),
         lever: Optional[float] = typer.Option(None, "--lever", help="L: evans: E's distance from line AO (default 4·AB)"),
@@ -629,7 +630,7 @@ def register_straight_lines(synth: typer.Typer) -> None:
                 if stroke is None:
                     raise InputError(f"straight-line {kind}: give the stroke with --stroke L")
                 if kind == "watt":
-                    des = sl.watt_linkage(stroke, deviation=deviation, arm=arm, coupler=coupler, unit=unit)
+                    des = sl.watt_linkage(stroke, deviation=deviation, arm=arm, coupler=coupler, frame=frame, unit=unit)
                 elif kind == "chebyshev":
                     des = sl.chebyshev_linkage(stroke, unit=unit)
                 else:

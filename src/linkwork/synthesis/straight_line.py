@@ -308,20 +308,32 @@ def _watt_t() -> float:
 
 
 def watt_linkage(stroke: float, *, deviation: float | None = None, arm: float | None = None,
-                 coupler: float | None = None, unit: str = "mm",
+                 coupler: float | None = None, frame: float | None = None, unit: str = "mm",
                  name: str = "Watt's straight-line linkage") -> StraightLineLinkage:
     """Watt's linkage for a straight `stroke` of the coupler's midpoint: give two of `arm`,
-    `coupler` and `deviation` (the largest deviation allowed over the stroke); the third is
-    found (the deviation falls as either length grows) with the engine's path."""
+    `coupler`, `deviation` (the largest deviation allowed over the stroke) and `frame` (the
+    overall size: the distance of the fixed pivots, frame² = 4·arm² + coupler², Pöschl eq. 103;
+    not with deviation); the rest is found, the deviation's partner (it falls as either length
+    grows) with the engine's path."""
     from scipy.optimize import brentq
 
     s = _positive(stroke, "stroke")
-    given = [k for k, v in (("arm", arm), ("coupler", coupler), ("deviation", deviation)) if v is not None]
-    if len(given) != 2:
-        raise InputError("Watt's linkage: give two of arm, coupler and deviation "
-                         f"(got {', '.join(given) or 'none'})")
+    given = [k for k, v in (("arm", arm), ("coupler", coupler), ("deviation", deviation), ("frame", frame))
+             if v is not None]
+    if len(given) != 2 or set(given) == {"deviation", "frame"}:
+        raise InputError("Watt's linkage: give two of arm, coupler, deviation and frame, not deviation "
+                         f"with frame (got {', '.join(given) or 'none'})")
     r = None if arm is None else _positive(arm, "arm")
     c = None if coupler is None else _positive(coupler, "coupler")
+    if frame is not None:
+        f = _positive(frame, "frame")
+        if (r is not None and 2 * r >= f) or (c is not None and c >= f):
+            raise InputError(f"frame {f:g}: the fixed pivots must be farther apart than 2·arm and the "
+                             "coupler (frame² = 4·arm² + coupler²)")
+        if r is None:
+            r = math.sqrt(f * f - c * c) / 2
+        else:
+            c = math.sqrt(f * f - 4 * r * r)
     if deviation is not None:
         dev = _positive(deviation, "deviation")
 
