@@ -94,6 +94,15 @@ def test_chebyshev_proportions_are_the_classical_ones():
     assert 0 < des.straightness.deviation < 0.002 * 80
 
 
+def test_chebyshev_from_the_deviation_allowed():
+    des = chebyshev_linkage(deviation=0.05)
+    assert des.straightness.deviation == pytest.approx(0.05, rel=1e-6)
+    L = des.lengths
+    assert (L["frame"], L["rocker"]) == pytest.approx((2 * L["coupler"], 2.5 * L["coupler"]), rel=1e-12)
+    with pytest.raises(InputError, match="stroke or the deviation"):
+        chebyshev_linkage(10.0, deviation=0.1)
+
+
 def watt_closed_form(stroke, r, c):
     """Minimax deviation of x = k y⁵ over |y| ≤ h: the line x = m y with the error equal and
     opposite at y = h and at the interior extremum y₁ = t h, 4t⁵ + 5t⁴ = 1 (solved here by

@@ -592,7 +592,7 @@ def register_straight_lines(synth: typer.Typer) -> None:
     def straight_line_command(
         kind: str = typer.Argument(..., help="watt, chebyshev, evans (from a stroke), ball-point or hart (from a four-bar, --mechanism)"),
         stroke: Optional[float] = typer.Option(None, "--stroke", help="L: the straight stroke of the tracer (watt, chebyshev, evans; ball-point: the stroke to measure)"),
-        deviation: Optional[float] = typer.Option(None, "--deviation", help="L: watt: the largest deviation allowed over the stroke"),
+        deviation: Optional[float] = typer.Option(None, "--deviation", help="L: watt, chebyshev: the largest deviation allowed over the stroke (chebyshev: instead of --stroke)"),
         arm: Optional[float] = typer.Option(None, "--arm", help="L: watt: the arms' length"),
         coupler: Optional[float] = typer.Option(None, "--coupler", help="L: watt: the coupler's length"),
         frame: Optional[float] = typer.Option(None, "--frame", help="L: watt: the overall size, the fixed pivots' distance"),
@@ -627,12 +627,12 @@ def register_straight_lines(synth: typer.Typer) -> None:
                 length_unit = mech.length_unit
             else:
                 check_length_unit(unit)
-                if stroke is None:
+                if stroke is None and not (kind == "chebyshev" and deviation is not None):
                     raise InputError(f"straight-line {kind}: give the stroke with --stroke L")
                 if kind == "watt":
                     des = sl.watt_linkage(stroke, deviation=deviation, arm=arm, coupler=coupler, frame=frame, unit=unit)
                 elif kind == "chebyshev":
-                    des = sl.chebyshev_linkage(stroke, unit=unit)
+                    des = sl.chebyshev_linkage(stroke, deviation=deviation, unit=unit)
                 else:
                     des = sl.evans_linkage(stroke, angle=math.radians(angle), fraction=fraction, lever=lever, unit=unit)
                 length_unit = unit

@@ -371,15 +371,24 @@ def watt_linkage(stroke: float, *, deviation: float | None = None, arm: float | 
                    pts, s)
 
 
-def chebyshev_linkage(stroke: float, *, unit: str = "mm",
+def chebyshev_linkage(stroke: float | None = None, *, deviation: float | None = None, unit: str = "mm",
                       name: str = "Chebyshev's straight-line linkage") -> StraightLineLinkage:
-    """Chebyshev's straight-line linkage for a straight `stroke` of the coupler's midpoint M.
+    """Chebyshev's straight-line linkage for a straight `stroke` of the coupler's midpoint M (or,
+    with `deviation`, the longest stroke that keeps within it).
     Frame d = stroke (M's ends lie above the fixed pivots); the rockers c and coupler b follow
     from Chebyshev's two conditions: (i) at a stroke end a rocker stands at right angles to the
     frame with the coupler in line with it, d² + (c − b)² = c²; (ii) M is there at the height it
     has in the symmetric middle position, c − b/2 = √(c² − ((d + b)/2)²)."""
     from scipy.optimize import fsolve
 
+    if (stroke is None) == (deviation is None):
+        raise InputError("Chebyshev's linkage: give the stroke or the deviation allowed over it (its "
+                         "proportions are fixed, so its deviation grows with its size)")
+    if deviation is not None:
+        # the deviation per stroke of the proportions, measured by the engine on one of unit size
+        per = chebyshev_linkage(1.0, unit=unit).straightness.relative
+        d = _positive(deviation, "deviation") / per
+        return chebyshev_linkage(d, unit=unit, name=name)
     d = _positive(stroke, "stroke")
 
     def conditions(z):
