@@ -170,6 +170,16 @@ def test_evans_matches_the_library_file():
     assert np.allclose(des.points["E"], lib.points["E"], atol=1e-9)
 
 
+def test_evans_lever_from_the_deviation_allowed():
+    des = evans_linkage(100.0, fraction=0.8, deviation=0.1)
+    assert des.straightness.deviation == pytest.approx(0.1, rel=1e-6)
+    # a fresh engine path of the written file
+    again = path_straightness(des.mechanism(), "B", stroke=100.0 * (1 - 1e-9), samples=4001)
+    assert again.deviation == pytest.approx(0.1, rel=1e-5)
+    with pytest.raises(SynthesisError, match="even a lever"):
+        evans_linkage(100.0, fraction=0.8, deviation=0.01)
+
+
 def four_bar(points, name="four-bar"):
     return linkwork.io.load_text(mechanism_file(
         name=name, description="", length_unit="mm", points=points,

@@ -592,7 +592,7 @@ def register_straight_lines(synth: typer.Typer) -> None:
     def straight_line_command(
         kind: str = typer.Argument(..., help="watt, chebyshev, evans (from a stroke), ball-point or hart (from a four-bar, --mechanism)"),
         stroke: Optional[float] = typer.Option(None, "--stroke", help="L: the straight stroke of the tracer (watt, chebyshev, evans; ball-point: the stroke to measure)"),
-        deviation: Optional[float] = typer.Option(None, "--deviation", help="L: watt, chebyshev: the largest deviation allowed over the stroke (chebyshev: instead of --stroke)"),
+        deviation: Optional[float] = typer.Option(None, "--deviation", help="L: watt, chebyshev, evans: the largest deviation allowed over the stroke (chebyshev: instead of --stroke; evans: instead of --lever)"),
         arm: Optional[float] = typer.Option(None, "--arm", help="L: watt: the arms' length"),
         coupler: Optional[float] = typer.Option(None, "--coupler", help="L: watt: the coupler's length"),
         frame: Optional[float] = typer.Option(None, "--frame", help="L: watt: the overall size, the fixed pivots' distance"),
@@ -634,7 +634,8 @@ def register_straight_lines(synth: typer.Typer) -> None:
                 elif kind == "chebyshev":
                     des = sl.chebyshev_linkage(stroke, deviation=deviation, unit=unit)
                 else:
-                    des = sl.evans_linkage(stroke, angle=math.radians(angle), fraction=fraction, lever=lever, unit=unit)
+                    des = sl.evans_linkage(stroke, angle=math.radians(angle), fraction=fraction, lever=lever,
+                                           deviation=deviation, unit=unit)
                 length_unit = unit
             write_output_file(output, des.text)
             load(output)  # the engine reads the file back

@@ -412,15 +412,40 @@ def chebyshev_linkage(stroke: float | None = None, *, deviation: float | None = 
 
 
 def evans_linkage(stroke: float, *, angle: float = math.radians(45.0), fraction: float = 0.7,
-                  lever: float | None = None, unit: str = "mm",
+                  lever: float | None = None, deviation: float | None = None, unit: str = "mm",
                   name: str = "Evans straight-line linkage") -> StraightLineLinkage:
     """Evans's linkage (Rosenauer §§32–34) for a straight `stroke` of B along the vertical
     through O: the ellipsograph bar AB = stroke / (2 sin angle) swinging ±`angle` (≤ 45° as the
     seed advises, at most 80° here) about the horizontal, C = A + fraction·(B − A) (between A and
     B: first form; beyond B, > 1: second; beyond A, < 0: third), D on line AO equidistant from C
     at the start and C′ in the middle, E on the perpendicular bisector of A's two places at
-    `lever` (default 4·AB) below line AO. Drawn in the middle position (B at O), driven at D."""
+    `lever` (default 4·AB) below line AO. Drawn in the middle position (B at O), driven at D.
+    With `deviation` instead of `lever`: the shortest lever that keeps the deviation over the
+    stroke within it (the deviation falls as the lever grows, towards the floor of the circle
+    arc standing in for the ellipse; a deviation below that floor is refused)."""
     s = _positive(stroke, "stroke")
+    if deviation is not None:
+        if lever is not None:
+            raise InputError("Evans's linkage: give the lever or the deviation allowed, not both")
+        from scipy.optimize import brentq
+
+        dev = _positive(deviation, "deviation")
+        L = s / (2 * math.sin(float(angle)))
+
+        def excess(x):  # log of the measured deviation over the allowed one, lever = L·e^x
+            got = evans_linkage(s, angle=angle, fraction=fraction, lever=L * math.exp(x), unit=unit)
+            return math.log(got.straightness.deviation / dev)
+
+        lo, hi = math.log(0.25), math.log(1e4)
+        if excess(hi) > 0:
+            raise SynthesisError(f"deviation {dev:g}: even a lever of 10⁴·AB leaves more (the circle arc "
+                                 "about D stands in for the ellipse); allow more, or change the fraction or "
+                                 "the swing")
+        if excess(lo) <= 0:
+            return evans_linkage(s, angle=angle, fraction=fraction, lever=L * math.exp(lo), unit=unit, name=name)
+        x = brentq(excess, lo, hi, xtol=1e-10)
+        return evans_linkage(s, angle=angle, fraction=fraction, lever=L * math.exp(x) * (1 + 1e-9), unit=unit,
+                             name=name)
     a = float(angle)
     if not (0 < a <= math.radians(80)):
         raise InputError(f"angle {math.degrees(a):g}°: give the bar's swing in (0°, 80°]")
