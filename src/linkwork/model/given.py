@@ -77,10 +77,11 @@ class GivenDirection:
 Given = Union[GivenVelocity, GivenDirection]
 
 
-def normalized(mech: "Mechanism", given) -> tuple[Given, ...]:
+def normalized(mech: "Mechanism", given, *, alone: bool = True) -> tuple[Given, ...]:
     """The conditions with their arrays read-only and each condition's link filled in, checked
     against ``mech``: known points and links, a point given once, finite numbers, a direction
-    that is no zero vector, batches of one length, and no drivers beside them."""
+    that is no zero vector, batches of one length, and (``alone``: the mechanism's own inputs)
+    no drivers beside them."""
     out: list[Given] = []
     seen: dict[str, str] = {}
     sizes: set[int] = set()
@@ -124,7 +125,7 @@ def normalized(mech: "Mechanism", given) -> tuple[Given, ...]:
     if len(sizes) > 1:
         raise ModelError(f"the given conditions come in batches of different lengths {sorted(sizes)}; "
                          "give one value or N values for each")
-    if out and mech.drivers:
+    if out and alone and mech.drivers:
         raise ModelError(f"mechanism '{mech.name}' has drivers ({', '.join(d.joint for d in mech.drivers)}) "
                          "and given point velocities: a chain is driven by one or the other")
     return tuple(out)
