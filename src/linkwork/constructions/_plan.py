@@ -471,6 +471,10 @@ class AccelerationConstruction(_SlidingGroups):
 
     def run(self) -> None:
         solved = {self.mech.frame}
+        if self.mech.given:
+            raise InputError(f"the acceleration plan of '{self.mech.name}', a chain driven by given "
+                             "point velocities, is not drawn (its accelerations are solved: "
+                             "kinematics.point_inputs.solve_given)")
         for gs in group_plan(self.mech):
             fn = getattr(self, "_g_" + gs.kind.replace("-", "_"), None)
             if fn is not None:
