@@ -21,7 +21,7 @@ import linkwork
 from linkwork.cli import app
 from linkwork.constructions import acceleration_plan, rotated_velocities, velocity_plan
 from linkwork.kinematics.point_inputs import solve_given
-from linkwork.model import GivenVelocity, Mechanism
+from linkwork.model import GivenDirection, GivenVelocity, Mechanism, hinge_chain
 from linkwork.topology.constructibility import Chain, plan_velocities, wittenbauer_rule
 
 EXAMPLES = ["rosenauer-free-watt-chain", "rosenauer-free-triad", "rosenauer-free-serial-chain",
@@ -238,6 +238,32 @@ def test_example_5_auxiliary_points_are_the_papers():
     s = plan_velocities(load("rosenauer-free-heusinger-chain"))
     assert aux_lines(s) == {L(("H", "G"), ("O5", "K")), L(("D", "E"), ("O4", "L"))}
     assert {a.link for a in s.aux} == {"gkf", "fel"}
+
+
+RANDOM = {
+    "Ex I": ({"CDG": "CDG", "DEF": "DEF", "AC": "AC", "AE": "AE", "BG": "BG", "BF": "BF"}, "AB", ""),
+    "Ex II": ({"ABC": "ABC", "AK": "AK", "BL": "BL", "CM": "CM"}, "KLM", ""),
+    "Ex III": ({"AE": "AE", "EBF": "EBF", "CGF": "CGF", "GD": "GD"}, "AD", "BC"),
+    "Ex IV": ({"AGH": "AGH", "EFG": "EFG", "CDE": "CDE", "JKB": "JKB", "AC": "AC", "HJ": "HJ",
+               "FK": "FK", "DB": "DB"}, "AF", ""),
+}
+
+
+@pytest.mark.parametrize("example", list(RANDOM))
+@pytest.mark.parametrize("seed", [11, 12, 13])
+def test_scripts_at_random_positions_match_the_engine(example, seed):
+    """The examples' chains drawn anew at random and given random data: every image the script
+    constructs (auxiliary points included) is the engine's velocity to 1e-9."""
+    links, velocities, directions = RANDOM[example]
+    rng = np.random.default_rng(seed)
+    pos = {p: rng.uniform(-100, 100, 2) for p in sorted({p for v in links.values() for p in v})}
+    given = [GivenVelocity(p, rng.uniform(-50, 50, 2)) for p in velocities]
+    given += [GivenDirection(p, rng.normal(size=2)) for p in directions]
+    mech = hinge_chain(example, pos, links, given)
+    for build in (velocity_plan, rotated_velocities):
+        con = build(mech, None)
+        con.check()
+        assert con.max_error() <= 1e-9 and not con.degenerate.any()
 
 
 def test_a_batch_of_given_velocity_sets_is_constructed_sample_by_sample():

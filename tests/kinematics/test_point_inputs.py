@@ -21,7 +21,7 @@ import linkwork
 from linkwork.errors import LinkworkError, MechanismFileError, ModelError, StructureError
 from linkwork.kinematics import Status
 from linkwork.kinematics.point_inputs import check_count, solve_given
-from linkwork.model import GivenDirection, GivenVelocity, Mechanism, Revolute
+from linkwork.model import GivenDirection, GivenVelocity, Mechanism, Revolute, hinge_chain
 
 WATT = {"CDG": "CDG", "DEF": "DEF", "AC": "AC", "AE": "AE", "BG": "BG", "BF": "BF"}
 TRIAD = {"ABC": "ABC", "AK": "AK", "BL": "BL", "CM": "CM"}
@@ -32,16 +32,7 @@ DREISPANN = {"AGH": "AGH", "EFG": "EFG", "CDE": "CDE", "JKB": "JKB", "AC": "AC",
 
 def free_chain(links: dict, pos: dict, given=(), name="free chain") -> Mechanism:
     """A hinge chain without a frame: every point shared by two links is a hinge."""
-    names = list(links)
-    joints = []
-    for i, a in enumerate(names):
-        for b in names[i + 1:]:
-            for p in links[a]:
-                if p in links[b]:
-                    joints.append(Revolute(p, p, (a, b)))
-    return Mechanism.build(name=name, points=pos, links={**{k: list(v) for k, v in links.items()},
-                                                          "frame": []},
-                           joints=joints, drivers=[], given=given)
+    return hinge_chain(name, pos, links, given)
 
 
 def random_positions(links, seed):

@@ -147,3 +147,24 @@ def batch_size(given) -> int:
 def condition_count(given) -> int:
     """The number of scalar conditions the given data state (2 per velocity, 1 per direction)."""
     return sum(g.count for g in given)
+
+
+def hinge_chain(name: str, points, links, given=(), *, frame: str = "frame",
+                length_unit: str = "mm", description: str = "") -> "Mechanism":
+    """A hinge chain written as its links only (``{"CDG": ["C", "D", "G"], "AC": ["A", "C"]}``):
+    every point two links share is a hinge between them, as the papers draw their chains. The
+    ``frame`` is the link of that name if listed (an open chain on its frame), else an empty
+    one (a free chain); ``given``: its given point velocities or directions."""
+    from .mechanism import Mechanism, Revolute
+
+    pts = {k: list(v) for k, v in links.items()}
+    pts.setdefault(frame, [])
+    names = list(pts)
+    joints = []
+    for i, a in enumerate(names):
+        for b in names[i + 1:]:
+            for p in pts[a]:
+                if p in pts[b]:
+                    joints.append(Revolute(p if p not in {j.name for j in joints} else f"{p}_{b}", p, (a, b)))
+    return Mechanism.build(name=name, points=points, links=pts, joints=joints, drivers=[], frame=frame,
+                           length_unit=length_unit, description=description, given=given)
