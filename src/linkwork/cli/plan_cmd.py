@@ -14,7 +14,7 @@ from typing import Optional
 
 import typer
 
-from .common import load_mechanism, user_errors, write_output
+from .common import load_mechanism, output_format, user_errors, write_output
 
 
 class Mode(str, Enum):
@@ -28,7 +28,7 @@ class Format(str, Enum):
 
 
 def _plan_command(mechanism: str, at: Optional[list[str]], explain: bool, mode: Mode,
-                  fmt: Format, output: Optional[str]) -> None:
+                  fmt: Format | None, output: Optional[str]) -> None:
     # imported here: registering the command must stay cheap (tests/cli/test_startup.py)
     import numpy as np
 
@@ -38,6 +38,7 @@ def _plan_command(mechanism: str, at: Optional[list[str]], explain: bool, mode: 
     from .inputs import input_values
 
     with user_errors():
+        fmt = Format(output_format(fmt and fmt.value, output, ("text", "json"), "text"))
         mech = load_mechanism(mechanism)
         chain = Chain.from_mechanism(mech)
         script = plan_velocities(chain)
@@ -95,7 +96,7 @@ def register(app: typer.Typer) -> None:
         at: Optional[list[str]] = typer.Option(None, "--at", help="input value V (degrees or the file's length unit): carry the construction out there and check it against the engine (a chain driven by [[given]] point velocities: always, at its drawn position)"),
         explain: bool = typer.Option(False, "--explain", help="print the numbered construction script (q = (a \u27c2 AQ) \u2229 (b \u27c2 BQ) …)"),
         mode: Mode = typer.Option(Mode.plan, "--mode", help="plan: polar velocity plan; rotated: rotated velocities on the mechanism"),
-        fmt: Format = typer.Option(Format.text, "--format", help="text or json"),
+        fmt: Optional[Format] = typer.Option(None, "--format", help="text or json (default: from the suffix of -o, else text)"),
         output: Optional[str] = typer.Option(None, "-o", "--output", help="write to this file instead of stdout"),
     ) -> None:
         """Velocity plan by ruler: Wittenbauer's and Rosenauer's constructibility rules, the
