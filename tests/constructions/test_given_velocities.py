@@ -120,6 +120,13 @@ def test_relative_poles_of_the_drawn_plan_are_the_three_pole_theorems(name):
     assert checked >= len(mech.joints)
 
 
+def meet(P, p, q, r, t) -> np.ndarray:
+    """Where the lines pq and rt of the drawing P meet."""
+    M = np.column_stack([P[q] - P[p], P[r] - P[t]])
+    u = np.linalg.solve(M, P[r] - P[p])
+    return P[p] + u[0] * (P[q] - P[p])
+
+
 def L(*pairs: str) -> frozenset:
     return frozenset(frozenset(p) for p in pairs)
 
@@ -157,13 +164,8 @@ def test_example_2_triad_both_of_rosenauers_auxiliary_points():
     P = mech.points
     v = {g.point: g.velocity for g in mech.given}
 
-    def meet(p, q, r, t):
-        M = np.column_stack([P[q] - P[p], P[r] - P[t]])
-        u = np.linalg.solve(M, P[r] - P[p])
-        return P[p] + u[0] * (P[q] - P[p])
-
     for (k, a), (m, b) in ((("K", "A"), ("L", "B")), (("K", "A"), ("M", "C"))):
-        X = meet(k, a, m, b)
+        X = meet(P, k, a, m, b)
         vx = at(field, X)
         for end, hinge in ((k, a), (m, b)):
             e = P[hinge] - P[end]
@@ -206,13 +208,8 @@ def test_example_4_dreispann_papers_q_and_r_and_the_verdicts():
     P = mech.points
     vel = {p: np.asarray(con.results[f"v_{p}"].constructed)[0] for p in ("F", "D", "H")}
 
-    def meet(p, q, r, t):
-        M = np.column_stack([P[q] - P[p], P[r] - P[t]])
-        u = np.linalg.solve(M, P[r] - P[p])
-        return P[p] + u[0] * (P[q] - P[p])
-
     for (a, b), (c, d) in ((("F", "K"), ("D", "B")), (("H", "J"), ("D", "B"))):
-        X = meet(a, b, c, d)
+        X = meet(P, a, b, c, d)
         vx = at(field["JKB"], X)
         for p, q in ((a, b), (c, d)):
             e = P[q] - P[p]
