@@ -322,3 +322,16 @@ def test_draw_command_draws_the_plan_of_a_free_chain(tmp_path):
     res = CliRunner().invoke(app, ["draw", "library:rosenauer-free-watt-chain", "--show", "accelerations",
                                    "-o", str(tmp_path / "a.svg")])
     assert res.exit_code != 0 and "accelerations are not solved" in res.output
+
+
+def test_poles_and_structure_commands_take_the_given_data():
+    res = CliRunner().invoke(app, ["poles", "library:rosenauer-free-triad"])
+    assert res.exit_code == 0, res.output
+    assert "poles at the drawn position" in res.output
+    assert "(70, -5)" in res.output  # P13 = ABC / BL: the hinge B, from velocities and by the theorem
+    res = CliRunner().invoke(app, ["poles", "library:rosenauer-free-triad", "--at", "10"])
+    assert res.exit_code != 0 and "--at does not apply" in res.output
+    res = CliRunner().invoke(app, ["structure", "library:rosenauer-free-watt-chain", "--format", "json"])
+    assert res.exit_code == 0, res.output
+    doc = json.loads(res.output)
+    assert doc["real_mobility"] == 4 and doc["inputs_needed"] == 0
