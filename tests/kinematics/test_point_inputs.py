@@ -403,3 +403,39 @@ def test_a_file_without_driver_or_given_data_says_both_ways():
     text = FILE.split("[[given]]")[0].replace("[links]\n", "[links]\nframe = []\n")
     with pytest.raises(LinkworkError, match=r"no \[driver\] given.*\[\[given\]\]"):
         linkwork.load_text(text)
+
+
+def test_library_triad_accelerations_from_a_second_solve():
+    """Paper 4, Example III's data on paper 2's triad (library): the accelerations of K, L, M
+    given. Second formulation: a_P − a_F = α·J(P − F) − ω²·(P − F) for the points of each link,
+    with ω from the second velocity solve, and the given accelerations."""
+    mech = linkwork.load("library:rosenauer-free-triad")
+    sol = solve_given(mech)
+    v, w = reference(mech, mech.given)
+    pts = sorted(mech.points)
+    links = [ln for ln in mech.links if ln.name != mech.frame]
+    col = {p: 2 * i for i, p in enumerate(pts)}
+    acol = {ln.name: 2 * len(pts) + i for i, ln in enumerate(links)}
+    n = 2 * len(pts) + len(links)
+    rows, rhs = [], []
+    for ln in links:
+        F = ln.points[0]
+        for P in ln.points[1:]:
+            d = mech.points[P] - mech.points[F]
+            for axis, jd in ((0, -d[1]), (1, d[0])):
+                r = np.zeros(n)
+                r[col[P] + axis], r[col[F] + axis], r[acol[ln.name]] = 1, -1, -jd
+                rows.append(r)
+                rhs.append(-w[ln.name] ** 2 * d[axis])
+    for g in mech.given:
+        for axis in (0, 1):
+            r = np.zeros(n)
+            r[col[g.point] + axis] = 1
+            rows.append(r)
+            rhs.append(g.acceleration[axis])
+    x = np.linalg.solve(np.array(rows), np.array(rhs))
+    scale = max(np.abs(x[:2 * len(pts)]).max(), 1.0)
+    for p in pts:
+        assert np.allclose(sol.point(p).acceleration[0], x[col[p]:col[p] + 2], atol=1e-10 * scale), p
+    for ln in links:
+        assert sol.link(ln.name).alpha[0] == pytest.approx(x[acol[ln.name]], abs=1e-10 * scale / mech.length_scale)
