@@ -30,3 +30,12 @@ def test_solve_poles_plan_and_drawing(client):
 def test_an_input_value_is_refused(client):
     r = client.post("/api/solve", json={"source": SOURCE, "at": [0.5]})
     assert r.status_code == 400 and "drawn position only" in r.json()["error"]
+
+
+def test_moving_a_design_point_keeps_the_given_data():
+    import linkwork
+    from linkwork.web.sources import moved
+
+    mech = linkwork.load("library:rosenauer-free-watt-chain")
+    m2 = moved(mech, {"D": [2.0, 1.0]})
+    assert [(g.point, g.kind) for g in m2.given] == [(g.point, g.kind) for g in mech.given]
