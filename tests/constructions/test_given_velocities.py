@@ -335,3 +335,15 @@ def test_poles_and_structure_commands_take_the_given_data():
     assert res.exit_code == 0, res.output
     doc = json.loads(res.output)
     assert doc["real_mobility"] == 4 and doc["inputs_needed"] == 0
+
+
+def test_five_bar_plan_from_its_coupler_point_velocity():
+    """A mechanism with drivers solved from a point's velocity instead (its two cranks' rates
+    unknown): the plan starts from c and reaches a and b by dyad steps to the frame pivots."""
+    mech = load("five-bar")
+    driven = linkwork.solve(mech, times=[0.0])
+    sol = solve_given(mech, [GivenVelocity("C", driven.point("C").velocity[0])])
+    con = velocity_plan(mech, sol)
+    con.check()
+    assert con.max_error() <= 1e-9
+    assert con.steps[1].text.startswith("given: c = o + v_C")

@@ -439,3 +439,16 @@ def test_library_triad_accelerations_from_a_second_solve():
         assert np.allclose(sol.point(p).acceleration[0], x[col[p]:col[p] + 2], atol=1e-10 * scale), p
     for ln in links:
         assert sol.link(ln.name).alpha[0] == pytest.approx(x[acol[ln.name]], abs=1e-10 * scale / mech.length_scale)
+
+
+def test_five_bar_from_its_coupler_point_velocity_inverts_the_driven_solve():
+    """The library's five-bar (two drivers) solved from the velocity and acceleration of its
+    coupler hinge C instead: the cranks' ω and α are the ones the driven solve (group solvers
+    from the drivers' laws) gives at that position."""
+    mech = linkwork.load("library:five-bar")
+    driven = linkwork.solve(mech, times=[0.0], order=2)
+    C = driven.point("C")
+    sol = solve_given(mech, [GivenVelocity("C", C.velocity[0], C.acceleration[0])])
+    for ln in mech.moving_links:
+        assert sol.link(ln).omega[0] == pytest.approx(driven.link(ln).omega[0], rel=1e-10, abs=1e-12)
+        assert sol.link(ln).alpha[0] == pytest.approx(driven.link(ln).alpha[0], rel=1e-9, abs=1e-9)
