@@ -347,3 +347,15 @@ def test_five_bar_plan_from_its_coupler_point_velocity():
     con.check()
     assert con.max_error() <= 1e-9
     assert con.steps[1].text.startswith("given: c = o + v_C")
+
+
+def test_analyze_command_at_the_drawn_position():
+    res = CliRunner().invoke(app, ["analyze", "library:rosenauer-free-triad", "--format", "json"])
+    assert res.exit_code == 0, res.output
+    (sample,) = json.loads(res.output)["samples"]
+    assert sample["points"]["K"]["velocity"] == pytest.approx([30.0, -10.0])
+    assert sample["points"]["K"]["acceleration"] == pytest.approx([5.0, 20.0])
+    res = CliRunner().invoke(app, ["analyze", "library:rosenauer-free-watt-chain"])
+    assert res.exit_code == 0 and "given point velocities" in res.output
+    res = CliRunner().invoke(app, ["analyze", "library:rosenauer-free-watt-chain", "--at", "3"])
+    assert res.exit_code != 0 and "do not apply" in res.output
