@@ -432,7 +432,7 @@ def draw_given(vc) -> VelocityScript:
     free or open chain, Rosenauer 1937 paper 2): the whole chain from its given data by
     Rosenauer's rule; `InputError` where the rule does not reach every link (two trials of false
     position would be needed, which is not drawn)."""
-    script = plan_velocities(vc.mech)
+    script = plan_velocities(Chain.from_mechanism(vc.mech, getattr(vc.sol, "given", None) or None))
     if not script.direct:
         raise InputError(f"the velocity construction of '{vc.mech.name}' from its given point "
                          f"velocities: {script.verdict()}; the plan of such a chain by similar point "

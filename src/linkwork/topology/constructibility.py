@@ -129,7 +129,9 @@ class Chain:
         return cls(pts, tuple(hinges), known=known, drivers=drivers, given=given, directions=directions)
 
     @classmethod
-    def from_mechanism(cls, mech: Mechanism) -> "Chain":
+    def from_mechanism(cls, mech: Mechanism, given=None) -> "Chain":
+        """The chain of ``mech`` with its drivers, or its given point velocities (``given``:
+        other given data instead of the mechanism's own; they replace its drivers)."""
         links = {ln.name: tuple(ln.points) for ln in mech.links}
         hinges, slides, slots, meshes, unsupported, contacts, rolls, arcs = [], [], [], [], [], [], [], []
         on_normals = []
@@ -179,8 +181,11 @@ class Chain:
             else:
                 unsupported.append(f"driver {d.joint} ({j.kind})")
         # given point velocities and directions (a chain without drivers, Rosenauer 1937 paper 2)
-        given = tuple(g.point for g in mech.given if g.kind == "velocity")
-        directions = tuple(g.point for g in mech.given if g.kind == "direction")
+        data = mech.given if given is None else tuple(given)
+        given = tuple(g.point for g in data if g.kind == "velocity")
+        directions = tuple(g.point for g in data if g.kind == "direction")
+        if data:
+            drivers = []
         return cls(links, tuple(hinges), tuple(slides), tuple(slots), tuple(meshes),
                    known=(mech.frame,), drivers=tuple(drivers), given=given, directions=directions,
                    collinear=collinear, unsupported=tuple(unsupported),
