@@ -160,7 +160,7 @@ def test_chained_plan_has_two_images_where_loops_do_not_close():
             assert np.allclose(arrow.vector, aP, atol=1e-9 * scale)
     # the plan figure of ABC: homothetic to the link with factor ω²_ABC
     w2 = sol.link("abc").omega ** 2
-    pts = {p: el[f"a.direct.abc.{p}.plan"].obj.xy for p in ("A", "B", "C")}
+    pts = {p: el[f"a.tri.abc.{p}.plan"].obj.xy for p in ("A", "B", "C")}
     for X, Y in (("A", "B"), ("B", "C"), ("C", "A")):
         d = sol.point(Y).position - sol.point(X).position
         assert np.allclose(pts[Y] - pts[X], w2[:, None] * d, atol=1e-9 * np.abs(w2[:, None] * d).max())
@@ -214,3 +214,40 @@ def test_slotted_lever_parallelograms_are_rectangles():
 def test_slide_pairs_needs_a_slide_between_moving_links():
     with pytest.raises(linkwork.LinkworkError, match="no sliding pair between two moving links"):
         slide_pairs(linkwork.load("library:slider-crank-centric"), [0.3])
+
+
+# ------------------------------------------------------------------ the inscribed triangle
+@pytest.mark.parametrize("name", ["closed-8-link", "closed-8-link-straight"])
+def test_inscribed_perpendicular_similar_triangle(name):
+    """Paper 4, Ex. III and V (digest 000 §2.8): the ends of the accelerations of A, B, C lie on
+    the locus lines and form a triangle with sides perpendicular to ABC's, found from a trial
+    triangle by the homothety from Q (the trial corner, Q and the true corner in line); with A, B,
+    C on one line the trial corner divides the opposite side (paper 5, Ex. III). The accelerations
+    read off are the engine's (`check`), and each vertex minus its plan point is too."""
+    mech = load(name)
+    sol = positions(mech)
+    con = acceleration_plan(mech, sol)
+    con.check()
+    assert con.max_error() <= 1e-9 and not con.degenerate.any()
+    el = con.elements
+    res = {p: el[f"a.tri.abc.{p}.laid"].obj for p in ("A", "B", "C")}
+    for p, arrow in res.items():
+        a = sol.point(p).acceleration
+        assert np.allclose(arrow.vector, a, atol=1e-9 * np.linalg.norm(a, axis=1).max())
+    # sides perpendicular to the link's sides
+    P = {p: sol.point(p).position for p in ("A", "B", "C")}
+    for X, Y in (("A", "B"), ("B", "C"), ("C", "A")):
+        side = res[Y].head.xy - res[X].head.xy
+        d = P[Y] - P[X]
+        assert np.all(abs(np.sum(side * d, axis=1)) <= 1e-9 * np.linalg.norm(side, axis=1).max()
+                      * np.linalg.norm(d, axis=1))
+    # the homothety: Q, a trial corner and its true corner in line (for the corner on the ray)
+    Q = el["a.tri.Q"].obj.xy
+    trial = {k.split(".")[-1][0]: el[k].obj.xy for k in el if k.startswith("a.tri.trial.")}
+    hits = 0
+    for p, t in trial.items():
+        u, v = t - Q, res[p].head.xy - Q
+        if np.all(abs(u[:, 0] * v[:, 1] - u[:, 1] * v[:, 0]) <= 1e-9 * np.linalg.norm(u, axis=1)
+                  * np.linalg.norm(v, axis=1)):
+            hits += 1
+    assert hits == 3  # every corner: the whole trial triangle is homothetic from Q

@@ -640,6 +640,10 @@ def draw_group_acceleration(ac, links: tuple[str, ...], joints: tuple[str, ...],
     links = tuple(ln for ln in links if ln in chain.links)
     solved = {ln for ln in solved if ln in chain.links}
     script = plan_velocities(chain.restricted(solved | set(links), solved))
+    triad = _triad(chain, links, solved)
+    if triad is not None and script.complete and script.trial is None:
+        TriangleDrawer(ac, script, solved).draw(set(links), *triad)
+        return script
     if not script.complete:
         full = plan_velocities(chain)
         if full.trial is not None and full.complete:
@@ -762,3 +766,122 @@ def _similar(own, X: np.ndarray) -> np.ndarray:
     z = lambda a: a[:, 0] + 1j * a[:, 1]  # noqa: E731
     w = z(x1) + (z(x2) - z(x1)) / (z(X2) - z(X1)) * (z(X) - z(X1))
     return np.stack([w.real, w.imag], axis=-1)
+
+
+def _triad(chain: Chain, links, solved):
+    """A group of one link T and three binary links, each hinged to T at one end and to a link
+    solved before at the other (Rosenauer 1937 paper 4, Ex. III and V: the triad ABC with AK, BL,
+    CM): (T, [(point of T, binary link, its other end, the solved link there)] * 3), else None."""
+    links = set(links)
+    for T in links:
+        rest = links - {T}
+        if len(rest) != 3:
+            continue
+        arms = []
+        for B in rest:
+            pts = list(dict.fromkeys(chain.links[B]))
+            if len(pts) != 2:
+                break
+            at_T = [p for p in pts if any(h == (p, B, T) or h == (p, T, B) for h in chain.hinges)]
+            if len(at_T) != 1:
+                break
+            X = at_T[0]
+            Y = pts[1] if pts[0] == X else pts[0]
+            K = next((a if b == B else b for q, a, b in chain.hinges
+                      if q == Y and B in (a, b) and (a if b == B else b) in solved), None)
+            if K is None:
+                break
+            arms.append((X, B, Y, K))
+        else:
+            if len({a[0] for a in arms}) == 3:
+                return T, arms
+    return None
+
+
+class TriangleDrawer(AccelerationDrawer):
+    """Paper 4's solution for a triad (digest 000 §2.8; Ex. III, V): the ends of the
+    accelerations of the three points A, B, C of the link T lie on three locus lines α, β, γ
+    (through the transferred ends of the accelerations of K, L, M, perpendicular to KA, LB, MC),
+    and form a triangle whose sides are perpendicular to those of ABC. Any such trial triangle
+    A′B′C′ with B′ on β and C′ on γ is homothetic to the true one from Q = β ∩ γ, so QA′ cuts α
+    in the true A₁, and parallels to A′B′, A′C′ give B₁, C₁. Where A, B, C are collinear (paper
+    5, Ex. III) A′ divides B′C′ as A divides BC. Of the three corners Q is taken where the two
+    locus lines cross at the widest angle in this drawing (a runtime choice: lines nearly parallel
+    at this position are avoided)."""
+
+    def draw(self, links: set[str], T: str, arms) -> None:
+        ac = self.ac
+        b = ac.b
+        names = "\u03b1\u03b2\u03b3"
+        loci = []
+        b.step("Locus lines (paper 4): through the ends of the accelerations of "
+               + ", ".join(upper(Y) for X, B, Y, K in arms) + " (laid off at their images in the plan "
+               "of relative normal accelerations, transferred into " + T + ") draw the perpendiculars to "
+               + ", ".join(f"{upper(Y)}{upper(X)}" for X, B, Y, K in arms) + ": "
+               + ", ".join(f"{names[i]}\u2013{names[i]}" for i in range(3)) + ".")
+        for i, (X, B, Y, K) in enumerate(arms):
+            through = self.img((K, Y)) + self.transfer(K, B, Y) + self.transfer(B, T, X)
+            d = perp(self.where(X) - self.where(Y))
+            ac._line(f"a.locus.{X}", through, d)
+            loci.append((X, through, d))
+        # Q where the two lines cross at the widest angle (the third line takes the trial's ray)
+        def sine(i, j):
+            u, v = loci[i][2], loci[j][2]
+            return np.nanmin(abs(u[:, 0] * v[:, 1] - u[:, 1] * v[:, 0]) / (norm(u) * norm(v)))
+        k = max(range(3), key=lambda k: sine(*[i for i in range(3) if i != k]))
+        order = [k] + [i for i in range(3) if i != k]
+        (X1, t1, d1), (X2, t2, d2), (X3, t3, d3) = (loci[i] for i in order)
+        P1, P2, P3 = (self.where(x) for x in (X1, X2, X3))
+        Q, par = _meet_lines((t2, d2), (t3, d3))
+        b.step(f"Inscribed triangle: Q = {names[order[1]]} \u2229 {names[order[2]]}; a trial "
+               f"{upper(X2)}\u2032 on {names[order[1]]}, {upper(X3)}\u2032 on {names[order[2]]} with "
+               f"{upper(X2)}\u2032{upper(X3)}\u2032 \u27c2 {upper(X2)}{upper(X3)}, and {upper(X1)}\u2032 "
+               f"from the sides \u27c2 {upper(X2)}{upper(X1)}, {upper(X3)}{upper(X1)} (collinear points: "
+               f"dividing {upper(X2)}\u2032{upper(X3)}\u2032 as {upper(X1)} divides {upper(X2)}{upper(X3)}); "
+               f"Q{upper(X1)}\u2032 cuts {names[order[0]]} in {upper(X1)}\u2081, the parallels to the trial's "
+               f"sides give {upper(X2)}\u2081 and {upper(X3)}\u2081.")
+        size = norm(t2 - t3) + norm(t1 - t2) + 1.0
+        base = np.where(par[:, None], t2, Q)
+        B2 = base + (size / norm(d2))[:, None] * d2
+        C3, _ = _meet_lines((t3, d3), (B2, perp(P3 - P2)))
+        e23 = P3 - P2
+        lam = dot(P1 - P2, e23) / dot(e23, e23)
+        foot = P2 + lam[:, None] * e23
+        straight = norm(P1 - foot) <= 1e-9 * norm(e23)
+        A1t, _ = _meet_lines((B2, perp(P1 - P2)), (C3, perp(P1 - P3)))
+        A1t = np.where(straight[:, None], B2 + lam[:, None] * (C3 - B2), A1t)
+        ray = np.where(par[:, None], d2, A1t - Q)
+        A1, bad = _meet_lines((np.where(par[:, None], A1t, Q), ray), (t1, d1))
+        b.degenerate(bad & ~b.bad, f"the trial ray meets the locus line of {upper(X1)} at infinity here")
+        B1, _ = _meet_lines((t2, d2), (A1, B2 - A1t))
+        C1, _ = _meet_lines((t3, d3), (A1, C3 - A1t))
+        ac._line("a.tri.QA", np.where(par[:, None], A1t, Q), ray)
+        for nm, xy in ((X2 + "'", B2), (X3 + "'", C3), (X1 + "'", A1t)):
+            b.point(f"a.tri.trial.{nm}", _pt(xy), label=upper(nm[:-1]) + "\u2032", space="acceleration")
+        b.polygon("a.tri.trial", [_pt(A1t), _pt(B2), _pt(C3)], Role.AUXILIARY, space="acceleration")
+        b.polygon("a.tri.result", [_pt(A1), _pt(B1), _pt(C1)], Role.RESULT, space="acceleration")
+        if not par.all():
+            b.point("a.tri.Q", _pt(np.where(par[:, None], np.nan, Q)), label="Q", space="acceleration")
+        ends = {X1: A1, X2: B1, X3: C1}
+        for X, B, Y, K in arms:
+            E = ends[X]
+            self.show(f"a.tri.{T}.{X}", _Pt(X, T), E, lower(X))
+            self.keep(T, X, E)
+            self.keep(B, X, E + self.transfer(T, B, X))
+            self.keep(B, Y, self.img((K, Y)) + self.transfer(K, B, Y))
+        for ln in links:
+            if len(self.ac.known.get(ln, [])) < 2:
+                raise InputError(f"the triad construction left {ln} with fewer than two points")
+        self._second_images(links)
+
+
+class _Pt:
+    """What `show` needs of a step: the point and its link."""
+
+    def __init__(self, point: str, link: str) -> None:
+        self.point, self.link = point, link
+
+
+def _meet_lines(l1, l2):
+    from ._plan import _meet
+    return _meet(l1, l2)
