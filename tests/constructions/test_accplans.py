@@ -17,7 +17,8 @@ import numpy as np
 import pytest
 
 import linkwork
-from linkwork.constructions import acceleration_plan, rotated_velocities, slide_pairs, velocity_plan
+from linkwork.constructions import (acceleration_plan, relative_normals, rotated_velocities, slide_pairs,
+                                    velocity_plan)
 from linkwork.kinematics import Status, solve
 from linkwork.topology.constructibility import plan_velocities
 
@@ -251,3 +252,20 @@ def test_inscribed_perpendicular_similar_triangle(name):
                   * np.linalg.norm(v, axis=1)):
             hits += 1
     assert hits == 3  # every corner: the whole trial triangle is homothetic from Q
+
+
+# ------------------------------------------------------------------ Thales semicircles
+@pytest.mark.parametrize("name", ["library:crank-rocker", "library:holst-mechanism",
+                                  "library:rolling-lever-valve-gear", "closed-8-link"])
+def test_thales_semicircle_gives_the_relative_normal_accelerations(name):
+    """Digest 000 §2.6: XE² = XN·XY in the right triangle over the semicircle, so the arc of
+    radius |u| (the rotated relative velocity) about X cuts off XN = u²/XY: the relative
+    normal acceleration ω²·XY (engine ω) at the scale k_v². Every side of every link."""
+    mech = load(name)
+    sol = positions(mech, 0.1)
+    con = relative_normals(mech, sol)
+    con.check()
+    assert con.max_error() <= 1e-9 and not con.degenerate.any()
+    sides = sum(1 if len(set(mech.link(ln).points)) == 2 else len(set(mech.link(ln).points))
+                for ln in mech.moving_links if len(set(mech.link(ln).points)) >= 2)
+    assert len([k for k in con.results if k.startswith("an_")]) >= min(sides, 3)

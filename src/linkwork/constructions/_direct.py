@@ -375,21 +375,52 @@ class TrialDrawer(ScriptDrawer):
             vc.set_known(ln, self.where(p), image, p)
 
 
+def drawing_geometry(vc, chain: Chain) -> dict:
+    """The drawing's points and the directions of the guides' and contacts' normals at every
+    sample, for the planner's choice of lines (`plan_velocities` with ``geometry``)."""
+    geo: dict = dict(vc.pos)
+    mech = vc.mech
+    for pair, g1, g2, t, c1, c2 in chain.meshes:
+        r1, r2 = mech.joint(pair).radii
+        k = r1 / (r1 + r2) if mech.joint(pair).gear_kind == "external" else r1 / (r1 - r2)
+        geo[t] = geo[c1] + k * (geo[c2] - geo[c1])
+    for pair, a, b, k in chain.contacts + chain.rolls:
+        rep = vc.sol.joint(pair)
+        geo[k] = np.asarray(rep["point"], float)
+        geo[("contact", pair)] = np.asarray(rep["normal"], float)
+    for j in mech.joints:
+        if isinstance(j, (Prismatic, Slot)):
+            geo[("normal", j.name)] = perp(vc._axis(j.links[0], j.axis))
+    return geo
+
+
+def _scripts(vc, chain: Chain, links, solved):
+    """The group's script and the whole chain's, planned on the drawing's geometry."""
+    geo = drawing_geometry(vc, chain)
+    sub = chain.restricted(solved | set(links), solved)
+    return plan_velocities(sub, geo), (lambda: plan_velocities(chain, geo))
+
+
+def _report_coincidences(b, script) -> None:
+    for text in script.coincidences:
+        b.step("Note on the drawing: " + text)
+
+
 def draw_group(vc, links: tuple[str, ...], joints: tuple[str, ...], solved: set[str],
                drivers: tuple[str, ...] = ()) -> VelocityScript:
     """Construct the images of the group ``links`` on the links ``solved`` before it by
     Rosenauer's rule; raise `InputError` where it does not reach them (similar point rows
-    would be needed) or the group has pairs the rule does not know."""
+    would be needed) or the group has pairs the rule does not know. Where the rules leave a
+    choice of lines, those crossing at the widest angle in this drawing are taken."""
     chain = Chain.from_mechanism(vc.mech)
     # the solver's own (virtual) links of a cam group are no links of the chain
     links = tuple(ln for ln in links if ln in chain.links)
     solved = {ln for ln in solved if ln in chain.links}
-    sub = chain.restricted(solved | set(links), solved)
-    script = plan_velocities(sub)
+    script, whole = _scripts(vc, chain, links, solved)
     missing = [ln for ln in links if ln in script.unreached]
     if missing and not script.unsupported:
         # false position: the whole chain from a trial driver, scaled to the given one
-        full = plan_velocities(chain)
+        full = whole()
         if full.trial is not None and full.complete:
             TrialDrawer(vc, full, solved).run(set(links))
             return full
@@ -400,6 +431,7 @@ def draw_group(vc, links: tuple[str, ...], joints: tuple[str, ...], solved: set[
         why = (f"not handled: {', '.join(bad)}" if bad else
                f"{script.verdict()}")
         raise InputError(f"the direct velocity construction of the group {', '.join(links)}: {why}")
+    _report_coincidences(vc.b, script)
     ScriptDrawer(vc, script, solved).run(set(links))
     return script
 
@@ -639,13 +671,13 @@ def draw_group_acceleration(ac, links: tuple[str, ...], joints: tuple[str, ...],
     chain = Chain.from_mechanism(ac.mech)
     links = tuple(ln for ln in links if ln in chain.links)
     solved = {ln for ln in solved if ln in chain.links}
-    script = plan_velocities(chain.restricted(solved | set(links), solved))
+    script, whole = _scripts(ac.vc, chain, links, solved)
     triad = _triad(chain, links, solved)
     if triad is not None and script.complete and script.trial is None:
         TriangleDrawer(ac, script, solved).draw(set(links), *triad)
         return script
     if not script.complete:
-        full = plan_velocities(chain)
+        full = whole()
         if full.trial is not None and full.complete:
             AccelerationTrialDrawer(ac, full, {ac.mech.frame}).run(set(links))
             return full
