@@ -20,7 +20,7 @@ import linkwork
 from linkwork.constructions import (acceleration_plan, relative_normals, rotated_velocities, slide_pairs,
                                     velocity_plan)
 from linkwork.kinematics import Status, solve
-from linkwork.topology.constructibility import plan_velocities
+from linkwork.topology.constructibility import Chain, plan_velocities
 
 DATA = Path(__file__).parent / "data"
 
@@ -269,3 +269,55 @@ def test_thales_semicircle_gives_the_relative_normal_accelerations(name):
     sides = sum(1 if len(set(mech.link(ln).points)) == 2 else len(set(mech.link(ln).points))
                 for ln in mech.moving_links if len(set(mech.link(ln).points)) >= 2)
     assert len([k for k in con.results if k.startswith("an_")]) >= min(sides, 3)
+
+
+# ------------------------------------------------------------------ runtime coincidences
+TRIAD = {"ABC": "ABC", "AK": "AK", "BL": "BL", "CM": "CM"}
+
+
+def _triad_geometry(pts):
+    return {k: np.array([v], float) for k, v in pts.items()}
+
+
+def test_planner_avoids_lines_parallel_in_the_drawing():
+    """The triad with v_K, v_L, v_M given (paper 2, Ex. II): the graph alone takes the auxiliary
+    point on KA and LB. Drawn with KA ∥ LB, the planner takes the lines that do meet."""
+    chain = Chain.free(TRIAD, given=("K", "L", "M"))
+    first = plan_velocities(chain)
+    lines = {frozenset(ln.points) for ln in first.aux[0].lines}
+    assert lines == {frozenset("AK"), frozenset("BL")}
+    geo = _triad_geometry({"K": (0, 0), "A": (0, 1), "L": (2, 0), "B": (2, 1.2), "M": (5, 0), "C": (3.5, 2)})
+    s = plan_velocities(chain, geo)
+    assert s.direct and not s.coincidences
+    for a in s.aux:
+        pair = [frozenset(ln.points) for ln in a.lines]
+        assert {frozenset("AK"), frozenset("BL")} != set(pair)
+
+
+def test_planner_names_a_coincidence_it_cannot_avoid():
+    chain = Chain.free(TRIAD, given=("K", "L", "M"))
+    # all three arms parallel: every pair of lines is parallel (the triad is at a dead centre)
+    geo = _triad_geometry({"K": (0, 0), "A": (0, 1), "L": (2, 0), "B": (2, 1.2), "M": (5, 0), "C": (5, 2)})
+    s = plan_velocities(chain, geo)
+    assert s.coincidences and "no other lines" in s.coincidences[0]
+
+
+@pytest.mark.parametrize("name", ["rolling-lever-valve-gear", "stephenson-link-motion"])
+@pytest.mark.parametrize("build", [velocity_plan, rotated_velocities, acceleration_plan],
+                         ids=["plan", "rotated", "acceleration"])
+def test_drawing_position_coincidences_are_chosen_around(name, build):
+    """At their drawing positions the rolling lever's rod AD is parallel to the common normal
+    n–n (the auxiliary point AD ∩ n–n at infinity), and the Stephenson link motion has Q, E, K in
+    line. The planner, given the drawing, takes the paper-8 pole (the normal to the slide at B
+    ∩ n–n) and a division on a known line instead: nothing degenerates."""
+    mech = linkwork.load(f"library:{name}")
+    x0 = mech.driver_input_at_design(mech.drivers[0])
+    sol = solve(mech, x0 + np.array([0.0, 1e-6, 0.3]))
+    con = build(mech, sol)
+    con.check()
+    assert con.max_error() <= 1e-9 and not con.degenerate.any()
+    if name == "rolling-lever-valve-gear" and build is velocity_plan:
+        # the graph's first choice, AD ∩ n–n, is at infinity here: another pair is taken
+        steps = " ".join(st.text for st in con.steps)
+        assert "= AD \u2229 the common normal of E" not in steps
+        assert "Q = AD \u2229 the normal to guide at B" in steps or "the normal to guide at B \u2229" in steps

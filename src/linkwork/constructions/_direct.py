@@ -674,8 +674,9 @@ def draw_group_acceleration(ac, links: tuple[str, ...], joints: tuple[str, ...],
     script, whole = _scripts(ac.vc, chain, links, solved)
     triad = _triad(chain, links, solved)
     if triad is not None and script.complete and script.trial is None:
-        TriangleDrawer(ac, script, solved).draw(set(links), *triad)
-        return script
+        if TriangleDrawer(ac, script, solved).draw(set(links), *triad):
+            return script
+        # the locus lines cross badly in this drawing: the auxiliary points' script instead
     if not script.complete:
         full = whole()
         if full.trial is not None and full.complete:
@@ -841,59 +842,79 @@ class TriangleDrawer(AccelerationDrawer):
     locus lines cross at the widest angle in this drawing (a runtime choice: lines nearly parallel
     at this position are avoided)."""
 
-    def draw(self, links: set[str], T: str, arms) -> None:
+    @staticmethod
+    def _sine(u, v) -> float:
+        with np.errstate(invalid="ignore", divide="ignore"):
+            s = abs(u[:, 0] * v[:, 1] - u[:, 1] * v[:, 0]) / (norm(u) * norm(v))
+        s = s[~np.isnan(s)]
+        return float(s.min()) if s.size else 1.0
+
+    def _solve(self, loci, order) -> dict:
+        """The trial triangle and the true one for one labelling (``order``: the corner on the
+        ray from Q first, then the two whose locus lines meet in Q)."""
+        (X1, t1, d1), (X2, t2, d2), (X3, t3, d3) = (loci[i] for i in order)
+        P1, P2, P3 = (self.where(x) for x in (X1, X2, X3))
+        Q, par = _meet_lines((t2, d2), (t3, d3))
+        size = norm(t2 - t3) + norm(t1 - t2) + 1.0
+        base = np.where(par[:, None], t2, Q)
+        B2 = base + (size / norm(d2))[:, None] * d2
+        side = perp(P3 - P2)
+        C3, _ = _meet_lines((t3, d3), (B2, side))
+        e23 = P3 - P2
+        lam = dot(P1 - P2, e23) / dot(e23, e23)
+        straight = norm(P1 - (P2 + lam[:, None] * e23)) <= 1e-9 * norm(e23)
+        A1t, _ = _meet_lines((B2, perp(P1 - P2)), (C3, perp(P1 - P3)))
+        A1t = np.where(straight[:, None], B2 + lam[:, None] * (C3 - B2), A1t)
+        start = np.where(par[:, None], A1t, Q)
+        ray = np.where(par[:, None], d2, A1t - Q)
+        A1, bad = _meet_lines((start, ray), (t1, d1))
+        B1, _ = _meet_lines((t2, d2), (A1, B2 - A1t))
+        C1, _ = _meet_lines((t3, d3), (A1, C3 - A1t))
+        score = min(self._sine(d2, d3) if not par.all() else 1.0, self._sine(d3, side),
+                    self._sine(ray, d1), self._sine(d2, B2 - A1t), self._sine(d3, C3 - A1t))
+        return dict(order=order, X=(X1, X2, X3), Q=Q, par=par, B2=B2, C3=C3, A1t=A1t, start=start,
+                    ray=ray, A1=A1, B1=B1, C1=C1, bad=bad, score=score)
+
+    def draw(self, links: set[str], T: str, arms) -> bool:
+        """Draw the triangle if some labelling avoids the drawing's coincidences (True), else
+        leave everything undrawn (False: the caller takes the auxiliary points' script)."""
         ac = self.ac
         b = ac.b
         names = "\u03b1\u03b2\u03b3"
         loci = []
+        for i, (X, B, Y, K) in enumerate(arms):
+            through = self.img((K, Y)) + self.transfer(K, B, Y) + self.transfer(B, T, X)
+            loci.append((X, through, perp(self.where(X) - self.where(Y))))
+        orders = [[k, i2, 3 - k - i2] for k in range(3) for i2 in range(3) if i2 != k]
+        best = max((self._solve(loci, o) for o in orders), key=lambda r: r["score"])
+        if best["score"] < 1e-3:
+            return False
         b.step("Locus lines (paper 4): through the ends of the accelerations of "
                + ", ".join(upper(Y) for X, B, Y, K in arms) + " (laid off at their images in the plan "
                "of relative normal accelerations, transferred into " + T + ") draw the perpendiculars to "
                + ", ".join(f"{upper(Y)}{upper(X)}" for X, B, Y, K in arms) + ": "
                + ", ".join(f"{names[i]}\u2013{names[i]}" for i in range(3)) + ".")
-        for i, (X, B, Y, K) in enumerate(arms):
-            through = self.img((K, Y)) + self.transfer(K, B, Y) + self.transfer(B, T, X)
-            d = perp(self.where(X) - self.where(Y))
+        for X, through, d in loci:
             ac._line(f"a.locus.{X}", through, d)
-            loci.append((X, through, d))
-        # Q where the two lines cross at the widest angle (the third line takes the trial's ray)
-        def sine(i, j):
-            u, v = loci[i][2], loci[j][2]
-            return np.nanmin(abs(u[:, 0] * v[:, 1] - u[:, 1] * v[:, 0]) / (norm(u) * norm(v)))
-        k = max(range(3), key=lambda k: sine(*[i for i in range(3) if i != k]))
-        order = [k] + [i for i in range(3) if i != k]
-        (X1, t1, d1), (X2, t2, d2), (X3, t3, d3) = (loci[i] for i in order)
-        P1, P2, P3 = (self.where(x) for x in (X1, X2, X3))
-        Q, par = _meet_lines((t2, d2), (t3, d3))
+        order = best["order"]
+        X1, X2, X3 = best["X"]
         b.step(f"Inscribed triangle: Q = {names[order[1]]} \u2229 {names[order[2]]}; a trial "
                f"{upper(X2)}\u2032 on {names[order[1]]}, {upper(X3)}\u2032 on {names[order[2]]} with "
                f"{upper(X2)}\u2032{upper(X3)}\u2032 \u27c2 {upper(X2)}{upper(X3)}, and {upper(X1)}\u2032 "
                f"from the sides \u27c2 {upper(X2)}{upper(X1)}, {upper(X3)}{upper(X1)} (collinear points: "
                f"dividing {upper(X2)}\u2032{upper(X3)}\u2032 as {upper(X1)} divides {upper(X2)}{upper(X3)}); "
                f"Q{upper(X1)}\u2032 cuts {names[order[0]]} in {upper(X1)}\u2081, the parallels to the trial's "
-               f"sides give {upper(X2)}\u2081 and {upper(X3)}\u2081.")
-        size = norm(t2 - t3) + norm(t1 - t2) + 1.0
-        base = np.where(par[:, None], t2, Q)
-        B2 = base + (size / norm(d2))[:, None] * d2
-        C3, _ = _meet_lines((t3, d3), (B2, perp(P3 - P2)))
-        e23 = P3 - P2
-        lam = dot(P1 - P2, e23) / dot(e23, e23)
-        foot = P2 + lam[:, None] * e23
-        straight = norm(P1 - foot) <= 1e-9 * norm(e23)
-        A1t, _ = _meet_lines((B2, perp(P1 - P2)), (C3, perp(P1 - P3)))
-        A1t = np.where(straight[:, None], B2 + lam[:, None] * (C3 - B2), A1t)
-        ray = np.where(par[:, None], d2, A1t - Q)
-        A1, bad = _meet_lines((np.where(par[:, None], A1t, Q), ray), (t1, d1))
-        b.degenerate(bad & ~b.bad, f"the trial ray meets the locus line of {upper(X1)} at infinity here")
-        B1, _ = _meet_lines((t2, d2), (A1, B2 - A1t))
-        C1, _ = _meet_lines((t3, d3), (A1, C3 - A1t))
-        ac._line("a.tri.QA", np.where(par[:, None], A1t, Q), ray)
+               f"sides give {upper(X2)}\u2081 and {upper(X3)}\u2081 (Q at infinity: a translation).")
+        b.degenerate(best["bad"] & ~b.bad, f"the trial ray meets the locus line of {upper(X1)} at infinity here")
+        B2, C3, A1t = best["B2"], best["C3"], best["A1t"]
+        A1, B1, C1, par = best["A1"], best["B1"], best["C1"], best["par"]
+        ac._line("a.tri.QA", best["start"], best["ray"])
         for nm, xy in ((X2 + "'", B2), (X3 + "'", C3), (X1 + "'", A1t)):
             b.point(f"a.tri.trial.{nm}", _pt(xy), label=upper(nm[:-1]) + "\u2032", space="acceleration")
         b.polygon("a.tri.trial", [_pt(A1t), _pt(B2), _pt(C3)], Role.AUXILIARY, space="acceleration")
         b.polygon("a.tri.result", [_pt(A1), _pt(B1), _pt(C1)], Role.RESULT, space="acceleration")
         if not par.all():
-            b.point("a.tri.Q", _pt(np.where(par[:, None], np.nan, Q)), label="Q", space="acceleration")
+            b.point("a.tri.Q", _pt(np.where(par[:, None], np.nan, best["Q"])), label="Q", space="acceleration")
         ends = {X1: A1, X2: B1, X3: C1}
         for X, B, Y, K in arms:
             E = ends[X]
@@ -905,6 +926,7 @@ class TriangleDrawer(AccelerationDrawer):
             if len(self.ac.known.get(ln, [])) < 2:
                 raise InputError(f"the triad construction left {ln} with fewer than two points")
         self._second_images(links)
+        return True
 
 
 class _Pt:

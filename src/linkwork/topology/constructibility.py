@@ -523,10 +523,10 @@ class _Planner:
         if la is None or lb is None:
             return
         (p, u), (q, v) = (np.atleast_2d(x) for x in la), (np.atleast_2d(x) for x in lb)
-        with np.errstate(invalid="ignore", divide="ignore"):
+        with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
             den = u[:, 0] * v[:, 1] - u[:, 1] * v[:, 0]
             t = ((q - p)[:, 0] * v[:, 1] - (q - p)[:, 1] * v[:, 0]) / den
-        self.geo[name] = p + t[:, None] * u
+            self.geo[name] = p + t[:, None] * u
 
     def note(self, sine: float, text: str) -> None:
         if self.geo is not None and sine < NEAR_PARALLEL:
@@ -723,6 +723,7 @@ class _Planner:
             else:
                 q = self.new_aux(ln, a.line, b.line)
                 self.emit_meet(ln, q, a, b, self.aux[-1])
+            self.note(self.sine(a.line, b.line), self.steps[-1].text)
             level = 1
 
     def meeting_pair(self, conds: list[PlanLine]):
