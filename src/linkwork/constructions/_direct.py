@@ -17,7 +17,8 @@ import numpy as np
 
 from ..errors import InputError
 from ..model import Gear, Prismatic, Slot
-from ..topology.constructibility import Chain, MechLine, VelocityScript, lower, plan_velocities, upper
+from ..topology.constructibility import (POLE, Chain, MechLine, VelocityScript, lower,
+                                          plan_velocities, upper)
 from ._common import dot, norm, perp
 from .construction import Role
 
@@ -69,10 +70,26 @@ class ScriptDrawer:
             return self.where(line.points[0]), perp(self.vc._axis(j.links[0], j.axis))
         if line.kind == "contact":
             return self.where(line.points[0]), np.asarray(self.vc.sol.joint(line.pair)["normal"], float)
-        raise InputError("a given velocity direction is not part of a mechanism's data")
+        if line.kind == "direction":
+            # the normal to the given direction of motion at the point (its pole lies on it)
+            return self.where(line.points[0]), perp(self.given(line.points[0]).direction)
+        raise InputError(f"the direct construction does not know the line {line.text()}")
+
+    def given(self, point: str):
+        """The given datum of ``point`` at every sample (from the solve, or the mechanism's)."""
+        data = getattr(self.vc.sol, "given", ()) or self.mech.given
+        g = next((g for g in data if g.point == point), None)
+        if g is None:
+            raise InputError(f"no velocity or direction of {point} is given")
+        n = self.vc.n
+        if g.kind == "velocity":
+            return type(g)(g.point, np.broadcast_to(g.velocity, (n, 2)), link=g.link)
+        return type(g)(g.point, np.broadcast_to(g.direction, (n, 2)), link=g.link)
 
     # ---------------------------------------------------------------- images
     def img(self, key: tuple[str, str]) -> np.ndarray:
+        if key[0] == POLE:  # a given direction's line starts at o (at the point, rotated)
+            return self.vc.base(self.where(key[1]))
         keys = (key,) + tuple(self.s.shared.get(key, ()))
         for k in keys:
             if k in self.vc.images:
@@ -141,6 +158,12 @@ class ScriptDrawer:
             t = dot(P - X, Y - X) / dot(Y - X, Y - X)
             image = x + t[:, None] * (y - x)
             self.show(key, st, image, lab)
+        elif st.kind == "given":
+            X = self.where(st.point)
+            image = vc.base(X) + vc.kv * vc.M(self.given(st.point).velocity)
+            vc.b.arrow(f"{key}.given", _pt(vc.base(X)), _pt(image), Role.GIVEN,
+                       f"v_{st.point}" if vc.mode == "plan" else None, space=vc.space)
+            vc._point(key, image, lab, Role.GIVEN)
         elif st.kind == "copy":
             (X,) = st.base
             x = self.img((st.link, X))
@@ -433,6 +456,20 @@ def draw_group(vc, links: tuple[str, ...], joints: tuple[str, ...], solved: set[
         raise InputError(f"the direct velocity construction of the group {', '.join(links)}: {why}")
     _report_coincidences(vc.b, script)
     ScriptDrawer(vc, script, solved).run(set(links))
+    return script
+
+
+def draw_given(vc) -> VelocityScript:
+    """The velocity construction of a chain driven by given point velocities and directions (a
+    free or open chain, Rosenauer 1937 paper 2): the whole chain from its given data by
+    Rosenauer's rule; `InputError` where the rule does not reach every link (two trials of false
+    position would be needed, which is not drawn)."""
+    script = plan_velocities(vc.mech)
+    if not script.direct:
+        raise InputError(f"the velocity construction of '{vc.mech.name}' from its given point "
+                         f"velocities: {script.verdict()}; the plan of such a chain by similar point "
+                         "rows (two trials) is not drawn")
+    ScriptDrawer(vc, script, {vc.mech.frame}).run(set(vc.mech.moving_links))
     return script
 
 

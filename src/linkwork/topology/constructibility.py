@@ -178,8 +178,11 @@ class Chain:
                 drivers.append((d.driven, j.point, None))
             else:
                 unsupported.append(f"driver {d.joint} ({j.kind})")
+        # given point velocities and directions (a chain without drivers, Rosenauer 1937 paper 2)
+        given = tuple(g.point for g in mech.given if g.kind == "velocity")
+        directions = tuple(g.point for g in mech.given if g.kind == "direction")
         return cls(links, tuple(hinges), tuple(slides), tuple(slots), tuple(meshes),
-                   known=(mech.frame,), drivers=tuple(drivers),
+                   known=(mech.frame,), drivers=tuple(drivers), given=given, directions=directions,
                    collinear=collinear, unsupported=tuple(unsupported),
                    frame=mech.frame, contacts=tuple(contacts), rolls=tuple(rolls), arcs=tuple(arcs),
                    on_normals=tuple(on_normals))
