@@ -17,8 +17,8 @@ import numpy as np
 import pytest
 
 import linkwork
-from linkwork.constructions import (acceleration_plan, relative_normals, rotated_velocities, slide_pairs,
-                                    velocity_plan)
+from linkwork.constructions import (acceleration_plan, relative_normals, rolling_lever, rotated_velocities,
+                                    slide_pairs, velocity_plan)
 from linkwork.kinematics import Status, solve
 from linkwork.topology.constructibility import Chain, plan_velocities
 
@@ -321,3 +321,39 @@ def test_drawing_position_coincidences_are_chosen_around(name, build):
         steps = " ".join(st.text for st in con.steps)
         assert "= AD \u2229 the common normal of E" not in steps
         assert "Q = AD \u2229 the normal to guide at B" in steps or "the normal to guide at B \u2229" in steps
+
+
+# ------------------------------------------------------------------ paper 8
+def test_rolling_lever_construction_of_paper_8():
+    """Paper 8 (M18): the lever's pole on the normal to the slide at B and on n–n; W by
+    Euler–Savary from the centres of curvature and the auxiliary point D; the inflection circle
+    through B, P, W and the inflection pole W₀ opposite P (the curvature layer's W₀ = P + a_P/ω²);
+    V_p = |v_W₀| (the pole-change velocity); j_p = ω·V_p (the pole acceleration); the check
+    end(j_p) on the line through b parallel to the slide; j_d and the valve's j_b (engine)."""
+    mech = linkwork.load("library:rolling-lever-valve-gear")
+    x0 = mech.driver_input_at_design(mech.drivers[0])
+    sol = solve(mech, x0 + np.array([0.3, 1.0, 2.0, -0.7]))
+    con = rolling_lever(mech, sol)
+    con.check()
+    assert con.max_error() <= 1e-9 and not con.degenerate.any()
+    assert {"P", "W0", "Vp", "jp", "check_jp", "a_D", "a_B", "arel_valve"} <= set(con.results)
+    # W lies on the inflection circle: the circle with diameter PW₀ (from the curvature layer)
+    P = con.elements["rl.P"].obj.xy
+    W = con.elements["rl.W"].obj.xy
+    W0 = con.results["W0"].analytic
+    from linkwork.constructions._common import inflection_pole
+    W0 = inflection_pole(sol, "lever")
+    assert np.allclose(np.sum((W - P) * (W - W0), axis=1), 0.0,
+                       atol=1e-9 * np.linalg.norm(W0 - P, axis=1).max() ** 2)
+
+
+def test_rolling_lever_says_why_at_its_drawing_position():
+    """At its drawing position the rod AD is instantaneously translating (ω_rod = 0, engine), so
+    the lever's pole lies on AD, and BD is perpendicular to the slide: the paper's lines for j_d
+    and j_b are parallel there. Said, not invented."""
+    mech = linkwork.load("library:rolling-lever-valve-gear")
+    sol = solve(mech, [mech.driver_input_at_design(mech.drivers[0])])
+    assert abs(sol.link("rod").omega[0]) <= 1e-12 * abs(sol.link("crank").omega[0])
+    con = rolling_lever(mech, sol)
+    assert con.degenerate[0]
+    assert any("rod's line AD" in m or "BD is perpendicular to the slide" in m for m in con.messages(0))

@@ -32,6 +32,7 @@ CASES = {
     "kennedy": FOUR_BARS + SLIDER_CRANKS + SIX_BARS + SLOTTED + ["ellipsograph", "roemer-mechanism"],
     "slide-pairs": SLOTTED + ["rosenauer-shaping-machine", "poeschl-quick-return-shaper"],
     "relative-normals": FOUR_BARS + SLIDER_CRANKS + SIX_BARS + SLOTTED,
+    "rolling-lever": ["rolling-lever-valve-gear"],
 }
 
 
