@@ -1,14 +1,28 @@
 """Rosenauer's direct velocity construction carried out on the drawing, for the groups the
 dyad constructions of :mod:`._plan` do not handle (triads, the Heusinger six-link group, chains
-without four-bar loops, the Römer mechanism's gears and coupler).
+without four-bar loops, the Römer mechanism's gears and coupler, cam and rolling contacts), and
+the same script on accelerations.
 
-Owns :func:`draw_script`: the steps of a :class:`linkwork.topology.constructibility.VelocityScript`
-(the auxiliary points Q, R, … where two link lines meet, each image where two plan lines meet,
-points on a line of two images divided in the drawing's ratio, images copied along a sliding
-pair) performed at every sample with the drafting table of a :class:`._plan.VelocityConstruction`,
-in either of its modes: the polar plan (plan lines ⟂ the mechanism lines) or rotated velocities
-(tips on lines ∥ the mechanism lines, Rosenauer's own form). Each image is handed back to the
-velocity construction, which checks every point, auxiliary points included, against the engine.
+Owns :func:`draw_group` and :func:`draw_group_acceleration`: the steps of a
+:class:`linkwork.topology.constructibility.VelocityScript` (the auxiliary points Q, R, … where two
+link lines meet, each image where two plan lines meet, points on a line of two images divided in
+the drawing's ratio, images copied along a sliding pair) performed at every sample with the
+drafting table of a :class:`._plan.VelocityConstruction`, in either of its modes: the polar plan
+(plan lines ⟂ the mechanism lines) or rotated velocities (tips on lines ∥ the mechanism lines,
+Rosenauer's own form). The script is planned on the drawing's geometry (`drawing_geometry`), so
+that lines parallel only at this position are chosen around where the rules allow.
+
+* `ScriptDrawer`: the direct construction; `TrialDrawer`: false position, with one trial (rows
+  through o, Rosenauer's binary driver) or two (a binary link left out, its check fixes the rows);
+* `AccelerationDrawer`: the plan of relative normal accelerations (paper 4) in the books'
+  chained layout (two images of a hinge where a loop does not close), transferred across
+  hinges, slides (Coriolis), curved slots, gears and rolling contacts (the relative pole's
+  acceleration) and cam contacts (the equivalent link between the centres of curvature);
+  `AccelerationTrialDrawer`: the same after a false-position velocity plan (two trial α*);
+  `TriangleDrawer`: a triad by the inscribed perpendicular-similar triangle (paper 4).
+
+Each image is handed back to the construction, which checks every point, auxiliary points
+included, against the engine.
 """
 
 from __future__ import annotations
