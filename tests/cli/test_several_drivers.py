@@ -176,9 +176,9 @@ def test_sweep_one_driver_and_hold_the_other(tmp_path):
     assert r.exit_code == 0, r.output
     import pandas as pd
     df = pd.read_csv(out)
-    assert list(df["input.slide"]) == pytest.approx([0, 2.5, 5, 7.5, 10])
-    assert list(df["input.O2"]) == pytest.approx([np.pi / 2] * 5)
-    assert list(df["S.x"]) == pytest.approx([40, 42.5, 45, 47.5, 50])
+    assert list(df["input.slide [mm]"]) == pytest.approx([0, 2.5, 5, 7.5, 10])
+    assert list(df["input.O2 [rad]"]) == pytest.approx([np.pi / 2] * 5)
+    assert list(df["S.x [mm]"]) == pytest.approx([40, 42.5, 45, 47.5, 50])
 
 
 def test_tables_name_the_drivers(five_bar, tmp_path):

@@ -68,7 +68,7 @@ def test_analyze_at_a_few_inputs_loads_no_profiles_plots_or_tables(mech):
 
 def test_csv_output_needs_no_pandas():
     r = _loaded("analyze", "library:crank-rocker", "--format", "csv")
-    assert r["code"] == 0 and r["out"].startswith("input,status,")
+    assert r["code"] == 0 and r["out"].startswith("input [rad],status,")
     assert "pandas" not in r["loaded"]
 
 

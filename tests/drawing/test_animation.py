@@ -75,10 +75,55 @@ def test_gif_has_n_frames(tmp_path):
 
 @pytest.mark.parametrize("args, words", [
     (["--frames", "1"], "--frames"), (["--frames", "5000"], "--frames"),
-    (["-o", "x.mp3"], ".html or .gif"), (["--show", "nonsense"], "unknown layer")])
+    (["-o", "x.mp3"], ".html, .gif or .mp4"), (["--show", "nonsense"], "unknown layer")])
 def test_bad_arguments_are_named(tmp_path, args, words):
     argv = ["animate", "library:crank-rocker", "-o", str(tmp_path / "m.html")] + args
     if "-o" in args:
         argv = ["animate", "library:crank-rocker"] + ["-o", str(tmp_path / args[1])]
     r = runner.invoke(app, argv)
     assert r.exit_code != 0 and words in r.output
+
+
+def test_mp4_has_n_frames_of_the_gif_size(tmp_path):
+    """The MP4 read back by ffmpeg: N frames, the GIF's frame size (rounded up to even numbers,
+    as 4:2:0 video needs), N frames in the loop's seconds, and the same picture as the GIF."""
+    imageio_ffmpeg = pytest.importorskip("imageio_ffmpeg")
+    n, seconds = 6, 2.0
+    args = ["animate", "library:crank-rocker", "--frames", str(n), "--dpi", "40",
+            "--seconds", str(seconds)]
+    gif, mp4 = tmp_path / "m.gif", tmp_path / "m.mp4"
+    for out in (gif, mp4):
+        r = runner.invoke(app, args + ["-o", str(out)])
+        assert r.exit_code == 0, r.output
+    with Image.open(gif) as im:
+        w, h = im.size
+        im.seek(0)
+        first = np.asarray(im.convert("RGB"), dtype=float)
+    reader = imageio_ffmpeg.read_frames(str(mp4))
+    meta = next(reader)
+    frames = [np.frombuffer(f, np.uint8) for f in reader]
+    assert len(frames) == n
+    assert tuple(meta["size"]) == (w + w % 2, h + h % 2)
+    assert meta["fps"] == pytest.approx(n / seconds)
+    picture = frames[0].reshape(h + h % 2, w + w % 2, 3)[:h, :w].astype(float)
+    assert np.abs(picture - first).mean() < 8  # lossy coding of the same drawing
+
+
+def test_mp4_without_ffmpeg_names_what_is_missing(tmp_path, monkeypatch):
+    import builtins
+    import shutil
+
+    real_import = builtins.__import__
+
+    def no_imageio(name, *a, **k):
+        if name == "imageio_ffmpeg":
+            raise ImportError(name)
+        return real_import(name, *a, **k)
+
+    monkeypatch.setattr(builtins, "__import__", no_imageio)
+    monkeypatch.setattr(shutil, "which", lambda name: None)
+    out = tmp_path / "m.mp4"
+    r = runner.invoke(app, ["animate", "library:crank-rocker", "-o", str(out)])
+    assert r.exit_code != 0
+    assert "ffmpeg" in r.output and "linkwork[video]" in r.output
+    assert not out.exists()

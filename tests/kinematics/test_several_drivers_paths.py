@@ -214,7 +214,7 @@ def test_streamed_analyze_of_a_five_bar_equals_one_solve(monkeypatch, tmp_path):
     assert len(got) == 46
     sol = linkwork.solve(mech, np.radians(np.column_stack([d[0] - 4.0 * np.arange(46), np.full(46, d[1])])))
     A, C = sol.point("A").position, sol.point("C").position
-    P = got[["P.x", "P.y"]].to_numpy(float)
+    P = got[["P.x [mm]", "P.y [mm]"]].to_numpy(float)  # headers with their units
     np.testing.assert_allclose(P, A + C, atol=1e-6)
 
 

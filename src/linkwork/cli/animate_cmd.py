@@ -1,5 +1,5 @@
 """`linkwork animate`: the motion of a mechanism with chosen layers, as a self-contained HTML
-page (SVG frames shown in turn by CSS) or a GIF."""
+page (SVG frames shown in turn by CSS), a GIF, or an MP4 (needs ffmpeg: `linkwork[video]`)."""
 
 from __future__ import annotations
 
@@ -21,8 +21,8 @@ def register(app: typer.Typer) -> None:
         show: str = typer.Option("mechanism", "--show", help="layers, comma-separated, as for `draw` (mechanism, paths, velocities, …)"),
         frames: int = typer.Option(36, "--frames", help="positions drawn, evenly spaced over the whole motion"),
         seconds: float = typer.Option(3.0, "--seconds", help="duration of one loop"),
-        dpi: float = typer.Option(100.0, "--dpi", help="resolution of GIF frames"),
-        output: str = typer.Option(..., "-o", "--output", help="FILE.html (SVG frames, self-contained) or FILE.gif"),
+        dpi: float = typer.Option(100.0, "--dpi", help="resolution of GIF and MP4 frames"),
+        output: str = typer.Option(..., "-o", "--output", help="FILE.html (SVG frames, self-contained), FILE.gif, or FILE.mp4 (needs ffmpeg: the 'video' extra)"),
     ) -> None:
         """Animate the motion: the drawing of `draw` at N positions over the whole motion."""
         from ..drawing.animation import write_animation

@@ -25,7 +25,7 @@ from typer.core import TyperCommand
 from ..errors import InputError, LinkworkWarning
 from ..outputs import write_output_file
 from ..units import parse_quantity
-from .common import err_console, user_errors
+from .common import err_console, output_format, user_errors
 
 SEGMENT_OPTIONS = ("rise", "dwell", "return_")
 CHECK_SAMPLES = 1440
@@ -158,6 +158,7 @@ def register(app: typer.Typer) -> None:
     ) -> None:
         """Design a disc cam from rise/dwell/return segments and write its mechanism file."""
         with user_errors():
+            output_format(None, output, ("toml",), "toml")  # a mechanism file
             from ..model.disc_cams import DiscCam
             from ..model.motion_programs import MotionProgram
             from ..synthesis import analyse, mechanism_text, smallest_base_radius, with_base_radius

@@ -80,6 +80,37 @@ def load_mechanism(spec: str) -> Mechanism:
     return load(spec)
 
 
+#: suffixes of the formats linkwork writes (a command given one that it does not write refuses
+#: it, rather than put its text in a file whose name promises another format)
+KNOWN_SUFFIXES = {".csv": "csv", ".json": "json", ".jsonl": "jsonl", ".parquet": "parquet",
+                  ".pq": "parquet", ".toml": "toml", ".svg": "svg", ".png": "png", ".pdf": "pdf",
+                  ".dxf": "dxf", ".gif": "gif", ".html": "html", ".mp4": "mp4"}
+
+
+def output_format(fmt: str | None, output: str | None, writes: Iterable[str],
+                  default: str) -> str:
+    """The format of a command's output from its --format (None: not given) and the suffix of
+    -o: the suffix chooses when --format is not given; a suffix contradicting --format is
+    refused, and so is the suffix of a format that the command does not write (`writes`: the
+    formats it writes, by the names of `KNOWN_SUFFIXES`). Other suffixes (.txt, none) get
+    --format or `default`."""
+    from pathlib import Path
+
+    writes = tuple(writes)
+    suffix = Path(output).suffix.lower() if output else ""
+    by_suffix = KNOWN_SUFFIXES.get(suffix)
+    if by_suffix is not None and by_suffix not in writes:
+        known = [s for s, f in KNOWN_SUFFIXES.items() if f in writes and s != ".pq"]
+        text = "" if default in KNOWN_SUFFIXES.values() else f" or {default} text (any other suffix)"
+        raise InputError(f"-o {output}: this command writes {', '.join(known)}{text}, not {suffix}")
+    if fmt is None:
+        return by_suffix or default
+    if by_suffix is not None and by_suffix != fmt:
+        raise InputError(f"-o {output} has the suffix of {by_suffix}, but --format is {fmt}: "
+                         "drop --format or change the suffix")
+    return fmt
+
+
 def write_output(text: str | Iterable[str], output: str | None) -> None:
     """Text, whole or as chunks (streamed), to the file `output` (all or nothing: see
     `linkwork.outputs`) or to stdout."""

@@ -73,7 +73,13 @@ def register(app: typer.Typer) -> None:
                 raise InputError(f"-o {output}: write .svg, .png, .pdf or .dxf")
             if animate is not None and out.suffix.lower() != ".svg":
                 raise InputError("--animate writes an animated SVG: give -o FILE.svg")
-            if at is None:
+            if mech.given:  # a chain driven by given point velocities: at its drawn position
+                if at is not None:
+                    raise InputError(f"mechanism '{mech.name}' is driven by given point velocities: "
+                                     "it is drawn at its drawn position, so --at does not apply")
+                from ..kinematics.point_inputs import solve_given
+                sol = solve_given(mech)
+            elif at is None:
                 value = np.array([mech.driver_input_at_design(d) for d in mech.drivers])[None, :]
                 sol = solve(mech, value)
             else:

@@ -26,7 +26,7 @@ from ..forces.reduced import flywheel, reduced_inertia
 from ..io import load_dynamics
 from ..kinematics import solve, whole_motion
 from ..model import Prismatic
-from .common import user_errors, write_output
+from .common import output_format, user_errors, write_output
 from .inputs import input_speeds, input_values, show_input
 
 
@@ -158,8 +158,7 @@ def register(app: typer.Typer) -> None:
         with user_errors():
             dyn = load_dynamics(mechanism)
             mech = dyn.mechanism
-            chosen = fmt or (Format.csv if output and output.lower().endswith(".csv") else
-                             Format.json if output and output.lower().endswith(".json") else Format.table)
+            chosen = Format(output_format(fmt and fmt.value, output, ("table", "json", "csv"), "table"))
             w = input_speeds(mech, speed)
             asked = input_values(mech, at, sweep)
             if asked is None:

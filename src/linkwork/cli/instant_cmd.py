@@ -21,7 +21,7 @@ from ..instant import (agreement, kennedy_poles, pole_line_count, pole_schedule,
                        poles)
 from ..kinematics import Solution, Status, solve
 from ..model import Mechanism
-from .common import load_mechanism, recording_console, user_errors, write_output
+from .common import load_mechanism, output_format, recording_console, user_errors, write_output
 from .inputs import input_values
 
 
@@ -81,9 +81,10 @@ def _render(tables: list) -> str:
 
 
 # ---------------------------------------------------------------------------- poles
-def _poles_command(mechanism: str, at: Optional[list[str]], schedule: bool, fmt: Format,
+def _poles_command(mechanism: str, at: Optional[list[str]], schedule: bool, fmt: Format | None,
                    output: Optional[str]) -> None:
     with user_errors():
+        fmt = Format(output_format(fmt and fmt.value, output, ("table", "json"), "table"))
         mech = load_mechanism(mechanism)
         sol = _solve(mech, at, 1)
         if fmt is Format.json:
@@ -129,8 +130,9 @@ def _design_point(mech: Mechanism, text: str):
 
 
 def _curvature_command(mechanism: str, link: str, relative_to: Optional[str], points: list[str],
-                       at: Optional[list[str]], fmt: Format, output: Optional[str]) -> None:
+                       at: Optional[list[str]], fmt: Format | None, output: Optional[str]) -> None:
     with user_errors():
+        fmt = Format(output_format(fmt and fmt.value, output, ("table", "json"), "table"))
         mech = load_mechanism(mechanism)
         sol = _solve(mech, at, 3)
         asked = [(p, _design_point(mech, p)) for p in points]
@@ -182,7 +184,7 @@ def register(app: typer.Typer) -> None:
         mechanism: str = typer.Argument(..., help="a mechanism file, or library:NAME"),
         at: Optional[list[str]] = typer.Option(None, "--at", help="input values V[,V…] (degrees, the file's length unit, or a time like 0.5s); several drivers: NAME=V[,V…] per driver, as for analyze; default: the design position"),
         schedule: bool = typer.Option(False, "--schedule", help="also print the three-pole theorem schedule (P13 = P12P23 ∩ P14P34 …)"),
-        fmt: Format = typer.Option(Format.table, "--format", help="table or json"),
+        fmt: Optional[Format] = typer.Option(None, "--format", help="table or json (default: from the suffix of -o, else table)"),
         output: Optional[str] = typer.Option(None, "-o", "--output", help="write to this file instead of stdout"),
     ) -> None:
         """All n(n−1)/2 relative poles, from the velocities and by the three-pole theorem."""
@@ -195,7 +197,7 @@ def register(app: typer.Typer) -> None:
         relative_to: Optional[str] = typer.Option(None, "--relative-to", help="the reference link (default: the frame)"),
         point: Optional[list[str]] = typer.Option(None, "--point", help="a point name or design coordinates x,y whose path curvature centre to report (repeatable)"),
         at: Optional[list[str]] = typer.Option(None, "--at", help="input values V[,V…]; several drivers: NAME=V[,V…] per driver, as for analyze; default: the design position"),
-        fmt: Format = typer.Option(Format.table, "--format", help="table or json"),
+        fmt: Optional[Format] = typer.Option(None, "--format", help="table or json (default: from the suffix of -o, else table)"),
         output: Optional[str] = typer.Option(None, "-o", "--output", help="write to this file instead of stdout"),
     ) -> None:
         """Curvature theory of a link's motion: pole, inflection, return and Bresse circles, Γ,

@@ -18,7 +18,7 @@ import typer
 from rich.console import Console
 from rich.table import Table
 
-from .common import recording_console, user_errors, write_output
+from .common import output_format, recording_console, user_errors, write_output
 
 if TYPE_CHECKING:
     from ..kinematics import Solution
@@ -125,45 +125,6 @@ def _engagement_tables(out: Console, sol: Solution) -> None:
         out.print(t)
 
 
-_SUFFIX_FORMATS = {".csv": Format.csv, ".json": Format.json, ".jsonl": Format.jsonl}
-
-
-def _format_for(fmt: Format | None, output: str | None) -> tuple[Format, bool]:
-    """The text format (and whether to write Parquet) from --format and the suffix of -o: the
-    suffix chooses when --format is not given; a suffix that contradicts --format is refused."""
-    from pathlib import Path
-
-    from ..errors import InputError
-    suffix = Path(output).suffix.lower() if output else ""
-    if suffix in (".parquet", ".pq"):
-        if fmt is not None:
-            raise InputError(f"-o {output} writes Parquet; drop --format {fmt.value}")
-        return Format.table, True
-    by_suffix = _SUFFIX_FORMATS.get(suffix)
-    if fmt is None:
-        return by_suffix or Format.table, False
-    if by_suffix is not None and by_suffix is not fmt:
-        raise InputError(f"-o {output} has the suffix of {by_suffix.value}, but --format is {fmt.value}")
-    return fmt, False
-
-
-def _write_parquet(sol: "Solution", output: str) -> None:
-    """The solution's table (`Solution.to_pandas`) as Parquet, with its units in the schema's
-    metadata (key b"linkwork.units")."""
-    import json
-
-    import pyarrow as pa
-    import pyarrow.parquet as pq
-
-    from ..outputs import output_path
-    table = pa.Table.from_pandas(sol.to_pandas(), preserve_index=False)
-    units = {"length": sol.mechanism.length_unit, "angle": "rad", "time": "s"}
-    meta = {**(table.schema.metadata or {}), b"linkwork.units": json.dumps(units).encode(),
-            b"linkwork.mechanism": sol.mechanism.name.encode()}
-    with output_path(output) as tmp:
-        pq.write_table(table.replace_schema_metadata(meta), tmp)
-
-
 @app.command()
 def analyze(
     mechanism: str = typer.Argument(..., help="a mechanism file, or library:NAME"),
@@ -171,7 +132,7 @@ def analyze(
     sweep: Optional[list[str]] = typer.Option(None, "--sweep", help="START:STOP:STEP in the same units. Several drivers: NAME=START:STOP:STEP per driver (repeat --sweep; may be combined with --at NAME=V to hold a driver), lock-step: equal numbers of samples"),
     speed: Optional[list[str]] = typer.Option(None, "--speed", help="driver speed, e.g. '120 rpm' (overrides the file). Several drivers: NAME=Q per driver; the others keep the file's"),
     fmt: Optional[Format] = typer.Option(None, "--format", help="table, json, jsonl (JSON Lines: one sample per line) or csv; default: from the suffix of -o (.csv, .json, .jsonl, .parquet), else table"),
-    output: Optional[str] = typer.Option(None, "-o", "--output", help="write to this file instead of stdout (all or nothing: the file appears when complete); .parquet writes Parquet"),
+    output: Optional[str] = typer.Option(None, "-o", "--output", help="write to this file instead of stdout (all or nothing: the file appears when complete); .parquet writes Parquet; CSV headers and Parquet's metadata carry the units"),
     force: bool = typer.Option(False, "--force", help="write outputs above the size limit (1 GB, or a table of 10 000 rows)"),
 ) -> None:
     """Positions, velocities and accelerations of every point, link and pair.
@@ -188,7 +149,9 @@ def analyze(
     from .inputs import input_speeds, input_values
 
     with user_errors():
-        fmt, parquet = _format_for(fmt, output)
+        chosen = output_format(fmt and fmt.value, output, ("table", "json", "jsonl", "csv", "parquet"), "table")
+        parquet = chosen == "parquet"
+        fmt = Format.table if parquet else Format(chosen)
         mech = load_mechanism(mechanism)
         w = input_speeds(mech, speed)
         asked = input_values(mech, at, sweep)
@@ -201,14 +164,15 @@ def analyze(
                                  "motion follows the drivers' time laws")
             sol = whole_motion(mech, speed=None if w is None else float(w[0]))
             if parquet:
-                return _write_parquet(sol, output)
+                return sol.to_parquet(output)
             streams.check_size(mech, fmt.value, len(sol), output, force)
             write_output(_table(sol) if fmt is Format.table else streams.whole(sol, fmt.value), output)
             return
         kind, values = asked
         if parquet:
-            return _write_parquet(solve(mech, times=values) if kind == "time" else solve(
-                mech, values, velocities=None if w is None else np.broadcast_to(w, values.shape).copy()), output)
+            sol = solve(mech, times=values) if kind == "time" else solve(
+                mech, values, velocities=None if w is None else np.broadcast_to(w, values.shape).copy())
+            return sol.to_parquet(output)
         streams.check_size(mech, fmt.value, len(values), output, force)
         if fmt is Format.table:
             sol = solve(mech, times=values) if kind == "time" else solve(

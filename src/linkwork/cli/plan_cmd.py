@@ -14,7 +14,7 @@ from typing import Optional
 
 import typer
 
-from .common import load_mechanism, user_errors, write_output
+from .common import load_mechanism, output_format, user_errors, write_output
 
 
 class Mode(str, Enum):
@@ -28,7 +28,7 @@ class Format(str, Enum):
 
 
 def _plan_command(mechanism: str, at: Optional[list[str]], explain: bool, mode: Mode,
-                  fmt: Format, output: Optional[str]) -> None:
+                  fmt: Format | None, output: Optional[str]) -> None:
     # imported here: registering the command must stay cheap (tests/cli/test_startup.py)
     import numpy as np
 
@@ -38,6 +38,7 @@ def _plan_command(mechanism: str, at: Optional[list[str]], explain: bool, mode: 
     from .inputs import input_values
 
     with user_errors():
+        fmt = Format(output_format(fmt and fmt.value, output, ("text", "json"), "text"))
         mech = load_mechanism(mechanism)
         chain = Chain.from_mechanism(mech)
         script = plan_velocities(chain)
@@ -51,14 +52,25 @@ def _plan_command(mechanism: str, at: Optional[list[str]], explain: bool, mode: 
             lines.append("Construction script (o: the pole of the plan; x \u27c2 XY: the line "
                          "through x perpendicular to XY):")
             lines.extend(script.script())
-        if at is not None:
+        if mech.given and at is not None:
+            raise InputError(f"mechanism '{mech.name}' is driven by given point velocities: it is "
+                             "drawn at its drawn position, so --at does not apply")
+        if mech.given and not script.direct:
+            lines.append("The plan of this chain from its given data needs similar point rows (two "
+                         "trials); it is not drawn.")
+        elif mech.given:  # no input: the construction at the drawn position, from the given data
+            from ..kinematics.point_inputs import solve_given
+            at, values = [], solve_given(mech)
+        elif at is not None:
             samples = input_values(mech, at, None)
             if samples is None or samples[0] != "input":
                 raise InputError("--at takes input values (degrees or the file's length unit)")
             values = np.asarray(samples[1], float)
             values = values[:, 0] if values.ndim == 2 else values
+            values = values[:1]
+        if at is not None:
             build = velocity_plan if mode is Mode.plan else rotated_velocities
-            con = build(mech, values[:1])
+            con = build(mech, values)
             con.require(0)  # a position where the construction degenerates is reported as such
             con.check()
             lines.append("")
@@ -79,10 +91,10 @@ def register(app: typer.Typer) -> None:
     @app.command("plan")
     def plan_cmd(
         mechanism: str = typer.Argument(..., help="a mechanism file, or library:NAME"),
-        at: Optional[list[str]] = typer.Option(None, "--at", help="input value V (degrees or the file's length unit): carry the construction out there and check it against the engine"),
+        at: Optional[list[str]] = typer.Option(None, "--at", help="input value V (degrees or the file's length unit): carry the construction out there and check it against the engine (a chain driven by [[given]] point velocities: always, at its drawn position)"),
         explain: bool = typer.Option(False, "--explain", help="print the numbered construction script (q = (a \u27c2 AQ) \u2229 (b \u27c2 BQ) …)"),
         mode: Mode = typer.Option(Mode.plan, "--mode", help="plan: polar velocity plan; rotated: rotated velocities on the mechanism"),
-        fmt: Format = typer.Option(Format.text, "--format", help="text or json"),
+        fmt: Optional[Format] = typer.Option(None, "--format", help="text or json (default: from the suffix of -o, else text)"),
         output: Optional[str] = typer.Option(None, "-o", "--output", help="write to this file instead of stdout"),
     ) -> None:
         """Velocity plan by ruler: Wittenbauer's and Rosenauer's constructibility rules, the

@@ -4,7 +4,7 @@ take memory for one chunk, not for the whole text). Each chunk goes on from wher
 before left the path of the inputs (`solve(..., resume=)`: the branches and the continuation
 of several drivers), so the chunks give what one solve of all samples gives.
 
-Formats: `csv` (one row per sample), `jsonl` (JSON Lines: one sample object per line, the
+Formats: `csv` (one row per sample, each header with its unit: `B.vx [mm/s]`), `jsonl` (JSON Lines: one sample object per line, the
 file's length unit, radians and seconds), `json` (one document; its samples are written one
 per line as they are solved) and `table` (for reading: refused above `MAX_TABLE_ROWS`).
 """
@@ -62,7 +62,7 @@ def render(sol: Solution, fmt: str, first: bool = True) -> Iterator[str]:
     """The text of `sol` in `fmt` (csv, jsonl, json) in pieces; `first`: whether this is the
     first chunk of the output (CSV header, JSON document head)."""
     if fmt == "csv":
-        yield from csv_lines(sol, first, PIECE)
+        yield from csv_lines(sol, first, PIECE, units=True)
     elif fmt == "jsonl":
         yield from _lines(sol, "", True)
     else:

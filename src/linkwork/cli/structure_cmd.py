@@ -19,7 +19,7 @@ from rich.table import Table
 
 from ..structure import StructureReport, structure_report
 from ..structure.assur import ROMAN
-from .common import load_mechanism, recording_console, user_errors, write_output
+from .common import load_mechanism, output_format, recording_console, user_errors, write_output
 
 
 class Format(str, Enum):
@@ -185,8 +185,9 @@ def _text(rep: StructureReport) -> str:
     return con.export_text()
 
 
-def _structure_command(mechanism: str, fmt: Format, output: Optional[str]) -> None:
+def _structure_command(mechanism: str, fmt: Format | None, output: Optional[str]) -> None:
     with user_errors():
+        fmt = Format(output_format(fmt and fmt.value, output, ("table", "json"), "table"))
         mech = load_mechanism(mechanism)
         rep = structure_report(mech)
         if fmt is Format.json:
@@ -204,7 +205,7 @@ def register(app: typer.Typer) -> None:
     @app.command("structure")
     def structure_cmd(
         mechanism: str = typer.Argument(..., help="a mechanism file, or library:NAME"),
-        fmt: Format = typer.Option(Format.table, "--format", help="table or json"),
+        fmt: Optional[Format] = typer.Option(None, "--format", help="table or json (default: from the suffix of -o, else table)"),
         output: Optional[str] = typer.Option(None, "-o", "--output", help="write to this file instead of stdout"),
     ) -> None:
         """Structure: mobility by the seeds' counts and by the Jacobian's rank, redundant

@@ -1,6 +1,8 @@
 """Motion animations: the drawing of `linkwork draw` at N positions over the whole motion, as a
-self-contained HTML page (the frames' SVGs shown in turn by CSS keyframes, no script) or as a
-GIF (each frame rendered to PNG by cairosvg, assembled by Pillow).
+self-contained HTML page (the frames' SVGs shown in turn by CSS keyframes, no script), as a
+GIF (each frame rendered to PNG by cairosvg, assembled by Pillow), or as an MP4 (the same
+frames encoded by ffmpeg: the binary of the optional `imageio-ffmpeg` package, `linkwork[video]`,
+or an `ffmpeg` on the PATH).
 
 Every frame is drawn with the same scales and the same panel (the box of the whole motion), so
 that only the mechanism moves. The frames are samples of `whole_motion`, evenly spaced over its
@@ -14,15 +16,18 @@ import html
 import io
 import json
 import re
+import shutil
+import subprocess
+from fractions import Fraction
 from pathlib import Path
 from typing import Iterable
 
 import numpy as np
 
-from ..errors import InputError, LinkworkError
+from ..errors import InputError, LinkworkError, OutputError
 from ..kinematics import Status, whole_motion
 from ..model import Mechanism
-from ..outputs import write_output_file
+from ..outputs import output_path, write_output_file
 from .layers import Scene, scene_figure
 from .svg import convert
 
@@ -105,17 +110,32 @@ def animation_html(mech: Mechanism, scenes: list[Scene], svgs: list[str],
         + "\n".join(frames) + "\n</div>\n</body></html>\n")
 
 
-def write_animation(mech: Mechanism, path: Path, *, frames: int = 36,
-                    show: Iterable[str] = ("mechanism",), seconds: float = 3.0,
-                    dpi: float = 100.0) -> int:
-    """Write the motion of `mech` as `path` (.html or .gif); returns the number of frames."""
-    suffix = path.suffix.lower()
-    if suffix not in (".html", ".gif"):
-        raise InputError(f"-o {path}: write .html or .gif")
-    scenes, svgs = motion_frames(mech, frames, show)
-    if suffix == ".html":
-        write_output_file(path, animation_html(mech, scenes, svgs, seconds))
-        return len(svgs)
+#: the formats `write_animation` writes, by suffix
+FORMATS = (".html", ".gif", ".mp4")
+
+
+def ffmpeg_executable() -> str:
+    """The ffmpeg program that encodes MP4: the one shipped by `imageio-ffmpeg` (installed with
+    `linkwork[video]`), else `ffmpeg` on the PATH. An `OutputError` names what is missing."""
+    try:
+        import imageio_ffmpeg
+    except ImportError:
+        imageio_ffmpeg = None
+    if imageio_ffmpeg is not None:
+        try:
+            return imageio_ffmpeg.get_ffmpeg_exe()
+        except RuntimeError:  # the package without its binary (a platform it has no wheel for)
+            pass
+    exe = shutil.which("ffmpeg")
+    if exe is None:
+        raise OutputError("writing .mp4 needs ffmpeg, which is missing: install the 'video' "
+                          "extra (pip install 'linkwork[video]', which brings imageio-ffmpeg and "
+                          "its ffmpeg) or an ffmpeg program on the PATH; or write .gif or .html")
+    return exe
+
+
+def _rasters(svgs: list[str], path: Path, dpi: float) -> list:
+    """The frames as RGB Pillow images (each SVG rendered to PNG by cairosvg)."""
     from PIL import Image
 
     images = []
@@ -124,9 +144,77 @@ def write_animation(mech: Mechanism, path: Path, *, frames: int = 36,
         try:
             convert(svg, buf, dpi=dpi)
             with Image.open(buf) as im:
-                images.append(im.convert("RGB").convert("P", palette=Image.Palette.ADAPTIVE))
+                images.append(im.convert("RGB"))
         finally:
             buf.unlink(missing_ok=True)
+    return images
+
+
+def _even(images: list) -> list:
+    """The frames padded with white to the largest width and height rounded up to even numbers:
+    H.264 in its common 4:2:0 form halves both, and every frame of a video has one size."""
+    from PIL import Image
+
+    w = max(im.width for im in images)
+    h = max(im.height for im in images)
+    w, h = w + w % 2, h + h % 2
+    out = []
+    for im in images:
+        if im.size != (w, h):
+            canvas = Image.new("RGB", (w, h), "white")
+            canvas.paste(im, (0, 0))
+            im = canvas
+        out.append(im)
+    return out
+
+
+def write_mp4(images: list, path: Path, seconds: float) -> None:
+    """Encode the frames as an H.264 MP4 (MPEG-4 part 2 where the ffmpeg lacks libx264), one
+    loop in `seconds`, all or nothing."""
+    exe = ffmpeg_executable()
+    frames = _even(images)
+    w, h = frames[0].size
+    rate = (Fraction(len(frames)) / Fraction(repr(float(seconds)))).limit_denominator(1000)
+    try:
+        encoders = subprocess.run([exe, "-hide_banner", "-encoders"], capture_output=True,
+                                  text=True, check=False).stdout
+    except OSError as exc:
+        raise OutputError(f"writing .mp4: ffmpeg ({exe}) cannot be run: {exc}") from None
+    codec = (["-c:v", "libx264", "-pix_fmt", "yuv420p"] if " libx264 " in encoders
+             else ["-c:v", "mpeg4", "-q:v", "3", "-pix_fmt", "yuv420p"])
+    with output_path(path) as tmp:
+        cmd = [exe, "-hide_banner", "-loglevel", "error", "-y",
+               "-f", "rawvideo", "-pix_fmt", "rgb24", "-s", f"{w}x{h}",
+               "-framerate", f"{rate.numerator}/{rate.denominator}", "-i", "-",
+               *codec, "-movflags", "+faststart", "-f", "mp4", str(tmp)]
+        raw = b"".join(im.tobytes() for im in frames)
+        done = subprocess.run(cmd, input=raw, capture_output=True, check=False)
+        if done.returncode != 0:
+            why = done.stderr.decode("utf-8", "replace").strip().splitlines()[-1:] or ["?"]
+            raise OutputError(f"writing {path}: ffmpeg failed: {why[0]}")
+
+
+def write_animation(mech: Mechanism, path: Path, *, frames: int = 36,
+                    show: Iterable[str] = ("mechanism",), seconds: float = 3.0,
+                    dpi: float = 100.0) -> int:
+    """Write the motion of `mech` as `path` (.html, .gif or .mp4); returns the number of
+    frames."""
+    suffix = path.suffix.lower()
+    if suffix not in FORMATS:
+        raise InputError(f"-o {path}: write {', '.join(FORMATS[:-1])} or {FORMATS[-1]}")
+    if suffix == ".mp4":
+        ffmpeg_executable()  # the missing codec is named before the frames are drawn
+    scenes, svgs = motion_frames(mech, frames, show)
+    if suffix == ".html":
+        write_output_file(path, animation_html(mech, scenes, svgs, seconds))
+        return len(svgs)
+    images = _rasters(svgs, path, dpi)
+    if suffix == ".mp4":
+        write_mp4(images, path, seconds)
+        return len(images)
+    from PIL import Image
+
+    images = [im.convert("P", palette=Image.Palette.ADAPTIVE) for im in images]
     out = io.BytesIO()
     images[0].save(out, format="GIF", save_all=True, append_images=images[1:],
                    duration=max(int(round(1000 * seconds / len(images))), 20), loop=0,

@@ -256,18 +256,22 @@ class Solution:
 
     # ------------------------------------------------------------------ exports
     def to_pandas(self):
-        """A wide DataFrame: one row per sample, columns like 'B.vx', 'coupler.omega'."""
+        """A wide DataFrame: one row per sample, columns like 'B.vx', 'coupler.omega'; their
+        units in `DataFrame.attrs['units']`."""
         from .export import to_dataframe
         return to_dataframe(self)
 
-    def to_csv(self, path) -> None:
-        """The wide table (`to_pandas`'s columns) as CSV, written whole or not at all."""
+    def to_csv(self, path, units: bool = False) -> None:
+        """The wide table (`to_pandas`'s columns) as CSV, written whole or not at all; `units`:
+        headers with their units, `name [unit]`."""
         from ..outputs import write_output_file
         from .export import csv_lines
-        write_output_file(path, csv_lines(self))
+        write_output_file(path, csv_lines(self, units=units))
 
     def to_parquet(self, path) -> None:
-        self.to_pandas().to_parquet(path, index=False)
+        """The wide table as Parquet, its columns' units in the metadata (`linkwork.units`)."""
+        from .export import write_parquet
+        write_parquet(self, path)
 
     def to_document(self) -> dict:
         """The JSON document of `linkwork analyze --format json`."""

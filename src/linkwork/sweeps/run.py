@@ -23,6 +23,7 @@ import numpy as np
 from ..errors import InputError, LinkworkError
 from ..io.files import load, load_text, resolve
 from ..kinematics import solve, whole_motion
+from ..kinematics.export import with_unit
 from ..model import Mechanism
 from . import designs as D
 from .metrics import Metric, evaluate, parse_metric
@@ -218,7 +219,7 @@ def write(p: SweepPlan, rows: list[list], path: str | Path) -> None:
     units = p.units()
     suffix = path.suffix.lower()
     if suffix == ".csv":
-        df = df.rename(columns={c: f"{c} [{units[c]}]" for c in df.columns if units.get(c)})
+        df = df.rename(columns={c: with_unit(c, units.get(c, "")) for c in df.columns})
         with output_path(path) as tmp:
             df.to_csv(tmp, index=False)
     elif suffix in (".parquet", ".pq"):
