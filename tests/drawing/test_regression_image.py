@@ -36,6 +36,11 @@ def render(name: str, tmp_path: Path) -> Path:
         sol = linkwork.solve(mech, np.radians([30.0]))
         fig = scene_figure(Scene(mech, sol), ["mechanism", "poles", "pole-lines", "centrodes", "inflection",
                                               "return", "bresse", "gamma"], frame="inset")
+    elif name == "jansen-poles-0":
+        # issue 16: Jansen's pole labels crowded near O (placement against lines, points, labels)
+        mech = linkwork.load("library:jansen-linkage")
+        sol = linkwork.solve(mech, np.radians([0.0]))
+        fig = scene_figure(Scene(mech, sol), ["mechanism", "poles"])
     elif name in ("plans-crank-rocker-C-30", "vs-time-slider-crank-offset"):
         from linkwork.drawing.calculus_plots import plans_figure, vs_steps
         from linkwork.drawing.plots import save
@@ -54,7 +59,7 @@ def grey(path: Path) -> np.ndarray:
 
 
 @pytest.mark.parametrize("name", ["klein-centric-40", "crank-rocker-plans-230", "crank-rocker-inset-30",
-                                  "plans-crank-rocker-C-30", "vs-time-slider-crank-offset"])
+                                  "plans-crank-rocker-C-30", "vs-time-slider-crank-offset", "jansen-poles-0"])
 def test_reference_drawing(name, tmp_path):
     png = render(name, tmp_path)
     base = BASELINE / f"{name}.png"

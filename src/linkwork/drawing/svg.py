@@ -35,6 +35,12 @@ MARGIN = 9.0  # mm around a panel's content
 GAP = 10.0  # mm between panels
 TITLE_H = 9.0
 FRAME_PAD = 6.0  # mm between a framed panel's content and its frame
+#: how far (mm) a label's nearest edge may be put from its point, nearest first
+LABEL_DISTANCES = (1.0, 2.2, 3.8, 5.6, 8.0)
+#: a label farther than this (mm) from its point is joined to it by a leader line
+LEADER_FROM = 4.5
+#: half the width of a bar's stroke and a little more: a label keeps this clear of drawn lines
+INK_PAD = 0.6
 SCALE_BAR = 20.0  # mm, the length of a scale bar
 SCALE_TEXT_SIZE, SCALE_VALUE_SIZE = 2.8, 2.5
 LEGEND_SIZE, LEGEND_LINE = 3.0, 4.2  # legend lines: font size and baseline distance (mm)
@@ -674,10 +680,13 @@ class Figure:
         return "", []
 
     def _place_labels(self, tfs: dict, panels: dict, samples: list, animate: float | None) -> list[str]:
+        """Each label beside its point where it covers least: other labels (measured boxes), the
+        drawn geometry (sampled lines, symbols) and the other labels' points. Greedy first, in
+        order, then a second pass moves each label to its best place among all the others (a
+        crowded corner settles); a label put far from its point gets a thin leader line."""
         grid = _Grid(samples)
-        placed: list[tuple[float, float, float, float]] = []
-        out = []
         cut = {n: self._cut(n) for n in panels}
+        todo = []  # (label, anchor on paper, width, height, frame box or None)
         for lab in self.labels:
             if lab.space not in tfs:
                 continue
@@ -692,23 +701,39 @@ class Figure:
                 if not (frame[0] <= a[0] <= frame[2] and frame[1] <= a[1] <= frame[3]):
                     continue  # its point is cut off with the drawing at the frame
             w, h = text_width(lab.text, lab.size, lab.italic) + 0.4, lab.size * 0.95
+            todo.append((lab, a, w, h, frame))
+        anchors = _Grid([t[1] for t in todo])
+        placed: list[tuple[float, float, float, float] | None] = [None] * len(todo)
+
+        def best_box(i: int):
+            lab, a, w, h, frame = todo[i]
+            others = [b for j, b in enumerate(placed) if b is not None and j != i]
             best, best_score = None, math.inf
-            cands = _candidates(lab.prefer)
-            for k, (dx, dy) in enumerate(cands):
-                for dist in (lab.clear + 1.0, lab.clear + 2.2, lab.clear + 3.8):
+            for k, (dx, dy) in enumerate(_candidates(lab.prefer)):
+                for dist in LABEL_DISTANCES:
+                    dist += lab.clear
                     # box anchored so that its nearest edge is `dist` away in direction (dx, dy)
                     cx = a[0] + dx * (dist + w / 2)
                     cy = a[1] + dy * (dist + h / 2)
                     box = (cx - w / 2, cy - h / 2, cx + w / 2, cy + h / 2)
-                    score = 40.0 * sum(_overlap(box, q) for q in placed) / (w * h)
-                    score += grid.count(box) * 1.0 + 0.15 * k + 0.6 * dist
+                    score = 40.0 * sum(_overlap(box, q) for q in others) / (w * h)
+                    # the drawn lines have a width: what runs just past the box touches it too
+                    wide = (box[0] - INK_PAD, box[1] - INK_PAD, box[2] + INK_PAD, box[3] + INK_PAD)
+                    score += 2.0 * grid.count(wide) + 0.15 * k + 0.6 * dist
+                    # another label's point under this label (its own is never inside the box)
+                    score += 12.0 * anchors.count(wide)
                     if frame is not None and not (frame[0] <= box[0] and box[2] <= frame[2]
                                                   and frame[1] <= box[1] and box[3] <= frame[3]):
                         score += 1e4  # across the frame
                     if score < best_score:
                         best, best_score = box, score
-            placed.append(best)
-            x0, y0, x1, y1 = best
+            return best
+
+        for _ in range(2):  # greedy, then each label again among all the others
+            for i in range(len(todo)):
+                placed[i] = best_box(i)
+        out = []
+        for (lab, a, w, h, frame), (x0, y0, x1, y1) in zip(todo, placed):
             ident = f' id="{lab.ident}"' if lab.ident else ""
             style = ' font-style="italic"' if lab.italic else ""
             el = (f'<text{ident} x="{sym._f(x0 + 0.2)}" y="{sym._f(y1 - 0.22 * lab.size)}" '
@@ -716,7 +741,13 @@ class Figure:
             # a white halo keeps labels readable over thin construction lines
             halo = (f'<rect x="{sym._f(x0)}" y="{sym._f(y0 + 0.1)}" width="{sym._f(x1 - x0)}" '
                     f'height="{sym._f(y1 - y0 - 0.1)}" fill="#fff" fill-opacity="0.75"/>')
-            el = f"<g>{halo}{el}</g>"
+            leader = ""
+            q = np.clip(a, [x0, y0], [x1, y1])  # the box's point nearest the label's point
+            if np.linalg.norm(q - a) > LEADER_FROM + lab.clear:
+                e = a + (q - a) * (lab.clear + 0.6) / np.linalg.norm(q - a)
+                leader = (f'<line class="leader" x1="{sym._f(e[0])}" y1="{sym._f(e[1])}" x2="{sym._f(q[0])}" '
+                          f'y2="{sym._f(q[1])}" stroke="{lab.colour}" stroke-width="0.12"/>')
+            el = f"<g>{leader}{halo}{el}</g>"
             if animate and lab.step is not None:
                 el = _appear(el, lab.step, animate)
             out.append(el)
