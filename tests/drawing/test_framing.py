@@ -182,3 +182,13 @@ def test_no_inset_when_nothing_runs_past_the_frame():
     fig = scene_figure(scene_at(mech, np.radians(30)), ["mechanism", "poles"], frame="inset")
     assert set(fig.spaces) == {"mechanism"}
     assert "inset" not in fig.to_svg()
+
+
+def test_cli_frame_inset(tmp_path):
+    out = tmp_path / "i.svg"
+    r = CliRunner().invoke(app, ["draw", "library:crank-rocker", "--at", "30", "--show", ",".join(ALL),
+                                 "--frame", "inset", "-o", str(out)])
+    assert r.exit_code == 0, r.output
+    assert 'id="inset-frame"' in out.read_text()
+    r = CliRunner().invoke(app, ["draw", "library:crank-rocker", "--frame", "corner", "-o", str(out)])
+    assert r.exit_code != 0 and "inset" in r.output
