@@ -684,7 +684,6 @@ class Figure:
         drawn geometry (sampled lines, symbols) and the other labels' points. Greedy first, in
         order, then a second pass moves each label to its best place among all the others (a
         crowded corner settles); a label put far from its point gets a thin leader line."""
-        grid = _Grid(samples)
         cut = {n: self._cut(n) for n in panels}
         todo = []  # (label, anchor on paper, width, height, frame box or None)
         for lab in self.labels:
@@ -702,32 +701,41 @@ class Figure:
                     continue  # its point is cut off with the drawing at the frame
             w, h = text_width(lab.text, lab.size, lab.italic) + 0.4, lab.size * 0.95
             todo.append((lab, a, w, h, frame))
-        anchors = _Grid([t[1] for t in todo])
-        placed: list[tuple[float, float, float, float] | None] = [None] * len(todo)
+        ink = np.asarray(samples, float).reshape(-1, 2)
+        ink = ink[np.all(np.isfinite(ink), axis=1)]
+        points = np.array([t[1] for t in todo], float).reshape(-1, 2)
+        placed = np.full((len(todo), 4), np.nan)  # the boxes chosen so far (x0, y0, x1, y1)
 
         def best_box(i: int):
+            """The candidate box of label i that covers least (all candidates scored at once:
+            directions in order of preference, each at the distances nearest first)."""
             lab, a, w, h, frame = todo[i]
-            others = [b for j, b in enumerate(placed) if b is not None and j != i]
-            best, best_score = None, math.inf
-            for k, (dx, dy) in enumerate(_candidates(lab.prefer)):
-                for dist in LABEL_DISTANCES:
-                    dist += lab.clear
-                    # box anchored so that its nearest edge is `dist` away in direction (dx, dy)
-                    cx = a[0] + dx * (dist + w / 2)
-                    cy = a[1] + dy * (dist + h / 2)
-                    box = (cx - w / 2, cy - h / 2, cx + w / 2, cy + h / 2)
-                    score = 40.0 * sum(_overlap(box, q) for q in others) / (w * h)
-                    # the drawn lines have a width: what runs just past the box touches it too
-                    wide = (box[0] - INK_PAD, box[1] - INK_PAD, box[2] + INK_PAD, box[3] + INK_PAD)
-                    score += 2.0 * grid.count(wide) + 0.15 * k + 0.6 * dist
-                    # another label's point under this label (its own is never inside the box)
-                    score += 12.0 * anchors.count(wide)
-                    if frame is not None and not (frame[0] <= box[0] and box[2] <= frame[2]
-                                                  and frame[1] <= box[1] and box[3] <= frame[3]):
-                        score += 1e4  # across the frame
-                    if score < best_score:
-                        best, best_score = box, score
-            return best
+            dirs = np.array(_candidates(lab.prefer))
+            dist = np.array(LABEL_DISTANCES) + lab.clear
+            k = np.repeat(np.arange(len(dirs)), len(dist))
+            d = np.tile(dist, len(dirs))
+            c = a + dirs[k] * (d[:, None] + np.array([w, h]) / 2)  # box centres
+            box = np.hstack([c - [w / 2, h / 2], c + [w / 2, h / 2]])
+            others = np.delete(placed, i, axis=0)
+            others = others[np.isfinite(others[:, 0])]
+            ow = np.minimum(box[:, None, 2], others[None, :, 2]) - np.maximum(box[:, None, 0], others[None, :, 0])
+            oh = np.minimum(box[:, None, 3], others[None, :, 3]) - np.maximum(box[:, None, 1], others[None, :, 1])
+            score = 40.0 * np.sum(np.clip(ow, 0, None) * np.clip(oh, 0, None), axis=1) / (w * h)
+            # the drawn lines have a width: what runs just past a box touches it too
+            wide = box + np.array([-INK_PAD, -INK_PAD, INK_PAD, INK_PAD])
+            reach = float(d.max()) + w + h + INK_PAD
+            for pts, weight in ((ink, 2.0), (np.delete(points, i, axis=0), 12.0)):
+                # another label's point under this label costs most (its own is never inside)
+                near = pts[np.all(np.abs(pts - a) <= reach, axis=1)]
+                inside = ((near[None, :, 0] >= wide[:, None, 0]) & (near[None, :, 0] <= wide[:, None, 2])
+                          & (near[None, :, 1] >= wide[:, None, 1]) & (near[None, :, 1] <= wide[:, None, 3]))
+                score += weight * inside.sum(axis=1)
+            score += 0.15 * k + 0.6 * d
+            if frame is not None:
+                across = ((box[:, 0] < frame[0]) | (box[:, 2] > frame[2]) | (box[:, 1] < frame[1])
+                          | (box[:, 3] > frame[3]))
+                score += 1e4 * across
+            return box[int(np.argmin(score))]
 
         for _ in range(2):  # greedy, then each label again among all the others
             for i in range(len(todo)):
@@ -877,34 +885,3 @@ def _candidates(prefer: np.ndarray | None) -> list[tuple[float, float]]:
         p = np.asarray(prefer, float) / np.linalg.norm(prefer)
         dirs.sort(key=lambda d: -(d[0] * p[0] + d[1] * p[1]))
     return dirs
-
-
-def _overlap(a, b) -> float:
-    w = min(a[2], b[2]) - max(a[0], b[0])
-    h = min(a[3], b[3]) - max(a[1], b[1])
-    return w * h if w > 0 and h > 0 else 0.0
-
-
-class _Grid:
-    """Sample points of the drawn geometry in 2 mm buckets, to count what a label would cover."""
-
-    def __init__(self, pts: list, cell: float = 2.0) -> None:
-        self.cell = cell
-        self.b: dict[tuple[int, int], list] = {}
-        if not len(pts):
-            return
-        # at once for all points (a drawing has thousands; one NumPy call each cost milliseconds)
-        a = np.asarray(pts, dtype=float).reshape(-1, 2)
-        a = a[np.all(np.isfinite(a), axis=1)]
-        for key, p in zip(np.floor_divide(a, cell).astype(np.int64).tolist(), a.tolist()):
-            self.b.setdefault(tuple(key), []).append(p)
-
-    def count(self, box) -> int:
-        x0, y0, x1, y1 = box
-        n = 0
-        for i in range(int(x0 // self.cell), int(x1 // self.cell) + 1):
-            for j in range(int(y0 // self.cell), int(y1 // self.cell) + 1):
-                for p in self.b.get((i, j), ()):
-                    if x0 <= p[0] <= x1 and y0 <= p[1] <= y1:
-                        n += 1
-        return n
