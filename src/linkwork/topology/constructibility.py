@@ -47,15 +47,39 @@ POLE = "o"
 AUX_NAMES = ("Q", "R", "D", "E", "S", "U", "V", "W", "X", "Y", "Z")
 
 
+def literal(name: str) -> str:
+    """A user's point or link name for a label, escaped so that the drawing prints it as written
+    (``link_j`` stays link_j; only the books' own notation, P_{13} or v_A, is set as sub- or
+    superscript)."""
+    return "".join("\\" + c if c in "\\_^{}" else c for c in name)
+
+
+def script(name: str) -> str:
+    """A user's name as a braced sub- or superscript, printed as written: ``W_`` + script(name)
+    labels the inflection point of ``name`` (``W_{O2}``, ``W_{pin\\_A}``)."""
+    return "{" + literal(name) + "}"
+
+
+def prose(text: str) -> str:
+    """A label or a sentence made with :func:`upper`, :func:`lower` or :func:`literal` as plain
+    prose: the escapes dropped, so that a user's ``pin_A`` reads as written in a step's text
+    (the books' ``O_2`` stays as it is)."""
+    text = re.sub(r"(?<!\\)([_^])\{((?:\\.|[^{}\\])*)\}", r"\1\2", text)  # W_{O2} → W_O2
+    return re.sub(r"\\([\\_^{}])", r"\1", text)
+
+
 def lower(name: str) -> str:
-    """Image label of point ``name`` in the plan: ``B`` → ``b``, ``O4`` → ``o_4``."""
+    """Image label of point ``name`` in the plan: ``B`` → ``b``, ``O4`` → ``o_4``; any other name
+    lower-cased and escaped (:func:`literal`), so that ``pin_A`` → ``pin_a`` as written."""
     m = re.match(r"^([A-Za-z]+)(\d+)$", name)
-    return f"{m.group(1).lower()}_{m.group(2)}" if m else name.lower()
+    return f"{m.group(1).lower()}_{m.group(2)}" if m else literal(name.lower())
 
 
 def upper(name: str) -> str:
+    """Label of point ``name`` in the books' notation: ``O4`` → ``O_4``; any other name as
+    written (escaped, :func:`literal`). Sentences made with it are read through :func:`prose`."""
     m = re.match(r"^([A-Za-z]+)(\d+)$", name)
-    return f"{m.group(1)}_{m.group(2)}" if m else name
+    return f"{m.group(1)}_{m.group(2)}" if m else literal(name)
 
 
 # ---------------------------------------------------------------------------- the chain
@@ -578,7 +602,7 @@ class _Planner:
             return POLE
         keys = {self._find((other, p)) for other, pts in self.points.items()
                 if p in pts and other != self.c.frame}
-        return lower(p) if len(keys) <= 1 else f"{lower(p)}_{ln}"
+        return lower(p) if len(keys) <= 1 else f"{lower(p)}_{{{literal(ln)}}}"
 
     def mark(self, ln: str, p: str) -> None:
         """The image of point p of link ln is now known (and so of every link hinged there)."""
