@@ -97,8 +97,13 @@ def test_svg_contains_the_labelled_construction_objects():
 
 @pytest.mark.parametrize("name", list(CONSTRUCTIONS))
 def test_each_construction_draws(name):
-    mech = linkwork.load("library:slider-crank-offset" if name == "klein" else "library:crank-rocker")
-    sol = linkwork.solve(mech, np.radians([230.0]))
+    # the constructions for one kind of mechanism on one of that kind
+    own = {"klein": "slider-crank-offset", "slide-pairs": "oscillating-crank-slotted-lever",
+           "rolling-lever": "rolling-lever-valve-gear"}
+    mech = linkwork.load(f"library:{own.get(name, 'crank-rocker')}")
+    x = np.radians([230.0]) if name in ("klein",) or name not in own else \
+        [mech.driver_input_at_design(mech.drivers[0]) + 0.3]
+    sol = linkwork.solve(mech, x)
     con = construct(name, mech, sol)
     con.check()
     fig = scene_figure(linkwork.drawing.Scene(mech, sol), ["mechanism"], construction=con)
