@@ -14,8 +14,8 @@ def test_motion_plot_data_is_the_solution():
     ax_pts, ax_links = fig.axes
     lines = {ln.get_label(): ln.get_ydata() for ln in ax_pts.get_lines()}
     a = sol.point("C").acceleration
-    np.testing.assert_array_equal(lines["a$_{C,x}$"], a[:, 0])
-    np.testing.assert_array_equal(lines["|a$_{C}$|"], np.linalg.norm(a, axis=1))
+    np.testing.assert_array_equal(lines[r"$a_{\mathrm{C},x}$"], a[:, 0])
+    np.testing.assert_array_equal(lines[r"|$a_{\mathrm{C}}$|"], np.linalg.norm(a, axis=1))
     (alpha,) = [ln.get_ydata() for ln in ax_links.get_lines()]
     np.testing.assert_array_equal(alpha, sol.link("rocker").alpha)
     np.testing.assert_allclose(ax_pts.get_lines()[0].get_xdata(), np.degrees(sol.inputs[:, 0]))

@@ -5,7 +5,8 @@ layers (``--show``), optionally one of the classical constructions (``--construc
 against the exact values before anything is written) and, with ``--steps``, one drawing per step
 (FILE-01.svg, FILE-02.svg, …) or, with ``--animate``, one SVG in which the steps appear one after
 another. ``plot`` draws positions, velocities or accelerations of points and links over the whole
-motion, or a v–s diagram (``--vs``).
+motion, a v–s diagram (``--vs``, with ``--construction subnormal|time`` drawn step by step with
+``--steps``), Pöschl's motion diagrams (``--diagrams``) or the plans of a point (``--plans``).
 """
 
 from __future__ import annotations
@@ -25,6 +26,11 @@ MAX_DPI = 2400.0
 
 def _list(text: Optional[str]) -> list[str]:
     return [t.strip() for t in text.split(",") if t.strip()] if text else []
+
+
+def _close(fig) -> None:
+    import matplotlib.pyplot as plt
+    plt.close(fig)
 
 
 def register(app: typer.Typer) -> None:
@@ -67,7 +73,13 @@ def register(app: typer.Typer) -> None:
                 raise InputError(f"-o {output}: write .svg, .png, .pdf or .dxf")
             if animate is not None and out.suffix.lower() != ".svg":
                 raise InputError("--animate writes an animated SVG: give -o FILE.svg")
-            if at is None:
+            if mech.given:  # a chain driven by given point velocities: at its drawn position
+                if at is not None:
+                    raise InputError(f"mechanism '{mech.name}' is driven by given point velocities: "
+                                     "it is drawn at its drawn position, so --at does not apply")
+                from ..kinematics.point_inputs import solve_given
+                sol = solve_given(mech)
+            elif at is None:
                 value = np.array([mech.driver_input_at_design(d) for d in mech.drivers])[None, :]
                 sol = solve(mech, value)
             else:
@@ -134,7 +146,11 @@ def register(app: typer.Typer) -> None:
         against: str = typer.Option("input", "--against", help="input (angle or displacement) or time"),
         component: str = typer.Option("x,y,magnitude", "--component", help="x, y, magnitude (points)"),
         vs: bool = typer.Option(False, "--vs", help="the v–s diagram of the (first) point instead"),
-        diagrams: bool = typer.Option(False, "--diagrams", help="Pöschl's s–t, v–t, a–t lines of the (first) point, with the graphical differentiation by chords"),
+        diagrams: bool = typer.Option(False, "--diagrams", help="Pöschl's s–t, v–t, a–t and jerk lines of the (first) point, with the graphical differentiation by chords"),
+        plans: bool = typer.Option(False, "--plans", help="the r-, v- and b-plan (hodographs) of the (first) point with poles, scales and tangents (Pöschl §13)"),
+        construction: Optional[str] = typer.Option(None, "--construction", help="with --vs: subnormal (the acceleration from the v–s line) or time (t = ∫ds/v by strips)"),
+        steps: bool = typer.Option(False, "--steps", help="with --construction: one drawing per step (FILE-01.png, …)"),
+        at: Optional[float] = typer.Option(None, "--at", help="--plans: the input (degrees, or the file's length unit); --construction subnormal: the position as a fraction 0…1 of the stroke"),
         output: str = typer.Option(..., "-o", "--output", help="FILE.png, FILE.pdf or FILE.svg"),
     ) -> None:
         """Plot positions, velocities, accelerations over the whole motion, or a v–s diagram."""
@@ -143,9 +159,43 @@ def register(app: typer.Typer) -> None:
         with user_errors():
             mech = load_mechanism(mechanism)
             points, links = _list(point), _list(link)
-            if (vs or diagrams) and not points:
-                raise InputError(f"{'--vs' if vs else '--diagrams'} needs --point")
-            if vs:
+            chosen = [o for o, on in (("--vs", vs), ("--diagrams", diagrams), ("--plans", plans)) if on]
+            if len(chosen) > 1:
+                raise InputError(f"choose one of {', '.join(chosen)}")
+            if chosen and not points:
+                raise InputError(f"{chosen[0]} needs --point")
+            if (construction or steps) and not vs:
+                raise InputError("--construction and --steps draw on the v–s diagram: give --vs")
+            if steps and not construction:
+                raise InputError("--steps needs --construction subnormal or time")
+            if construction:
+                from ..drawing.calculus_plots import vs_steps
+                figs, texts, _ = vs_steps(mech, points[0], construction, at=at)
+                out = Path(output)
+                if not steps:  # the finished construction only
+                    for f in figs[:-1]:
+                        _close(f)
+                    figs, texts = figs[-1:], texts[-1:]
+                written = []
+                for k, (f, text) in enumerate(zip(figs, texts)):
+                    p = out if not steps else out.with_name(f"{out.stem}-{k + 1:02d}{out.suffix}")
+                    save(f, p)
+                    written.append(p)
+                    typer.echo(f"{k + 1}. {text}" if steps else text)
+                typer.echo(f"wrote {written[0]}" + (f" … {written[-1]}" if len(written) > 1 else ""))
+                return
+            if plans:
+                import numpy as np
+
+                from ..drawing.calculus_plots import plans_figure
+                u = None
+                if at is not None:
+                    kind = mech.joint(mech.drivers[0].joint).kind
+                    u = np.radians(at) if kind == "revolute" else at
+                fig, check = plans_figure(mech, points[0], at=u)
+                typer.echo(f"tangent of the v-plan against the acceleration: {check.tangent_v_vs_acceleration_deg:.3g}°; "
+                           f"of the b-plan against the jerk: {check.tangent_b_vs_jerk_deg:.3g}°")
+            elif vs:
                 fig = vs_plot(mech, points[0])
             elif diagrams:
                 fig = graphical_motion(mech, points[0])

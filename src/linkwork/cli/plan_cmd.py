@@ -52,14 +52,25 @@ def _plan_command(mechanism: str, at: Optional[list[str]], explain: bool, mode: 
             lines.append("Construction script (o: the pole of the plan; x \u27c2 XY: the line "
                          "through x perpendicular to XY):")
             lines.extend(script.script())
-        if at is not None:
+        if mech.given and at is not None:
+            raise InputError(f"mechanism '{mech.name}' is driven by given point velocities: it is "
+                             "drawn at its drawn position, so --at does not apply")
+        if mech.given and not script.direct:
+            lines.append("The plan of this chain from its given data needs similar point rows (two "
+                         "trials); it is not drawn.")
+        elif mech.given:  # no input: the construction at the drawn position, from the given data
+            from ..kinematics.point_inputs import solve_given
+            at, values = [], solve_given(mech)
+        elif at is not None:
             samples = input_values(mech, at, None)
             if samples is None or samples[0] != "input":
                 raise InputError("--at takes input values (degrees or the file's length unit)")
             values = np.asarray(samples[1], float)
             values = values[:, 0] if values.ndim == 2 else values
+            values = values[:1]
+        if at is not None:
             build = velocity_plan if mode is Mode.plan else rotated_velocities
-            con = build(mech, values[:1])
+            con = build(mech, values)
             con.require(0)  # a position where the construction degenerates is reported as such
             con.check()
             lines.append("")
@@ -80,7 +91,7 @@ def register(app: typer.Typer) -> None:
     @app.command("plan")
     def plan_cmd(
         mechanism: str = typer.Argument(..., help="a mechanism file, or library:NAME"),
-        at: Optional[list[str]] = typer.Option(None, "--at", help="input value V (degrees or the file's length unit): carry the construction out there and check it against the engine"),
+        at: Optional[list[str]] = typer.Option(None, "--at", help="input value V (degrees or the file's length unit): carry the construction out there and check it against the engine (a chain driven by [[given]] point velocities: always, at its drawn position)"),
         explain: bool = typer.Option(False, "--explain", help="print the numbered construction script (q = (a \u27c2 AQ) \u2229 (b \u27c2 BQ) …)"),
         mode: Mode = typer.Option(Mode.plan, "--mode", help="plan: polar velocity plan; rotated: rotated velocities on the mechanism"),
         fmt: Optional[Format] = typer.Option(None, "--format", help="text or json (default: from the suffix of -o, else text)"),

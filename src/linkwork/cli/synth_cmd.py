@@ -187,6 +187,7 @@ def register(app: typer.Typer) -> None:
     synth = typer.Typer(no_args_is_help=True, help="Synthesis: linkages designed from positions or a function.")
     app.add_typer(synth, name="synth")
     register_curvature_designs(synth)
+    register_straight_lines(synth)
 
     @synth.command("poses")
     def poses_command(
@@ -476,3 +477,94 @@ def register_curvature_designs(synth: typer.Typer) -> None:
                 ("pole P", _xy_text(sub.pole)), ("inflection pole W", _xy_text(sub.inflection_pole)),
                 ("new fixed pivot C3", _xy_text(sub.pivot)), ("its conjugate A3 (coupler)", _xy_text(sub.moving_pivot))]))
             Console().print(f"wrote {output}")
+
+
+def _straightness_rows(st, unit: str) -> list[tuple[str, str]]:
+    rows = [("stroke", f"{st.stroke:.9g} {unit}"), ("deviation (half the narrowest strip)", f"{st.deviation:.3g} {unit}"),
+            ("deviation per stroke", f"{st.relative:.3g}"),
+            ("best line through", _xy_text(st.point)), ("best line direction", _xy_text(st.direction))]
+    if st.inputs is not None:
+        rows.append(("inputs measured", f"{math.degrees(st.inputs[0]):.6g}° … {math.degrees(st.inputs[1]):.6g}°"))
+    return rows
+
+
+def register_straight_lines(synth: typer.Typer) -> None:
+    kinds = ("watt", "chebyshev", "evans", "ball-point", "hart")
+
+    @synth.command("straight-line")
+    def straight_line_command(
+        kind: str = typer.Argument(..., help="watt, chebyshev, evans (from a stroke), ball-point or hart (from a four-bar, --mechanism)"),
+        stroke: Optional[float] = typer.Option(None, "--stroke", help="L: the straight stroke of the tracer (watt, chebyshev, evans; ball-point: the stroke to measure)"),
+        deviation: Optional[float] = typer.Option(None, "--deviation", help="L: watt: the largest deviation allowed over the stroke"),
+        arm: Optional[float] = typer.Option(None, "--arm", help="L: watt: the arms' length"),
+        coupler: Optional[float] = typer.Option(None, "--coupler", help="L: watt: the coupler's length"),
+        angle: float = typer.Option(45.0, "--angle", help="DEG: evans: the bar's swing about the horizontal"),
+        fraction: float = typer.Option(0.7, "--fraction", help="evans: C = A + FRACTION·(B − A) (0–1 first form, > 1 second, < 0 third)"),
+        lever: Optional[float] = typer.Option(None, "--lever", help="L: evans: E's distance from line AO (default 4·AB)"),
+        mechanism: Optional[str] = typer.Option(None, "--mechanism", help="ball-point, hart: the four-bar (a file or library:NAME)"),
+        at: Optional[str] = typer.Option(None, "--at", help="DEG: ball-point, hart: the input of the design position (hart: default the design input)"),
+        unit: str = typer.Option("mm", "--unit", help="length unit of the file (watt, chebyshev, evans)"),
+        output: str = typer.Option(..., "-o", "--output", help="the mechanism file to write"),
+        report: Optional[str] = typer.Option(None, "--report", help="FILE.json: lengths and the straightness"),
+    ) -> None:
+        """Straight-line linkages: Watt, Chebyshev, Evans from a stroke; a Ball-point tracer or Hart's exact line from a four-bar."""
+        with user_errors():
+            from ..io import load
+            from ..synthesis import straight_line as sl
+            from ..units import check_length_unit
+
+            if kind not in kinds:
+                raise InputError(f"straight-line {kind}: choose one of {', '.join(kinds)}")
+            if kind in ("ball-point", "hart"):
+                if mechanism is None:
+                    raise InputError(f"straight-line {kind}: give the four-bar with --mechanism")
+                mech = load(mechanism)
+                u = None if at is None else _angle_option(at, "--at")
+                if kind == "ball-point":
+                    if u is None:
+                        raise InputError("straight-line ball-point: give the input with --at DEG")
+                    des = sl.ball_point_linkage(mech, u, stroke=stroke)
+                else:
+                    des = sl.hart_straight_line(mech, u)
+                length_unit = mech.length_unit
+            else:
+                check_length_unit(unit)
+                if stroke is None:
+                    raise InputError(f"straight-line {kind}: give the stroke with --stroke L")
+                if kind == "watt":
+                    des = sl.watt_linkage(stroke, deviation=deviation, arm=arm, coupler=coupler, unit=unit)
+                elif kind == "chebyshev":
+                    des = sl.chebyshev_linkage(stroke, unit=unit)
+                else:
+                    des = sl.evans_linkage(stroke, angle=math.radians(angle), fraction=fraction, lever=lever, unit=unit)
+                length_unit = unit
+            write_output_file(output, des.text)
+            load(output)  # the engine reads the file back
+            rows = [(k, f"{v:.9g}" if isinstance(v, float) else _xy_text(v)) for k, v in des.lengths.items()]
+            rows.append(("tracing point", f"{des.tracer} at {_xy_text(des.points[des.tracer])}"))
+            if des.straightness is not None:
+                rows += _straightness_rows(des.straightness, length_unit)
+            Console().print(_summary(des.kind, rows))
+            if report:
+                doc = {"kind": des.kind, "tracer": des.tracer, "lengths": des.lengths,
+                       "straightness": None if des.straightness is None else des.straightness.as_dict()}
+                write_output_file(report, json.dumps(doc, indent=2, default=float) + "\n")
+            Console().print(f"wrote {output}" + (f" and {report}" if report else ""))
+
+    @synth.command("straightness")
+    def straightness_command(
+        mechanism: str = typer.Argument(..., help="a mechanism file, or library:NAME (one driver)"),
+        point: str = typer.Option(..., "--point", help="the point whose path is measured"),
+        stroke: Optional[float] = typer.Option(None, "--stroke", help="L: measure the part of the path running this far along its tangent at --at (default: the whole path)"),
+        at: Optional[str] = typer.Option(None, "--at", help="DEG: the input in the middle of the stroke (default the design input)"),
+        samples: int = typer.Option(2001, "--samples", help="samples of the path"),
+    ) -> None:
+        """The deviation of a point's path from its best straight line (over a stroke)."""
+        with user_errors():
+            from ..io import load
+            from ..synthesis.straight_line import path_straightness
+
+            mech = load(mechanism)
+            st = path_straightness(mech, point, at=None if at is None else _angle_option(at, "--at"),
+                                   stroke=stroke, samples=samples)
+            Console().print(_summary(f"straightness of {point}", _straightness_rows(st, mech.length_unit)))

@@ -23,6 +23,8 @@ two-points          inflection and Bresse circles from v and a of two points (ch
 klein               Klein's construction of the piston acceleration (seed 004)
 kennedy             Aronhold–Kennedy construction of all poles, line by line
 mohr                Mohr's construction of b_B from b_A, slider-crank and four-bar (Pöschl §47–48)
+slide-pairs         slides in moving planes: the velocity parallelogram, half-Coriolis by similar
+                    triangles, the double parallelogram, the check lines (Rosenauer 1937, p. 3, 5)
 ==================  ========================================================================
 """
 
@@ -40,6 +42,7 @@ from .kennedy import kennedy
 from .klein import klein
 from .mohr import mohr
 from .rotated_velocities import rotated_velocities
+from .slide_pairs import slide_pairs
 from .two_points import inflection_from_two_points
 from .velocity_plan import velocity_plan
 
@@ -54,6 +57,7 @@ CONSTRUCTIONS: dict[str, Callable[..., Construction]] = {
     "klein": klein,
     "kennedy": kennedy,
     "mohr": mohr,
+    "slide-pairs": slide_pairs,
 }
 
 
@@ -69,4 +73,4 @@ def construct(name: str, mechanism, inputs, **options) -> Construction:
 
 __all__ = ["CONSTRUCTIONS", "acceleration_plan", "bobillier", "construct", "euler_savary",
            "hartmann", "inflection_from_two_points", "kennedy", "klein", "mohr", "rotated_velocities",
-           "velocity_plan"]
+           "slide_pairs", "velocity_plan"]

@@ -77,9 +77,9 @@ def velocity_amplification(sol: Solution) -> np.ndarray:
     """max |ω_link| / |input rate| (per length_scale for a prismatic input): unbounded at dead
     centres, a few units elsewhere."""
     mech = sol.mechanism
-    d = mech.drivers[0]
-    if len(mech.drivers) != 1:
+    if len(mech.drivers) != 1:  # several drivers, or given point velocities: no one input rate
         return np.zeros(len(sol))
+    d = mech.drivers[0]
     w = np.max(np.abs(np.stack([sol.link(ln).omega for ln in mech.moving_links])), axis=0)
     if mech.joint(d.joint).kind == "revolute":
         rate = np.abs(sol.link(d.driven).omega - (sol.link(d.base).omega if d.base != mech.frame else 0))
@@ -93,6 +93,13 @@ def as_solution(mech: Mechanism, inputs) -> Solution:
     """A solution at ``inputs`` (radians or length; an existing Solution is passed through)."""
     if isinstance(inputs, Solution):
         return inputs
+    if mech.given:
+        # a chain driven by given point velocities: solved at its drawn position from them
+        if inputs is not None and np.size(inputs):
+            raise InputError(f"mechanism '{mech.name}' is driven by given point velocities at its drawn "
+                             "position: it takes no input values (pass None, or its solve_given Solution)")
+        from ..kinematics.point_inputs import solve_given
+        return solve_given(mech)
     return solve(mech, np.atleast_1d(np.asarray(inputs, float)))
 
 

@@ -17,8 +17,9 @@ import numpy as np
 
 from ..errors import InputError
 from ..model import Gear, Prismatic, Slot
-from ..topology.constructibility import Chain, MechLine, VelocityScript, plan_velocities
-from ._common import dot, perp
+from ..topology.constructibility import (POLE, Chain, MechLine, VelocityScript, lower,
+                                          plan_velocities, upper)
+from ._common import dot, norm, perp
 from .construction import Role
 
 _SOURCE = "Rosenauer 1937, papers 1, 2, 7 (auxiliary points, projection theorem across a joint)"
@@ -69,10 +70,26 @@ class ScriptDrawer:
             return self.where(line.points[0]), perp(self.vc._axis(j.links[0], j.axis))
         if line.kind == "contact":
             return self.where(line.points[0]), np.asarray(self.vc.sol.joint(line.pair)["normal"], float)
-        raise InputError("a given velocity direction is not part of a mechanism's data")
+        if line.kind == "direction":
+            # the normal to the given direction of motion at the point (its pole lies on it)
+            return self.where(line.points[0]), perp(self.given(line.points[0]).direction)
+        raise InputError(f"the direct construction does not know the line {line.text()}")
+
+    def given(self, point: str):
+        """The given datum of ``point`` at every sample (from the solve, or the mechanism's)."""
+        data = getattr(self.vc.sol, "given", ()) or self.mech.given
+        g = next((g for g in data if g.point == point), None)
+        if g is None:
+            raise InputError(f"no velocity or direction of {point} is given")
+        n = self.vc.n
+        if g.kind == "velocity":
+            return type(g)(g.point, np.broadcast_to(g.velocity, (n, 2)), link=g.link)
+        return type(g)(g.point, np.broadcast_to(g.direction, (n, 2)), link=g.link)
 
     # ---------------------------------------------------------------- images
     def img(self, key: tuple[str, str]) -> np.ndarray:
+        if key[0] == POLE:  # a given direction's line starts at o (at the point, rotated)
+            return self.vc.base(self.where(key[1]))
         keys = (key,) + tuple(self.s.shared.get(key, ()))
         for k in keys:
             if k in self.vc.images:
@@ -122,7 +139,7 @@ class ScriptDrawer:
         for n in st.base:
             self.img((st.link, n))
         vc.b.step(self.text(st))
-        if st.aux is not None and not self.prefix.startswith("a"):  # drawn once, with the velocities
+        if st.aux is not None and self.prefix in ("v", "v.trial", "v.trial1"):  # drawn once
             Q = self.where(st.point)
             for i, ln in enumerate(st.aux.lines):
                 p, d = self.line(ln)
@@ -141,6 +158,12 @@ class ScriptDrawer:
             t = dot(P - X, Y - X) / dot(Y - X, Y - X)
             image = x + t[:, None] * (y - x)
             self.show(key, st, image, lab)
+        elif st.kind == "given":
+            X = self.where(st.point)
+            image = vc.base(X) + vc.kv * vc.M(self.given(st.point).velocity)
+            vc.b.arrow(f"{key}.given", _pt(vc.base(X)), _pt(image), Role.GIVEN,
+                       f"v_{st.point}" if vc.mode == "plan" else None, space=vc.space)
+            vc._point(key, image, lab, Role.GIVEN)
         elif st.kind == "copy":
             (X,) = st.base
             x = self.img((st.link, X))
@@ -221,39 +244,137 @@ class TrialDrawer(ScriptDrawer):
         """The trial image of the point of ``link`` at X (the link's image is similar to it)."""
         if link == self.mech.frame:
             return self.vc.base(X)
-        (X1, x1), (X2, x2) = [(self.where(p), v) for (ln, p), v in self.T.items() if ln == link][:2]
-        z = lambda a: a[:, 0] + 1j * a[:, 1]  # noqa: E731 (a similarity is complex-affine)
-        w = z(x1) + (z(x2) - z(x1)) / (z(X2) - z(X1)) * (z(X) - z(X1))
-        return np.stack([w.real, w.imag], axis=-1)
+        return _similar([(self.where(p), v) for (ln, p), v in self.T.items() if ln == link][:2], X)
 
     def partner_image(self, partner: str, point: str) -> np.ndarray:
         return self.at(partner, self.where(point))
 
+    star = "*"
+
     def show(self, key: str, st, image: np.ndarray, lab: str, lines=()) -> None:
-        self.vc.b.point(key, _pt(image), label=lab + "*", space=self.vc.space)
+        self.vc.b.point(key, _pt(image), label=lab + self.star, space=self.vc.space)
         for k in lines:
             self.vc.b.extend(k, _pt(image))
 
+    def text(self, st) -> str:
+        return self.heading + super().text(st)
+
     def run(self, links: set[str]) -> None:
+        self.heading = ""
+        if self.s.check is not None:
+            self._run_two(links)
+            return
         vc = self.vc
         t_link, t_pivot, t_ref = self.s.trial
         d_link, d_pivot, d_ref = self.s.scale_by
         true_ref = vc.image(d_link, d_ref)
-        # the trial rate: the trial crank's pin as fast as the given driver's (a readable drawing)
-        O, R = self.where(t_pivot), self.where(t_ref)
-        speed = np.linalg.norm(vc.velocity(self.where(d_ref), true_ref), axis=-1)
-        w = speed / np.linalg.norm(R - O, axis=-1)
         for st in self.s.steps:
             if st.kind == "driver":
                 vc.b.step(st.text)
-                image = vc.base(R) + vc.kv * vc.M(w[:, None] * perp(R - O))
-                self.keep(t_link, t_pivot, vc.base(O))
-                self.keep(t_link, t_ref, image)
-                self.show(f"{self.prefix}.{t_link}.{t_ref}", st, image, self.s.labels.get((t_link, t_ref), t_ref))
+                self._trial_driver(st, 1.0)
             elif st.kind == "scale":
                 self._scale(st, links, true_ref, self.img((d_link, d_ref)))
             else:
                 self._one(st)
+
+    def _trial_driver(self, st, sign: float) -> None:
+        """The trial crank's pin: as fast as the given driver's (a readable drawing), times
+        ``sign`` (the second trial turns the other way)."""
+        vc = self.vc
+        t_link, t_pivot, t_ref = self.s.trial
+        d_link, d_pivot, d_ref = self.s.scale_by
+        O, R = self.where(t_pivot), self.where(t_ref)
+        speed = np.linalg.norm(vc.velocity(self.where(d_ref), vc.image(d_link, d_ref)), axis=-1)
+        w = sign * speed / np.linalg.norm(R - O, axis=-1)
+        image = vc.base(R) + vc.kv * vc.M(w[:, None] * perp(R - O))
+        self.keep(t_link, t_pivot, vc.base(O))
+        self.keep(t_link, t_ref, image)
+        self.show(f"{self.prefix}.{t_link}.{t_ref}", st, image, self.s.labels.get((t_link, t_ref), t_ref))
+
+    def _true_driver(self) -> None:
+        d_link, d_pivot, d_ref = self.s.scale_by
+        self.keep(d_link, d_pivot, self.vc.base(self.where(d_pivot)))
+        self.keep(d_link, d_ref, self.vc.image(d_link, d_ref))
+
+    def _check(self) -> np.ndarray:
+        """The left-out link's condition (m − k)·KM at the trial images (zero when true)."""
+        cut, K, LK, M, LM = self.s.check
+        PK, PM = self.where(K), self.where(M)
+        vk = self.vc.velocity(PK, self.img((LK, K)))
+        vm = self.vc.velocity(PM, self.img((LM, M)))
+        return dot(vm - vk, PM - PK)
+
+    def _run_two(self, links: set[str]) -> None:
+        """Two trials: the script drawn for two trial rates, then every image put at the
+        point of its row where the left-out link's check holds."""
+        vc = self.vc
+        rows, checks = [], []
+        for k, sign in enumerate((1.0, -1.0)):
+            self.T, self.star = {}, "*" * (k + 1)
+            self.prefix = f"v.trial{k + 1}"
+            self.heading = ("first trial: ", "second trial: ")[k]
+            for st in self.s.steps:
+                if st.kind == "driver" and st.link == self.s.trial[0]:
+                    vc.b.step(self.heading + st.text)
+                    self._trial_driver(st, sign)
+                elif st.kind == "driver":
+                    self._true_driver()
+                elif st.kind != "check":
+                    self._one(st)
+            rows.append(self.T)
+            checks.append(self._check())
+        self.heading = ""
+        self._interpolate(links, rows, checks, lambda ln, p, x, src: vc.set_known(ln, self.where(p), x, p))
+
+    def _interpolate(self, links, rows, checks, keep) -> None:
+        """Similar point rows: t where the check c₁ + t·(c₂ − c₁) vanishes (a vector check by
+        least squares), and every image x = x* + t·(x** − x*)."""
+        b = self.vc.b if hasattr(self.vc, "b") else self.ac.b
+        st = self.s.steps[-1]
+        b.step(st.text)
+        c1, c2 = (np.asarray(c, float) for c in checks)
+        dc = c2 - c1
+        if c1.ndim == 2:
+            den = dot(dc, dc)
+            with np.errstate(divide="ignore", invalid="ignore"):
+                t = -dot(c1, dc) / den
+        else:
+            den = dc * dc
+            with np.errstate(divide="ignore", invalid="ignore"):
+                t = -c1 / dc
+        flat = den <= 1e-24 * np.maximum(1.0, np.max(den))
+        b.degenerate(flat & ~b.bad, "false position: the check does not change between the two trials "
+                                    "here (the rows do not cross the true locus)")
+        self.rows_t = t
+        done: set[str] = set()
+        cut = self.s.check[0] if self.s.check is not None else None
+        chain_pts = [(ln, q) for ln in links if ln in self.chain.links and ln != cut
+                     for q in self.chain.links[ln]]
+        for ln, p in dict.fromkeys(chain_pts + list(rows[0])):
+            x1, x2 = self._row_images(rows, (ln, p))
+            x = x1 + t[:, None] * (x2 - x1)
+            lab = self.s.labels.get((ln, p), p)
+            if lab not in done and lab != "o":
+                done.add(lab)
+                key = f"{self.prefix[:1]}.rows.{ln}.{p}"
+                self._row(key, x1, x2, x, lab)
+            if ln in links:
+                keep(ln, p, x, ln)
+            if cut is not None and cut in links and (ln, p) in ((self.s.check[2], self.s.check[1]),
+                                                                (self.s.check[4], self.s.check[3])):
+                keep(cut, p, x, ln)  # the left-out link takes its ends' accelerations
+
+    def _row_images(self, rows, key):
+        out = []
+        for row in rows:
+            self.T = row
+            out.append(self.img(key))
+        return out
+
+    def _row(self, key: str, x1, x2, x, lab: str) -> None:
+        vc = self.vc
+        vc._line(key, x1, x2 - x1)
+        vc._point(key + ".pt", x, lab, lines=(key,))
 
     def _scale(self, st, links: set[str], true_ref: np.ndarray, trial_ref: np.ndarray) -> None:
         vc = self.vc
@@ -306,20 +427,40 @@ def draw_group(vc, links: tuple[str, ...], joints: tuple[str, ...], solved: set[
     return script
 
 
+def draw_given(vc) -> VelocityScript:
+    """The velocity construction of a chain driven by given point velocities and directions (a
+    free or open chain, Rosenauer 1937 paper 2): the whole chain from its given data by
+    Rosenauer's rule; `InputError` where the rule does not reach every link (two trials of false
+    position would be needed, which is not drawn)."""
+    script = plan_velocities(vc.mech)
+    if not script.direct:
+        raise InputError(f"the velocity construction of '{vc.mech.name}' from its given point "
+                         f"velocities: {script.verdict()}; the plan of such a chain by similar point "
+                         "rows (two trials) is not drawn")
+    ScriptDrawer(vc, script, {vc.mech.frame}).run(set(vc.mech.moving_links))
+    return script
+
+
 class AccelerationDrawer(ScriptDrawer):
     """The same script performed on accelerations: Rosenauer's plan of relative normal
-    accelerations (1937, paper 4; digest 000 §2.5).
+    accelerations (1937, paper 4; digest 000 §2.5), in the books' chained layout.
 
-    For every link L and point X the construction works with the end E_L(X) = x_n + a(X) of
-    the acceleration laid off at the point x_n = ω_L²·(X − O) of the plan of relative normal
-    accelerations (O a fixed point of the frame; within a link x_n − y_n = ω²·XY, the relative
-    normal accelerations). Then E_L(Y) − E_L(X) = α_L·J(Y − X) ⟂ XY: the ends obey the velocity
-    plan's rule, and the velocity script carries over line by line. Where a line crosses a pair
-    into the next link the end is *transferred*: a hinge's acceleration is common but its plan
-    points in the two links differ by (ω₂² − ω₁²)·(J − O) (Rosenauer's several images of one
-    joint); a sliding pair adds the Coriolis acceleration 2ω × v_rel (its sliding acceleration
-    lies along the plan line); gears on fixed centres add the normal accelerations of their
-    pitch points. The acceleration read off is a(X) = E_L(X) − ω_L²·(X − O)."""
+    Every link L has its figure in the plan of relative normal accelerations, x_L(X) = c_L +
+    ω_L²·X: homothetic to the link with factor ω_L² (within a link x_L(Y) − x_L(X) = ω_L²·XY,
+    the relative normal accelerations laid off one after another). The offsets c_L are chained
+    across the pairs of a spanning tree from the frame (whose images are all o'), so each hinge of
+    the tree has one image; a hinge that closes a loop has two, j and j′, because the plan does
+    not close around the loop (Σ ω_i²·ΔX_i ≠ 0; paper 4, Ex. V: l and l′, k and k′). The
+    construction works with the end E_L(X) = x_L(X) + a(X) of the acceleration laid off at the
+    plan point; within a link E_L(Y) − E_L(X) = α_L·J(Y − X) ⟂ XY, so the velocity script carries
+    over line by line. Where a line crosses a pair into the next link the end is *transferred*:
+    the acceleration of a hinge is common, so E moves by the difference of its two plan images;
+    a sliding pair adds the Coriolis acceleration 2ω × v_rel (its sliding acceleration lies
+    along the plan line); a rolling contact (a gear pair, rolling profiles) adds the acceleration
+    of the relative pole's point, ω_rel²·ρ₁ρ₂/(ρ₁ + ρ₂) along the normal (paper 8's pole
+    acceleration j_p = ω·V_p); a cam contact crosses by its equivalent lower pairs, the link
+    C₁C₂ between the profiles' centres of curvature (paper 8; Rosenauer §121). The acceleration
+    read off is a(X) = E_L(X) − x_L(X)."""
 
     prefix = "a"
 
@@ -327,15 +468,45 @@ class AccelerationDrawer(ScriptDrawer):
         super().__init__(ac, script, solved)
         self.ac, self.vcv = ac, ac.vc
         self.E: dict[tuple[str, str], np.ndarray] = {}
-        frame_pts = self.chain.links[self.mech.frame]
-        self.O = self.where(frame_pts[0]) if frame_pts else np.zeros((ac.n, 2))
+        self.c = self._offsets()
+        self.twice: dict[str, tuple[str, str]] = {}
+
+    def _edges(self):
+        """(point, link, link) of every pair, for the chaining of the plan."""
+        ch = self.chain
+        yield from ch.hinges
+        for _, g1, g2, t, _, _ in ch.meshes:
+            yield t, g1, g2
+        for pair, a, b, k in ch.rolls + ch.contacts:
+            yield k, a, b
+        for e in ch.slides + ch.slots + ch.arcs:
+            yield e[3], e[1], e[2]
+
+    def _offsets(self) -> dict[str, np.ndarray]:
+        """c_L chained from the frame over a spanning tree of the pairs (breadth first)."""
+        zero = np.zeros((self.ac.n, 2))
+        c = {self.mech.frame: zero}
+        self.tree: set[tuple[str, str, str]] = set()
+        edges = list(self._edges())
+        grown = True
+        while grown:
+            grown = False
+            for P, a, b in edges:
+                for L, T in ((a, b), (b, a)):
+                    if L in c and T not in c:
+                        c[T] = c[L] + (self.w2(L) - self.w2(T)) * self.where(P)
+                        self.tree.add((P, L, T))
+                        grown = True
+        for ln in self.chain.links:
+            c.setdefault(ln, zero)
+        return c
 
     def w2(self, link: str) -> np.ndarray:
         return (self.vcv.measured_omega(link) ** 2)[:, None]
 
     def normal(self, link: str, P: np.ndarray) -> np.ndarray:
-        """The point of the plan of relative normal accelerations: ω²·(P − O)."""
-        return self.w2(link) * (P - self.O)
+        """The point of link's figure in the plan of relative normal accelerations."""
+        return self.w2(link) * P + self.c.get(link, 0.0)
 
     def _v(self, link: str, name: str) -> np.ndarray:
         vc = self.vcv
@@ -343,9 +514,16 @@ class AccelerationDrawer(ScriptDrawer):
         return vc.velocity(X, vc.image(link, f"{name}@{link}" if (link, name) not in vc.images else name,
                                        X, draw=False))
 
+    def _pair_point(self, x: str) -> str:
+        """The point at which the pair (or hinge) ``x`` is crossed."""
+        for e in self.chain.slides + self.chain.slots + self.chain.arcs + self.chain.contacts:
+            if e[0] == x:
+                return e[3]
+        return x
+
     def _pair_jump(self, L: str, T: str, x: str) -> np.ndarray:
-        """a_T − a_L at the crossing x (a hinge point or a pair's name), less what lies along a
-        guide (the sliding acceleration, along the plan line)."""
+        """a_T − a_L at the crossing x (a hinge point or a pair's name), less what lies along the
+        plan line drawn there (a sliding acceleration, the tangential part at a cam contact)."""
         pairs = {e[0]: e for e in self.chain.slides + self.chain.slots}
         arcs = {e[0]: e for e in self.chain.arcs}
         if x in pairs or x in arcs:
@@ -357,22 +535,61 @@ class AccelerationDrawer(ScriptDrawer):
                 r = self.where(arcs[x][4]) - self.where(X)
                 jump = jump + (dot(v_rel, v_rel) / dot(r, r))[:, None] * r
             return jump if T == S else -jump
+        for pair, A, B, K in self.chain.contacts:
+            if x == pair and {L, T} == {A, B}:
+                return self._contact_jump(pair, A, B, K, rolling=False, sign=1.0 if T == B else -1.0)
+        for pair, A, B, K in self.chain.rolls:
+            if x == K and {L, T} == {A, B}:
+                return self._contact_jump(pair, A, B, K, rolling=True, sign=1.0 if T == B else -1.0)
         for pair, g1, g2, t, c1, c2 in self.chain.meshes:
             if x == t and {L, T} == {g1, g2}:
-                gear = self.mech.joint(pair)
-                if gear.carrier != self.mech.frame:
-                    raise InputError(f"the acceleration construction takes the gear pair {pair} on "
-                                     "fixed centres only")
-                Pt = self.where(t)
-                a1_minus_a2 = -self.w2(g1) * (Pt - self.where(c1)) + self.w2(g2) * (Pt - self.where(c2))
-                return -a1_minus_a2 if T == g2 else a1_minus_a2
-        return np.zeros_like(self.O)
+                return self._mesh_jump(pair, g1, g2, t, c1, c2, 1.0 if T == g2 else -1.0)
+        return np.zeros((self.ac.n, 2))
+
+    def _normal_jump(self, n, s1, s2, w1, w2, v_s) -> np.ndarray:
+        """(a₂ − a₁)·n at a contact of two elements with signed radii s1, s2 along n (inf:
+        straight, 0: a point) on links turning at w1, w2 and sliding at v_s = (v₂ − v₁)·J n: the
+        equivalent link C₁C₂ (its ω_c from the velocities, then ω_c²·C₂C₁ projected), written
+        with the curvatures κ = 1/s so that straight elements (sliders) need no case."""
+        with np.errstate(divide="ignore", invalid="ignore"):
+            k1, k2 = 1.0 / s1, 1.0 / s2
+            wr = w2 - w1
+            gen = (-wr * wr - v_s * v_s * k1 * k2 - 2 * v_s * (w2 * k1 - w1 * k2)) / (k1 - k2)
+            # a point element (knife edge): the limits κ → ∞
+            gen = np.where(np.isinf(k2), v_s * v_s * k1 - 2 * v_s * w1, gen)
+            gen = np.where(np.isinf(k1), -v_s * v_s * k2 - 2 * v_s * w2, gen)
+        return gen[:, None] * n
+
+    def _contact_jump(self, pair: str, A: str, B: str, K: str, rolling: bool, sign: float) -> np.ndarray:
+        from ..instant.equivalent import equivalent_linkage
+        eq = self._eq.get(pair) if hasattr(self, "_eq") else None
+        if eq is None:
+            eq = equivalent_linkage(self.vcv.sol, pair)
+            self.__dict__.setdefault("_eq", {})[pair] = eq
+        n = eq.normal
+        v_s = np.zeros(self.ac.n) if rolling else dot(self._v(B, K) - self._v(A, K), perp(n))
+        wA, wB = self.vcv.measured_omega(A), self.vcv.measured_omega(B)
+        j = self._normal_jump(n, eq.radii[:, 0], eq.radii[:, 1], wA, wB, v_s)
+        bad = (eq.radii[:, 0] == eq.radii[:, 1]) | np.isnan(eq.radii).any(axis=1)
+        self.ac.b.degenerate(bad & ~self.ac.b.bad, f"the contact {pair}: both elements have the same "
+                             "centre of curvature here (no equivalent link)")
+        return sign * j
+
+    def _mesh_jump(self, pair, g1, g2, t, c1, c2, sign) -> np.ndarray:
+        """A gear pair: the pitch circles roll (a rolling contact with centres c1, c2)."""
+        Pt = self.where(t)
+        n = self.where(c2) - Pt
+        r2 = norm(n)
+        n = n / r2[:, None]
+        s1 = dot(self.where(c1) - Pt, n)
+        j = self._normal_jump(n, s1, r2, self.vcv.measured_omega(g1), self.vcv.measured_omega(g2),
+                              np.zeros(self.ac.n))
+        return sign * j
 
     def transfer(self, L: str, T: str, x: str) -> np.ndarray:
-        """E_T − E_L at the crossing x."""
-        pairs = {e[0]: e for e in self.chain.slides + self.chain.slots + self.chain.arcs}
-        P = self.where(pairs[x][3] if x in pairs else x)
-        return (self.w2(T) - self.w2(L)) * (P - self.O) + self._pair_jump(L, T, x)
+        """E_T − E_L at the crossing x: the two plan images of the point, and the pair's jump."""
+        P = self.where(self._pair_point(x))
+        return self.normal(T, P) - self.normal(L, P) + self._pair_jump(L, T, x)
 
     def img(self, key: tuple[str, str]) -> np.ndarray:
         if key in self.E:
@@ -411,17 +628,45 @@ class AccelerationDrawer(ScriptDrawer):
     def show(self, key: str, st, image: np.ndarray, lab: str, lines=()) -> None:
         b, ac = self.ac.b, self.ac
         P = self.where(st.point)
-        acc = image - self.normal(st.link, P)
-        b.point(key + ".end", _pt(image), label=None, space="acceleration")
+        x = self.normal(st.link, P)
+        acc = image - x
+        b.point(key + ".plan", _pt(x), label=lab, space="acceleration")
+        b.arrow(key + ".laid", _pt(x), _pt(image), kind="acceleration", space="acceleration")
         for k in lines:
             b.extend(k, _pt(image))
-        b.arrow(key + ".n", _pt(image), _pt(acc), kind="acceleration", space="acceleration")
         b.point(key, _pt(acc), Role.RESULT, ac.lbl(st.point), space="acceleration")
 
     def text(self, st) -> str:
         return ("Accelerations, the same lines through the ends of the accelerations laid off at the "
                 "plan of relative normal accelerations (ends transferred across each pair): "
-                + st.text + f"; then take away \u03c9\u00b2\u00b7{st.point}O")
+                + st.text + f"; the acceleration of {st.point} runs from its plan point to the end")
+
+    def run(self, links: set[str]) -> None:
+        super().run(links)
+        self._second_images(links)
+
+    def _second_images(self, links: set[str]) -> None:
+        """Hinges that close a loop: two images j, j′ in the plan; the acceleration found at one
+        is laid off again at the other (the transfer rule)."""
+        b = self.ac.b
+        for P, L, T in self.chain.hinges:
+            if not ({L, T} & links) or (P, L, T) in self.tree or (P, T, L) in self.tree:
+                continue
+            if L == self.mech.frame or T == self.mech.frame:
+                continue
+            X = self.where(P)
+            x1, x2 = self.normal(L, X), self.normal(T, X)
+            a = self.ac.image(L, P, X, draw=False) if (L, P) in self.ac.images else \
+                self.ac.image(T, P, X, draw=False)
+            b.step(f"The plan of relative normal accelerations does not close at {upper(P)}: it has the "
+                   f"two images {lower(P)} (in {L}) and {lower(P)}\u2032 (in {T}); the acceleration of "
+                   f"{upper(P)} found at one image is transferred to the other (laid off there again).")
+            key = f"a.twice.{P}"
+            b.point(key + ".1", _pt(x1), label=lower(P), space="acceleration")
+            b.point(key + ".2", _pt(x2), label=lower(P) + "\u2032", space="acceleration")
+            b.arrow(key + ".a1", _pt(x1), _pt(x1 + a), kind="acceleration", space="acceleration")
+            b.arrow(key + ".a2", _pt(x2), _pt(x2 + a), kind="acceleration", space="acceleration")
+            self.twice[P] = (L, T)
 
 
 def draw_group_acceleration(ac, links: tuple[str, ...], joints: tuple[str, ...], solved: set[str],
@@ -431,15 +676,126 @@ def draw_group_acceleration(ac, links: tuple[str, ...], joints: tuple[str, ...],
     chain = Chain.from_mechanism(ac.mech)
     links = tuple(ln for ln in links if ln in chain.links)
     solved = {ln for ln in solved if ln in chain.links}
-    cams = [c[0] for c in chain.contacts + chain.rolls if {c[1], c[2]} & set(links)]
-    if cams:
-        raise InputError(f"the acceleration plan of the group {', '.join(links)}: the contact "
-                         f"{', '.join(cams)} needs the curvature of its profiles (its equivalent "
-                         "linkage), which this construction does not draw")
     script = plan_velocities(chain.restricted(solved | set(links), solved))
     if not script.complete:
-        raise InputError(f"the acceleration plan of the group {', '.join(links)}: its velocity plan "
-                         "needs false position (similar point rows), and the acceleration plan of such "
-                         "a group is not drawn (its normal accelerations do not scale with one trial)")
+        full = plan_velocities(chain)
+        if full.trial is not None and full.complete:
+            AccelerationTrialDrawer(ac, full, {ac.mech.frame}).run(set(links))
+            return full
+        raise InputError(f"the acceleration plan of the group {', '.join(links)}: {script.verdict()}")
     AccelerationDrawer(ac, script, solved).run(set(links))
     return script
+
+
+class AccelerationTrialDrawer(AccelerationDrawer):
+    """False position on the plan of relative normal accelerations (paper 4 with the classical
+    similar point rows): the velocity plan is known, so every ω and hence every relative normal
+    and Coriolis term is known, and the accelerations are affine in the trial crank's angular
+    acceleration α*. The script is drawn for two trial values; the ends of the accelerations
+    then lie on rows x*x** (which, unlike the velocities' rows, do not pass through o'), and the
+    check — the given driver's acceleration (one-trial velocity scripts) or the left-out link's
+    km ⟂ KM — picks the point of every row."""
+
+    def __init__(self, ac, script: VelocityScript, solved: set[str]) -> None:
+        super().__init__(ac, script, solved)
+        self.star, self.heading = "*", ""
+
+    # the trial ends live only in self.E until the rows are solved
+    def keep(self, ln: str, p: str, image: np.ndarray) -> None:
+        self.E.setdefault((ln, p), image)
+
+    def text(self, st) -> str:
+        return self.heading + super().text(st)
+
+    def partner_image(self, partner: str, point: str) -> np.ndarray:
+        # the ends of a link's accelerations form a figure similar to the link (turned 90°,
+        # scaled by α): found from two ends already drawn
+        own = [(self.where(p), v) for (ln, p), v in self.E.items() if ln == partner][:2]
+        return _similar(own, self.where(point))
+
+    def show(self, key: str, st, image: np.ndarray, lab: str, lines=()) -> None:
+        b = self.ac.b
+        b.point(key, _pt(image), label=self.ac.lbl(st.point) + self.star, space="acceleration")
+        for k in lines:
+            b.extend(k, _pt(image))
+
+    def _trial_driver(self, sign: float) -> None:
+        t_link, t_pivot, t_ref = self.s.trial
+        O, R = self.where(t_pivot), self.where(t_ref)
+        w2 = self.w2(t_link)
+        # the trial rates: of the order of the crank's ω² (any two distinct values would do)
+        d_link = self.s.scale_by[0]
+        size = w2[:, 0] + abs(self.ac.measured_alpha(d_link)) + np.where(w2[:, 0] == 0, 1.0, 0.0)
+        a_ref = w2 * (O - R) + (sign * size)[:, None] * perp(R - O)
+        self.keep(t_link, t_pivot, self.normal(t_link, O))
+        end = a_ref + self.normal(t_link, R)
+        self.keep(t_link, t_ref, end)
+        b = self.ac.b
+        b.point(f"{self.prefix}.{t_link}.{t_ref}", _pt(end), label=self.ac.lbl(t_ref) + self.star,
+                space="acceleration")
+
+    def _true_end(self) -> np.ndarray:
+        d_link, d_pivot, d_ref = self.s.scale_by
+        R = self.where(d_ref)
+        return self.ac.image(d_link, d_ref, R) + self.normal(d_link, R)
+
+    def _check(self) -> np.ndarray:
+        if self.s.check is None:  # the given driver's end
+            d_link, _, d_ref = self.s.scale_by
+            return self.img((d_link, d_ref)) - self._true_end()
+        cut, K, LK, M, LM = self.s.check
+        PK, PM = self.where(K), self.where(M)
+        ek = self.img((LK, K)) + self.transfer(LK, cut, K)
+        em = self.img((LM, M)) + self.transfer(LM, cut, M)
+        return dot(em - ek, PM - PK)
+
+    def run(self, links: set[str]) -> None:
+        ac = self.ac
+        t_link = self.s.trial[0]
+        rows, checks = [], []
+        for k, sign in enumerate((1.0, -1.0)):
+            self.E, self.star = {}, "*" * (k + 1)
+            self.prefix = f"a.trial{k + 1}"
+            self.heading = ("first trial (accelerations): ", "second trial (accelerations): ")[k]
+            for st in self.s.steps:
+                if st.kind == "driver" and st.link == t_link:
+                    ac.b.step(self.heading + "an arbitrary angular acceleration α* of the trial crank "
+                              f"{t_link}: " + st.text)
+                    self._trial_driver(sign)
+                elif st.kind == "driver":
+                    d_link, d_pivot, d_ref = self.s.scale_by
+                    self.keep(d_link, d_pivot, self.normal(d_link, self.where(d_pivot)))
+                    self.keep(d_link, d_ref, self._true_end())
+                elif st.kind not in ("check", "scale"):
+                    self._one(st)
+            rows.append(self.E)
+            checks.append(self._check())
+        self.heading, self.star = "", ""
+        self.prefix = "a"
+
+        def keep(ln, p, end, src):
+            if (ln, p) not in ac.images:
+                ac.set_known(ln, self.where(p), end - self.normal(src, self.where(p)), p)
+        TrialDrawer._interpolate(self, links, rows, checks, keep)
+
+    def _row_images(self, rows, key):
+        out = []
+        for row in rows:
+            self.E = row
+            out.append(self.img(key))
+        return out
+
+    def _row(self, key: str, x1, x2, x, lab: str) -> None:
+        ac = self.ac
+        ac._line(key, x1, x2 - x1)
+        ac.b.point(key + ".pt", _pt(x), label=None, space="acceleration")
+        ac.b.extend(key, _pt(x))
+
+
+def _similar(own, X: np.ndarray) -> np.ndarray:
+    """The point of a figure similar to a link at the link's point X, from two pairs
+    (link point, figure point): a similarity is complex-affine."""
+    (X1, x1), (X2, x2) = own
+    z = lambda a: a[:, 0] + 1j * a[:, 1]  # noqa: E731
+    w = z(x1) + (z(x2) - z(x1)) / (z(X2) - z(X1)) * (z(X) - z(X1))
+    return np.stack([w.real, w.imag], axis=-1)

@@ -250,7 +250,11 @@ class VelocityConstruction(_SlidingGroups):
     def run(self) -> None:
         solved = {self.mech.frame}
         self.scripts = []
-        for gs in group_plan(self.mech):
+        if self.mech.given:
+            # no driver: the whole chain from its given point velocities by Rosenauer's rule
+            from ._direct import draw_given
+            self.scripts.append(draw_given(self))
+        for gs in (() if self.mech.given else group_plan(self.mech)):
             fn = getattr(self, "_g_" + gs.kind.replace("-", "_"), None)
             if fn is not None:
                 fn(gs)

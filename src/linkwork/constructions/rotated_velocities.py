@@ -30,7 +30,12 @@ SOURCE = "Rosenauer §38–39, §68; Pöschl §27 (gedrehte Geschwindigkeiten)"
 
 
 def default_kv(mech: Mechanism, sol) -> float:
-    """A nice kv (s) near 1/|ω| of the input crank (Rosenauer's choice), 1 otherwise."""
+    """A nice kv (s) near 1/|ω| of the input crank (Rosenauer's choice), 1 otherwise; given point
+    velocities (no crank): the fastest given point's rotated velocity a fifth of the drawing."""
+    if not mech.drivers:
+        v = max((float(np.nanmax(np.hypot(*np.asarray(sol.point(g.point).velocity).T))) for g in mech.given),
+                default=0.0)
+        return 0.2 * mech.length_scale / v if v > 0 else 1.0
     d = mech.drivers[0]
     if isinstance(mech.joint(d.joint), Revolute):
         w = float(np.nanmax(abs(sol.link(d.driven).omega)))
@@ -47,6 +52,8 @@ def rotated_velocities(mech: Mechanism, inputs, *, scales: Scales | None = None,
     the one that turns the crank pin's velocity towards the crank centre, so that with
     Rosenauer's scale the crank pin's tip is the crank centre itself."""
     sol = as_solution(mech, inputs)
+    if sense is None and not mech.drivers:
+        sense = -1
     if sense is None:
         d = mech.drivers[0]
         w0 = sol.link(d.driven).omega

@@ -33,6 +33,20 @@ def _plt():
     return plt
 
 
+#: characters a user's name may have and still be set upright inside mathtext
+_MATH_SAFE = set("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_ .,-'")
+
+
+def subscripted(symbol: str, name: str, extra: str = "") -> str:
+    """``symbol`` with the user's point or link ``name`` as its subscript, the name printed as
+    written (upright, ``pin_A`` keeps its underscore; ``extra`` such as ``,x`` follows it). A name
+    with characters mathtext would read as commands is written after the symbol instead."""
+    if set(name) <= _MATH_SAFE:
+        body = name.replace("_", r"\_").replace(" ", r"\ ")
+        return f"${symbol}_{{\\mathrm{{{body}}}{extra}}}$"
+    return f"${symbol}$ ({name.replace('$', chr(92) + '$')}{extra})"
+
+
 def _abscissa(mech: Mechanism, sol: Solution, against: str) -> tuple[np.ndarray, str]:
     if against == "time":
         if sol.time is not None:
@@ -90,7 +104,7 @@ def motion_plot(mech: Mechanism, *, points: Sequence[str] = (), links: Sequence[
             for c in components:
                 y = np.linalg.norm(arr, axis=1) if c == "magnitude" else arr[:, "xy".index(c)]
                 style = "-" if c == "magnitude" else ("--" if c == "x" else ":")
-                lab = f"|{s}$_{{{p}}}$|" if c == "magnitude" else f"{s}$_{{{p},{c}}}$"
+                lab = f"|{subscripted(s, p)}|" if c == "magnitude" else subscripted(s, p, f",{c}")
                 ax.plot(x, y, style, lw=1.2, label=lab)
         ax.set_ylabel(f"{quantity} [{u}]")
         ax.legend(loc="best", fontsize=8, ncol=2)
@@ -100,11 +114,11 @@ def motion_plot(mech: Mechanism, *, points: Sequence[str] = (), links: Sequence[
         for ln in links:
             m = sol.link(ln)
             if quantity == "position":
-                y, lab, u = np.degrees(np.unwrap(m.angle)), f"\u03c6$_{{{ln}}}$", "\u00b0"
+                y, lab, u = np.degrees(np.unwrap(m.angle)), subscripted(r"\varphi", ln), "\u00b0"
             elif quantity == "velocity":
-                y, lab, u = m.omega, f"\u03c9$_{{{ln}}}$", "rad/s"
+                y, lab, u = m.omega, subscripted(r"\omega", ln), "rad/s"
             else:
-                y, lab, u = m.alpha, f"\u03b1$_{{{ln}}}$", "rad/s\u00b2"
+                y, lab, u = m.alpha, subscripted(r"\alpha", ln), "rad/s\u00b2"
             ax.plot(x, y, lw=1.2, label=lab)
         ax.set_ylabel({"position": "angle", "velocity": "angular velocity",
                        "acceleration": "angular acceleration"}[quantity] + f" [{u}]")
@@ -152,7 +166,7 @@ def vs_plot(mech: Mechanism, point: str, *, solution: Solution | None = None, ti
     ax.axhline(0.0, color="#888", lw=0.5)
     u = mech.length_unit
     ax.set_xlabel(("displacement s" if straight else "arc length s") + f" [{u}]")
-    ax.set_ylabel(f"velocity v$_{{{point}}}$ [{u}/s]")
+    ax.set_ylabel(f"velocity {subscripted('v', point)} [{u}/s]")
     ax.grid(True, lw=0.3, alpha=0.6)
     if straight:
         ax.text(0.02, 0.96, "acceleration = subnormal v\u00b7dv/ds", transform=ax.transAxes, fontsize=8,
@@ -164,24 +178,29 @@ def vs_plot(mech: Mechanism, point: str, *, solution: Solution | None = None, ti
 
 def graphical_motion(mech: Mechanism, point: str, *, chords: int = 36, H: float = 2.0,
                      solution: Solution | None = None):
-    """Pöschl's motion diagrams of ``point`` along its path (ch. II §7): the s–t, v–t and a–t
-    lines (a the tangential acceleration), the last two from the engine, and over them the
-    graphically differentiated chord polygons (pole distance ``H`` cm, ``chords`` chords over the
-    motion, :mod:`linkwork.constructions.motion_calculus`) as markers, read at the derived scales
-    l_v = l_s/(H l_t), l_a = l_v/(H l_t), which are given in the panels' titles."""
-    from ..constructions.motion_calculus import differentiate
+    """Pöschl's motion diagrams of ``point`` along its path (ch. II §7): the s–t, v–t, a–t and
+    jerk lines (a the tangential acceleration d²s/dt², the jerk d³s/dt³), the last three from the
+    engine, and over them the graphically differentiated chord polygons (pole distance ``H`` cm,
+    ``chords`` chords over the motion, :mod:`linkwork.constructions.motion_calculus`) as markers,
+    read at the derived scales l_v = l_s/(H l_t), l_a = l_v/(H l_t), l_j = l_a/(H l_t), which
+    are given in the panels' titles. The engine's jerk line needs a solution to order 3 (solved
+    so when ``solution`` is not given); without it only the chords are drawn."""
+    from ..constructions.motion_calculus import differentiate, path_jerk
     if point not in mech.points:
         raise InputError(f"mechanism '{mech.name}' has no point '{point}'")
     if chords < 2:
         raise InputError(f"graphical differentiation needs two chords at least, not {chords}")
-    sol = solution or whole_motion(mech)
+    sol = solution or whole_motion(mech, order=3)
     m = sol.point(point)
     t, tlabel = _abscissa(mech, sol, "time")
     s, v, straight = path_coordinate(m.position, m.velocity)
     speed = np.linalg.norm(m.velocity, axis=1)
     with np.errstate(invalid="ignore", divide="ignore"):
         e = m.velocity / speed[:, None] * np.sign(v)[:, None]
+    if straight:  # the line's direction, also where the point stands still
+        e = np.tile(e[np.nanargmax(speed)], (len(v), 1))
     a = np.sum(m.acceleration * e, axis=1)
+    jerk = None if m.jerk is None else path_jerk(m.velocity, m.acceleration, m.jerk, e)
     ok = np.isfinite(t) & np.isfinite(s) & np.isfinite(v)
     if ok.sum() < 3 or np.any(np.diff(t[ok]) <= 0):
         raise InputError(f"the motion of '{point}' has no increasing time axis to draw the diagrams on")
@@ -192,9 +211,11 @@ def graphical_motion(mech: Mechanism, point: str, *, chords: int = 36, H: float 
     l_s = float(np.ptp(S)) / 5.0 or 1.0
     dv = differentiate(T, S, l_t=l_t, l_x=l_s, H=H)
     da = differentiate(T, V, l_t=l_t, l_x=dv.l_y, H=H)
+    A = np.interp(T, t[ok], a[ok])
+    dj = differentiate(T, A, l_t=l_t, l_x=da.l_y, H=H)
     u = mech.length_unit
     plt = _plt()
-    fig, axes = plt.subplots(3, 1, figsize=(7.5, 8.0), sharex=True)
+    fig, axes = plt.subplots(4, 1, figsize=(7.5, 10.0), sharex=True)
     axes[0].plot(t, s, lw=1.2, color="#000")
     axes[0].plot(T, S, "-", lw=0.5, color="#b3001b", marker=".", ms=3, label="chords")
     axes[0].set_ylabel(f"s [{u}]")
@@ -207,12 +228,17 @@ def graphical_motion(mech: Mechanism, point: str, *, chords: int = 36, H: float 
     axes[2].plot(da.x, da.y, "o", ms=3, color="#b3001b", label=f"chord slopes, H = {H:g} cm")
     axes[2].set_ylabel(f"a [{u}/s²]")
     axes[2].set_title(f"a–t line, $l_a = l_v/(H\\,l_t)$ = {da.l_y:.3g} {u}/s² per cm", fontsize=9)
-    axes[2].set_xlabel(tlabel)
+    if jerk is not None:
+        axes[3].plot(t, jerk, lw=1.2, color="#7a4b1b", label="engine (d³s/dt³)")
+    axes[3].plot(dj.x, dj.y, "o", ms=3, color="#b3001b", label=f"chord slopes, H = {H:g} cm")
+    axes[3].set_ylabel(f"j [{u}/s³]")
+    axes[3].set_title(f"jerk–t line, $l_j = l_a/(H\\,l_t)$ = {dj.l_y:.3g} {u}/s³ per cm", fontsize=9)
+    axes[3].set_xlabel(tlabel)
     for ax in axes:
         ax.axhline(0.0, color="#888", lw=0.5)
         ax.grid(True, lw=0.3, alpha=0.6)
         ax.legend(fontsize=7, loc="upper right")
-    fig.suptitle(f"{mech.name}: motion diagrams of {point} ("
+    fig.suptitle(f"{mech.name}: motion diagrams of {point.replace('$', chr(92) + '$')} ("
                  + ("displacement" if straight else "arc length") + ", graphical differentiation)", fontsize=10)
     fig.tight_layout()
     return fig

@@ -16,7 +16,8 @@ import numpy as np
 from pydantic import ValidationError
 
 from ..errors import InputError, MechanismFileError, ModelError, UnknownMechanismError
-from ..model import (CamContact, CircularSlot, ConstantSpeed, Gear, GenevaPair, Mechanism,
+from ..model import (CamContact, CircularSlot, ConstantSpeed, Gear, GenevaPair, GivenDirection,
+                     GivenVelocity, Mechanism,
                      PolynomialLaw, Prismatic, Revolute, RollingContact, Slot, StarWheelPair,
                      TabulatedLaw)
 from ..units import check_length_unit, parse_quantity, unit_dimension
@@ -213,7 +214,7 @@ def check_references(spec: schema.MechanismFile, text: str, source: str) -> None
             fail(loc, f"{what} '{name}', which is not in [{section}]{_did_you_mean(name, known)}")
 
     points, links, profiles = spec.points, spec.links, spec.profiles
-    if spec.frame not in links:
+    if spec.frame not in links and not spec.given:
         fail(("frame",) if "frame" in spec.model_fields_set else ("links",),
              f"there is no frame link '{spec.frame}' (name the fixed link '{spec.frame}' under "
              f"[links] or set frame = \"...\"){_did_you_mean(spec.frame, links) if links else ''}")
@@ -259,6 +260,10 @@ def check_references(spec: schema.MechanismFile, text: str, source: str) -> None
         if d.reference is not None:
             need(loc + ("reference",), f"driver '{d.joint}' names reference point", d.reference,
                  "points", points)
+    for i, g in enumerate(spec.given or []):
+        need(("given", i, "point"), "the given data names point", g.point, "points", points)
+        if g.link is not None:
+            need(("given", i, "link"), f"given point '{g.point}' names link", g.link, "links", links)
 
 
 _NAMED = re.compile(r"^(?P<words>[\w -]*?)\s*'(?P<name>[^']*)'(?P<rest>.*)", re.S)
@@ -274,6 +279,9 @@ def _key_of_message(message: str, spec: schema.MechanismFile) -> tuple | None:
     if m is None:
         return None
     words, name, rest = m.group("words").split(), m.group("name"), m.group("rest")
+    if words[:2] == ["given", "point"]:
+        hit = next((i for i, g in enumerate(spec.given or []) if g.point == name), None)
+        return None if hit is None else ("given", hit)
     if words and words[0] == "driver":
         for loc, d in _driver_keys(spec):
             if d.joint == name:
@@ -352,9 +360,12 @@ def _build(spec: schema.MechanismFile, text: str, source: str, base_dir: Path | 
             joints.append(Gear(name, links, j.carrier, radii if len(radii) == 2 else (radii[0], np.inf),
                                j.kind, j.point if j.point else (name if name in spec.points else None)))
     driver_specs = list(spec.drivers or []) + ([spec.driver] if spec.driver else [])
-    if not driver_specs:
-        raise MechanismFileError("no [driver] given: name the joint that drives the mechanism",
-                                 source=source, key="driver")
+    if not driver_specs and not spec.given:
+        raise MechanismFileError("no [driver] given: name the joint that drives the mechanism (or "
+                                 "give point velocities under [[given]])", source=source, key="driver")
+    if driver_specs and spec.given:
+        raise MechanismFileError("a chain is driven by a [driver] or by [[given]] point velocities, "
+                                 "not both", source=source, key="given", line=_line_of(text, ("given",)))
     drivers = []
     joint_kinds = {j.name: j for j in joints}
     for d in driver_specs:
@@ -376,9 +387,35 @@ def _build(spec: schema.MechanismFile, text: str, source: str, base_dir: Path | 
                 d.speed, default_unit=f"{unit}/s" if prismatic else "rad/s", kind=f"driver '{d.joint}' speed")
             law = ConstantSpeed(speed=speed)
         drivers.append({"joint": d.joint, "reference": d.reference, "law": law})
-    return Mechanism.build(name=spec.name, points=spec.points, links=spec.links, joints=joints,
+    links = dict(spec.links)
+    if spec.given and spec.frame not in links:
+        links[spec.frame] = []  # a free chain: the frame carries nothing and holds nothing
+    return Mechanism.build(name=spec.name, points=spec.points, links=links, joints=joints,
                            drivers=drivers, frame=spec.frame, length_unit=unit,
-                           description=spec.description, profiles=profiles)
+                           description=spec.description, profiles=profiles,
+                           given=_given(spec, text, source))
+
+
+def _given(spec: schema.MechanismFile, text: str, source: str) -> tuple:
+    """The [[given]] entries as `model.given` conditions (angles in the file's angle unit)."""
+    out = []
+    for i, g in enumerate(spec.given or []):
+        if g.velocity is not None:
+            out.append(GivenVelocity(g.point, np.array(g.velocity, float),
+                                     None if g.acceleration is None else np.array(g.acceleration, float),
+                                     g.link))
+        else:
+            if isinstance(g.direction, list):
+                d = np.array(g.direction, float)  # the model refuses a zero vector, naming the point
+            else:
+                try:
+                    ang = _angle_in_rad(g.direction, spec.units.angle, f"given point '{g.point}' direction")
+                except InputError as exc:
+                    raise MechanismFileError(str(exc), source=source, key=_dotted(("given", i, "direction")),
+                                             line=_line_of(text, ("given", i, "direction"))) from None
+                d = np.array([np.cos(ang), np.sin(ang)])
+            out.append(GivenDirection(g.point, d, g.curvature, g.link))
+    return tuple(out)
 
 
 def dump_schema() -> str:

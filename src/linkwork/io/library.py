@@ -38,7 +38,7 @@ def library_text(name: str) -> str:
 #: the library's groups, in the order `linkwork library` shows them
 CATEGORIES = ("four-bars", "slider mechanisms", "six-bars and multi-loop linkages",
               "straight-line linkages", "valve gears", "governors", "cams", "gears",
-              "intermittent", "over-closed chains", "several drivers", "other")
+              "intermittent", "over-closed chains", "several drivers", "free and open chains", "other")
 
 
 def _category(doc: dict) -> str:

@@ -148,6 +148,35 @@ class DriverSpec(_Strict):
         return self
 
 
+class GivenSpec(_Strict):
+    """A given point velocity or velocity direction (`model.given`): the inputs of a free or
+    open chain without a driver (Rosenauer 1937, paper 2)."""
+
+    point: str = Field(description="the point whose motion is given")
+    link: str | None = Field(None, description="the link the point is taken in (default: the link "
+                                               "that reports the point)")
+    velocity: Coordinates | None = Field(None, description="[vx, vy] in the length unit per second")
+    acceleration: Coordinates | None = Field(None, description="[ax, ay] in the length unit per "
+                                             "second squared (with `velocity`; for accelerations)")
+    direction: Axis | None = Field(None, description="the line the point's velocity lies on: a "
+                                   "direction [x, y] or an angle (the file's angle unit unless written)")
+    curvature: Number | None = Field(None, description="curvature of the point's path (with "
+                                     "`direction`; 1/length unit, positive bending to the left of "
+                                     "the direction, 0 on a straight guide; for accelerations)")
+
+    @model_validator(mode="after")
+    def _one_kind(self) -> "GivenSpec":
+        if (self.velocity is None) == (self.direction is None):
+            raise ValueError("give either `velocity` (the point's velocity) or `direction` (the "
+                             "line its velocity lies on)")
+        if self.acceleration is not None and self.velocity is None:
+            raise ValueError("`acceleration` goes with `velocity`; with `direction` give the "
+                             "path's `curvature`")
+        if self.curvature is not None and self.direction is None:
+            raise ValueError("`curvature` goes with `direction`")
+        return self
+
+
 # ---------------------------------------------------------------- mass data and loads (forces)
 #: a quantity: a bare number in the key's SI unit, or a string with its unit ("0.5 kg", "2 N/mm")
 Quantity = Union[Number, str]
@@ -257,6 +286,9 @@ class MechanismFile(_Strict):
     joints: dict[str, JointSpec]
     driver: DriverSpec | None = None
     drivers: list[DriverSpec] | None = None
+    given: list[GivenSpec] | None = Field(
+        None, description="given point velocities or velocity directions ([[given]]) at the drawn "
+        "position, instead of a driver: a free chain (no frame link needed) or an open chain")
     masses: dict[str, LinkMassSpec] = Field(
         default_factory=dict, description="mass data per moving link (needed for forces only)")
     loads: LoadsSpec | None = Field(None, description="loads for force analysis")

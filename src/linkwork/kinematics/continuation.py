@@ -27,12 +27,24 @@ solve gets the same starting values whether the march was kept or not: the limit
 the samples of a whole motion march once. The samples get their starting values by cubic
 Hermite interpolation of the marched poses and tangents. Several drivers: the march goes through
 the samples in their order, subdividing adaptively between them.
+
+A drag in the workbench solves a new mechanism for every frame: the same structure, slightly
+other dimensions. `solve(..., previous=)` starts its march from the previous frame's
+(`_carry`): the accepted points are solved again for the new dimensions all at once, from the
+old poses, and taken in order for as long as each step passes the tests a march's step must
+pass (a contracting corrector, the step bound, smooth both ways). A change of assembly branch
+fails them as it fails a march, and from there the march goes on as it does after a rejected
+step; `carried(mech)` says how far the old march was taken and why not further. Starting values
+from a carried march differ from a fresh one's at the level of the march's accuracy, so the
+solutions agree to rounding, not bit for bit.
 """
 
 from __future__ import annotations
 
 from collections import OrderedDict
 from dataclasses import dataclass
+from functools import wraps
+from threading import Lock, RLock
 
 import numpy as np
 
@@ -103,22 +115,42 @@ def input_weights(mech: Mechanism) -> np.ndarray:
                      if mech.joint(d.joint).kind == "prismatic" else 1.0 for d in mech.drivers])
 
 
+def _serialized(fn):
+    """One march at a time: the marches kept per mechanism are extended in place, and a server
+    solves in several threads."""
+    @wraps(fn)
+    def run(*args, **kwargs):
+        with _marching:
+            return fn(*args, **kwargs)
+    return run
+
+
+_marching = RLock()  # re-entered: a march may find change points, which march upstream groups
+
+
+@_serialized
 def continuation_guesses(mech: Mechanism, solvers, values: np.ndarray,
                          schedule: dict | None = None, *, start: PathEnd | None = None,
-                         ends: dict | None = None) -> dict:
+                         ends: dict | None = None, previous: Mechanism | None = None) -> dict:
     """Newton starting poses (N, k, 3) of every generic group at the samples `values`
     (N, drivers), by continuation from the design position; NaN where the march does not reach
     (the branch of the design cannot be assembled there). `schedule`: the closed-form groups'
     change points (`branches.branch_schedule`, or for several drivers
     `branches.path_schedule`; found from these solvers when not given). Several drivers: the
     march goes on from `start` (an earlier solve's end) instead of the design position, and
-    its tail is put in ends["tail"] when `ends` is given."""
+    its tail is put in ends["tail"] when `ends` is given. `previous`: a mechanism of the same
+    structure solved before (the last frame of a drag); a march `mech` does not have yet starts
+    from that one's, carried over (`_carry`; how far: `carried(mech)`)."""
     gen = _Generic(mech, solvers, schedule)
     design = np.array([mech.driver_input_at_design(d) for d in mech.drivers])
     if values.shape[1] == 1:
-        lanes = _one_driver_lanes(mech, solvers, gen, design)
         lam = (values[:, 0] - design[0]) * gen.weights[0]
         finite = np.isfinite(lam)
+        # as far as these samples need, unless they lie farther than half a turn (then the
+        # period is looked for, on marches of several turns)
+        need = None if np.abs(lam[finite]).max(initial=0.0) > np.pi else \
+            {+1: lam[finite].max(initial=0.0), -1: -lam[finite].min(initial=0.0)}
+        lanes = _one_driver_lanes(mech, solvers, gen, design, previous, need)
         turns = None
         if mech.joint(mech.drivers[0].joint).kind == "revolute" and \
                 np.abs(lam[finite]).max(initial=0.0) > np.pi:
@@ -145,15 +177,25 @@ def continuation_guesses(mech: Mechanism, solvers, values: np.ndarray,
     # several drivers: march through the samples in their order
     if start is None:
         lane = _Lane(gen, np.vstack([design[None] * gen.weights, values * gen.weights]))
+        if previous is not None:
+            old = _paths.get(previous)
+            _note(mech, _compatible(previous, mech) or (
+                "the previous mechanism's march is not kept" if old is None else
+                _carry(mech, solvers, gen, [(old, lane, _path_map(old, lane))])))
     else:
         lane = _Lane(gen, np.vstack([start.vertex[None], values * gen.weights]), start=start.lam)
         lane.resume(mech, solvers, gen, start.tail)
     _march(mech, solvers, gen, [lane], {lane.sense: lane.knots[-1]})
+    with _lock:
+        _paths[mech] = lane
+        while len(_paths) > PATHS_KEPT:
+            _paths.popitem(last=False)
     if ends is not None:
         ends["tail"] = lane.tail()
     return gen.split(lane.at_vertices()[1:])
 
 
+@_serialized
 def march_limit(mech: Mechanism, solvers, sense: int, span: float) -> float | None:
     """The input value at which the march of the design's branch stops on one side (`sense`
     +1: upwards, −1: downwards) — a limit position, closed in on to `MIN_STEP` by the step
@@ -208,20 +250,186 @@ def _laps(mech: Mechanism, row: str) -> tuple[float, float, float]:
     return (lap(names[0]), lap(names[1]) if len(names) > 1 else 0.0, 0.0)
 
 
-def _one_driver_lanes(mech: Mechanism, solvers, gen: "_Generic", design: np.ndarray) -> dict:
-    """The two marches of a one-driver mechanism, from the cache or new."""
+def _one_driver_lanes(mech: Mechanism, solvers, gen: "_Generic", design: np.ndarray,
+                      previous: Mechanism | None = None, need: dict | None = None) -> dict:
+    """The two marches of a one-driver mechanism, from the cache or new: new ones carried over
+    from those of `previous` (`_carry`), as far as `need` says (λ per sense; None: all)."""
     key = (mech, tuple(solvers))
     lanes = _marches.get(key)
     if lanes is None:
         origin = design * gen.weights
         lanes = {s: _Lane(gen, np.vstack([origin, origin + s]), sense=s, ray=True)
                  for s in (+1, -1)}
+        if previous is not None:
+            old = next((v for k, v in list(_marches.items()) if k[0] is previous), None)
+            _note(mech, _compatible(previous, mech) or (
+                "the previous mechanism's march is not kept" if old is None else
+                _carry(mech, solvers, gen, [(old[s], lanes[s], _ray_map(need, s)) for s in (+1, -1)])))
         _marches[key] = lanes
         while len(_marches) > CACHE_SIZE:
             _marches.popitem(last=False)
     else:
         _marches.move_to_end(key)
     return lanes
+
+
+# ---------------------------------------------------------------------------- carrying over
+@dataclass(frozen=True)
+class Carried:
+    """How the march of a mechanism began from that of a previous one of the same structure
+    (`solve(..., previous=)`, the frames of a drag): `carried` of the `points` accepted points
+    offered were taken over; `failed_at` is the input (one value per driver) of the first one
+    that was not and `reason` says why (None, None: all of them). From there the march went on
+    as a march from the design position goes on after a rejected step."""
+
+    carried: int
+    points: int
+    failed_at: tuple | None = None
+    reason: str | None = None
+
+    def __str__(self) -> str:
+        if self.reason is None:
+            return f"continued from the previous mechanism ({self.carried} points)"
+        at = "" if self.failed_at is None else \
+            " at input " + ", ".join(f"{v:.6g}" for v in self.failed_at)
+        return (f"marched again from the design position's branch{at}: {self.reason} "
+                f"({self.carried} of {self.points} points carried over)")
+
+
+#: mechanism -> the `Carried` of its march; mechanism -> its last march of several drivers
+_carried: OrderedDict = OrderedDict()
+_paths: OrderedDict = OrderedDict()
+PATHS_KEPT = 4
+#: a carried step may be this much longer than the step bound the march keeps to
+#: (`MAX_POSE_CHANGE`): the poses' speed differs a little from the previous mechanism's
+CARRY_STEP_SLACK = 1.5
+_lock = Lock()
+
+
+def carried(mech: Mechanism) -> Carried | None:
+    """How the march of `mech` began from a previous mechanism's (None: it was not asked to)."""
+    with _lock:
+        return _carried.get(mech)
+
+
+def _note(mech: Mechanism, what) -> None:
+    with _lock:
+        _carried[mech] = what if isinstance(what, Carried) else Carried(0, 0, None, what)
+        while len(_carried) > CACHE_SIZE:
+            _carried.popitem(last=False)
+
+
+def _compatible(previous: Mechanism, mech: Mechanism) -> str | None:
+    """Why the march of `previous` cannot be carried over to `mech` (None: it can)."""
+    from ..topology import structure_key
+    if structure_key(previous) != structure_key(mech):
+        return "the previous mechanism has another structure"
+    return None
+
+
+def _ray_map(need: dict | None, sense: int):
+    """One driver: λ is the same along the new ray (counted from the new design value); the
+    points beyond `need` are left (the first one past it kept, so the lane covers it)."""
+    def to_new(lam: np.ndarray) -> np.ndarray:
+        if need is None or lam.size == 0:
+            return lam
+        past = np.flatnonzero(lam >= need[sense])
+        return lam[:past[0] + 1] if past.size else lam
+    return to_new
+
+
+def _path_map(old: "InputPath", new: "InputPath"):
+    """Several drivers: a point a fraction f along the old path's segment k goes to the same
+    fraction of the new path's segment k (vertices to vertices exactly); paths of another
+    number of vertices map nothing."""
+    def to_new(lam: np.ndarray) -> np.ndarray:
+        if len(old.vertices) != len(new.vertices):
+            return lam[:0]
+        if len(old.vertices) < 2:  # the design input only
+            return np.full(min(lam.size, 1), new.knots[0])
+        seg = np.clip(np.searchsorted(old.knots, lam, side="right") - 1, 0, len(old.knots) - 2)
+        f = (lam - old.knots[seg]) / (old.knots[seg + 1] - old.knots[seg])
+        out = new.knots[seg] + f * (new.knots[seg + 1] - new.knots[seg])
+        at = np.searchsorted(old.knots, lam)
+        hit = (at < old.knots.size) & (old.knots[np.minimum(at, old.knots.size - 1)] == lam)
+        out[hit] = new.knots[at[hit]]
+        return out[:np.searchsorted(out, new.knots[len(new.vertices) - 1], side="right")]
+    return to_new
+
+
+def _carry(mech: Mechanism, solvers, gen: "_Generic", lanes: list) -> Carried:
+    """Carry earlier marches over to `mech` (the same structure, other dimensions): `lanes` are
+    (old lane, new lane, old λ → new λ). Each old point is solved for `mech` from its poses at
+    once (one batched corrector, as a march's attempt), and the new lane takes the results in
+    order for as long as every step passes the march's own tests: converged with contracting
+    Newton steps, within the step bound, smooth both ways (`_smooth`). A step onto another
+    assembly branch fails them as it fails a march, and the lane then goes on from the last
+    point taken as a march does after a rejected step. The design position (λ = 0, every pose
+    zero) is each lane's first point, so a carried lane is a march of `mech`'s own branch."""
+    from .branches import branch_schedule  # imports the solver, which imports this module
+
+    rows = []
+    for n, (old, new, to_new) in enumerate(lanes):
+        lam = to_new(np.asarray(old.lam, dtype=float))
+        rows += [(n, float(x), P) for x, P in zip(lam, old.P)]
+    if not rows:
+        return Carried(0, 0, None, "the previous mechanism's march has no points to offer")
+    schedule = gen.schedule
+    if schedule is None:
+        schedule = branch_schedule(mech) if len(mech.drivers) == 1 else {}
+    new_of = [lanes[r[0]][1] for r in rows]
+    lams = np.array([r[1] for r in rows])
+    u = np.array([ln.point(x) for ln, x in zip(new_of, lams)]) / gen.weights
+    arrive = np.array([ln.direction(x, True) for ln, x in zip(new_of, lams)]) / gen.weights
+    leave = np.array([ln.direction(x, False) for ln, x in zip(new_of, lams)]) / gen.weights
+    pred = np.array([r[2] for r in rows])
+    ok, q, t_arrive, t_leave, jacobians = _attempt(mech, solvers, gen, schedule, u, lams,
+                                                   arrive, leave, pred)
+    taken, failed = 0, None
+    for n, (old, new, _) in enumerate(lanes):
+        idx = [i for i, r in enumerate(rows) if r[0] == n]
+        k = 0
+        for k, i in enumerate(idx):
+            why = None
+            if not ok[i]:
+                why = "the previous poses do not converge there (no assembly near them)"
+            elif k == 0 and lams[i] != new.knots[0]:
+                why = "the previous march does not start at the design position"
+            elif k > 0:
+                j = idx[k - 1]
+                h = lams[i] - lams[j]
+                tn = gen.norm(t_leave[j])
+                bound = max(MAX_POSE_CHANGE * gen.L / tn, MIN_STEP * CONTINUATION_STEP) \
+                    if np.isfinite(tn) and tn > 0 else np.inf
+                p = q[j] + h * t_leave[j] if np.isfinite(t_leave[j]).all() else q[j]
+                if h > CARRY_STEP_SLACK * bound:
+                    why = "the poses move faster there than the previous step allows"
+                elif not _smooth(gen, q[j], p, q[i], h, t_arrive[i]):
+                    why = ("the poses do not follow on smoothly there (another assembly branch, "
+                           "or a fast swing)")
+            if why is not None:
+                if failed is None:
+                    failed = (tuple(float(v) for v in u[i]), why)
+                break
+            new.started = True
+            new._append(float(lams[i]), q[i].copy(), t_leave[i].copy())
+            new.last = (arrive[i], {g: J[i:i + 1].copy() for g, J in jacobians.items()})
+            taken += 1
+        else:
+            k = len(idx)
+        if not new.lam:
+            continue
+        if k < len(idx):  # as a march goes on after a rejected step
+            new.h = (lams[idx[k]] - new.lam[-1]) / 2
+            new.halved = True
+            new.stopped = new.h < MIN_STEP * CONTINUATION_STEP
+        elif old.stopped:  # the old march ended at its limit position; this one may go on
+            new.h = min(new.lam[-1] - new.lam[-2], CONTINUATION_STEP) if len(new.lam) > 1 \
+                else CONTINUATION_STEP
+            new.halved = True
+        else:
+            new.h, new.halved = old.h, old.halved
+    return Carried(taken, len(rows), *(failed or (None, None)))
 
 
 class _Generic:
@@ -406,15 +614,7 @@ class _Lane(InputPath):
             else:
                 self.stopped = True  # the design position itself does not assemble
             return
-        # the poses changed smoothly: the predictions from both ends, along their tangents,
-        # come close to the other end (a step into a fast swing fails the one from the new end)
-        slack = SLACK * gen.L
-        forward = gen.norm(q - pred) <= PREDICTOR_TOLERANCE * gen.norm(pred - self.P[-1]) + slack
-        back = q - h * t
-        backward = (not np.isfinite(back).all()  # no tangent at the new point: singular there
-                    or gen.norm(back - self.P[-1]) <= PREDICTOR_TOLERANCE * gen.norm(h * t) + slack)
-        smooth = forward and backward
-        if ok and smooth:
+        if ok and _smooth(gen, self.P[-1], pred, q, h, t):
             self._append(lam, q, t_leave)
             # grow after two successes in a row: right after a halving the step that just
             # failed would be tried again (and fail again, closing in on a limit position)
@@ -571,6 +771,19 @@ def _attempt(mech: Mechanism, solvers, gen: _Generic, schedule: dict, u: np.ndar
                     state.inputs[d.joint][1] = leave[:, i]
                 t_leave = _tangents(state, solvers, gen, jacobians, ok)
     return ok, state.Q[0][:, gen.links], t_arrive, t_leave, jacobians
+
+
+def _smooth(gen: _Generic, q0: np.ndarray, pred: np.ndarray, q: np.ndarray, h: float,
+            t: np.ndarray) -> bool:
+    """Whether a step of λ-length `h` from poses `q0` to `q` changed the poses smoothly: the
+    predictions from both ends along their tangents (`pred` from q0, back from q along its
+    tangent `t` arriving) come close to the other end. A step into a fast swing, or onto another
+    assembly branch, fails the one from the new end."""
+    slack = SLACK * gen.L
+    forward = gen.norm(q - pred) <= PREDICTOR_TOLERANCE * gen.norm(pred - q0) + slack
+    back = q - h * t
+    return bool(forward and (not np.isfinite(back).all()  # no tangent at q: singular there
+                             or gen.norm(back - q0) <= PREDICTOR_TOLERANCE * gen.norm(h * t) + slack))
 
 
 def _crawls(trail: list, left: int, target: float) -> bool:

@@ -92,8 +92,12 @@ def _compiled() -> dict:
     if not nb.config.CACHE_DIR:
         nb.config.CACHE_DIR = user_cache_dir("linkwork", appauthor=False)
     ns = _bound(dict(globals()))
-    for name in _LOOPS:
-        ns[name] = nb.njit(**_FLAGS)(ns[name])
+    for name, (_, samples_axis) in _LOOPS.items():
+        # the per-sample helpers inlined into the loops by numba itself: LLVM leaves the calls
+        # of the fused loops' large bodies in place, and each call then passes its arrays with
+        # reference counting (atomic) at every sample and group, several times the arithmetic
+        inline = "always" if samples_axis is None else "never"
+        ns[name] = nb.njit(inline=inline, **_FLAGS)(ns[name])
     return ns
 
 
@@ -125,26 +129,38 @@ def rrr_positions(Q0, T, iA, A, iC, C, i1, i2, diff, L1sq, tol, branch, k1, k2, 
     r[0:2], r[2:4], whose angles the caller takes with NumPy's vectorised arctan2 (a scalar
     atan2 here would cost more than the rest)."""
     for n in range(Q0.shape[2]):
-        ax, ay = _world(Q0, T, iA, A[0], A[1], n)
-        cx, cy = _world(Q0, T, iC, C[0], C[1], n)
-        dx, dy = cx - ax, cy - ay
-        D2 = dx * dx + dy * dy
-        inv = 1.0 / math.sqrt(D2)
-        a = (diff + D2) * (0.5 * inv)  # distance of B's foot from A along AC
-        h2 = L1sq - a * a  # squared distance of B from AC
-        if not h2 > tol:  # rounding may take a limit position just below zero; NaN fails too
+        good, r[0, n], r[1, n], r[2, n], r[3, n] = _rrr_position(
+            Q0, T, iA, A[0], A[1], iC, C[0], C[1], i1, i2, diff, L1sq, tol, branch[n], k1[0],
+            k1[1], k2[0], k2[1], n)
+        if not good:
             ok[n] = False
-        h = branch[n] * math.sqrt(h2 if h2 > 0.0 else 0.0) * inv
-        a *= inv
-        r1x, r1y = a * dx - h * dy, a * dy + h * dx  # B − A
-        r2x, r2y = ax + r1x - cx, ay + r1y - cy  # B − C
-        n1 = 1.0 / math.sqrt(r1x * r1x + r1y * r1y)
-        n2 = 1.0 / math.sqrt(r2x * r2x + r2y * r2y)
-        c1, s1 = (r1x * k1[0] + r1y * k1[1]) * n1, (r1y * k1[0] - r1x * k1[1]) * n1
-        c2, s2 = (r2x * k2[0] + r2y * k2[1]) * n2, (r2y * k2[0] - r2x * k2[1]) * n2
-        _place(Q0, T, i1, c1, s1, A[0], A[1], ax, ay, n)
-        _place(Q0, T, i2, c2, s2, C[0], C[1], cx, cy, n)
-        r[0, n], r[1, n], r[2, n], r[3, n] = r1x, r1y, r2x, r2y
+
+
+@_loop()
+def _rrr_position(Q0, T, iA, a0, a1, iC, c0, c1, i1, i2, diff, L1sq, tol, sign, k10, k11, k20,
+                  k21, n):
+    """`rrr_positions` at sample n (branch sign `sign`): places i1 and i2; returns whether the
+    dyad assembles and the hinge vectors B − A, B − C."""
+    ax, ay = _world(Q0, T, iA, a0, a1, n)
+    cx, cy = _world(Q0, T, iC, c0, c1, n)
+    dx, dy = cx - ax, cy - ay
+    D2 = dx * dx + dy * dy
+    inv = 1.0 / math.sqrt(D2)
+    a = (diff + D2) * (0.5 * inv)  # distance of B's foot from A along AC
+    h2 = L1sq - a * a  # squared distance of B from AC
+    # rounding may take a limit position just below zero; NaN fails too
+    good = h2 > tol
+    h = sign * math.sqrt(h2 if h2 > 0.0 else 0.0) * inv
+    a *= inv
+    r1x, r1y = a * dx - h * dy, a * dy + h * dx  # B − A
+    r2x, r2y = ax + r1x - cx, ay + r1y - cy  # B − C
+    n1 = 1.0 / math.sqrt(r1x * r1x + r1y * r1y)
+    n2 = 1.0 / math.sqrt(r2x * r2x + r2y * r2y)
+    c1, s1 = (r1x * k10 + r1y * k11) * n1, (r1y * k10 - r1x * k11) * n1
+    c2, s2 = (r2x * k20 + r2y * k21) * n2, (r2y * k20 - r2x * k21) * n2
+    _place(Q0, T, i1, c1, s1, a0, a1, ax, ay, n)
+    _place(Q0, T, i2, c2, s2, c0, c1, cx, cy, n)
+    return good, r1x, r1y, r2x, r2y
 
 
 @_loop()
@@ -184,34 +200,43 @@ def rrr_rates(Q, T, iA, A, iC, C, i1, i2, BA, BC, mid, hd2, unreliable, cond, L,
     Where it reaches `unreliable` the rates are NaN: no digit of them would be right. The
     error bounds E and sizes m (`propagate_errors`) are carried on here, in the same pass."""
     for n in range(Q.shape[3]):
-        vAx, vAy, aAx, aAy = _point_rates(Q, T, iA, A[0], A[1], n)
-        vCx, vCy, aCx, aCy = _point_rates(Q, T, iC, C[0], C[1], n)
-        c1, s1, c2, s2 = T[i1, 0, n], T[i1, 1, n], T[i2, 0, n], T[i2, 1, n]
-        r1x, r1y = c1 * BA[0] - s1 * BA[1], s1 * BA[0] + c1 * BA[1]
-        r2x, r2y = c2 * BC[0] - s2 * BC[1], s2 * BC[0] + c2 * BC[1]
-        inv = 1.0 / (r1y * r2x - r1x * r2y)
-        wx, wy = vCx - vAx, vCy - vAy
-        om1 = -(wx * r2x + wy * r2y) * inv
-        om2 = -(wx * r1x + wy * r1y) * inv
-        o1, o2 = om1 * om1, om2 * om2
-        w2x = aCx - aAx + o1 * r1x - o2 * r2x
-        w2y = aCy - aAy + o1 * r1y - o2 * r2y
-        al1 = -(w2x * r2x + w2y * r2y) * inv
-        al2 = -(w2x * r1x + w2y * r1y) * inv
-        b = r1x * r2x + r1y * r2y
-        k = (mid + math.sqrt(hd2 + b * b)) * abs(inv)
-        if not k < math.inf:  # NaN and ∞: the dyad is singular (or unassembled) here
-            k = math.inf
+        k = _rrr_rate(Q, T, iA, A[0], A[1], iC, C[0], C[1], i1, i2, BA[0], BA[1], BC[0], BC[1],
+                      mid, hd2, unreliable, L, 1.0 / omega[n], m, E, n, eps, n)
         if k > cond[n]:
             cond[n] = k
-        if k >= unreliable:
-            om1 = om2 = al1 = al2 = math.nan
-        _set_rates(Q, T, i1, A[0], A[1], n, vAx, vAy, aAx, aAy, om1, al1)
-        _set_rates(Q, T, i2, C[0], C[1], n, vCx, vCy, aCx, aCy, om2, al2)
-        inv = 1.0 / omega[n]
-        a0, a1, a2 = _sizes_2(Q, i1, n, L, inv)
-        b0, b1, b2 = _sizes_2(Q, i2, n, L, inv)
-        _group_error_2(k, m, E, n, eps, max(a0, b0), max(a1, b1), max(a2, b2))
+
+
+@_loop()
+def _rrr_rate(Q, T, iA, a0, a1, iC, c0, c1, i1, i2, ba0, ba1, bc0, bc1, mid, hd2, unreliable, L,
+              inv_omega, m, E, j, eps, n):
+    """`rrr_rates` at sample n, the error bounds in column j of m and E; returns the condition
+    number."""
+    vAx, vAy, aAx, aAy = _point_rates(Q, T, iA, a0, a1, n)
+    vCx, vCy, aCx, aCy = _point_rates(Q, T, iC, c0, c1, n)
+    c1_, s1, c2, s2 = T[i1, 0, n], T[i1, 1, n], T[i2, 0, n], T[i2, 1, n]
+    r1x, r1y = c1_ * ba0 - s1 * ba1, s1 * ba0 + c1_ * ba1
+    r2x, r2y = c2 * bc0 - s2 * bc1, s2 * bc0 + c2 * bc1
+    inv = 1.0 / (r1y * r2x - r1x * r2y)
+    wx, wy = vCx - vAx, vCy - vAy
+    om1 = -(wx * r2x + wy * r2y) * inv
+    om2 = -(wx * r1x + wy * r1y) * inv
+    o1, o2 = om1 * om1, om2 * om2
+    w2x = aCx - aAx + o1 * r1x - o2 * r2x
+    w2y = aCy - aAy + o1 * r1y - o2 * r2y
+    al1 = -(w2x * r2x + w2y * r2y) * inv
+    al2 = -(w2x * r1x + w2y * r1y) * inv
+    b = r1x * r2x + r1y * r2y
+    k = (mid + math.sqrt(hd2 + b * b)) * abs(inv)
+    if not k < math.inf:  # NaN and ∞: the dyad is singular (or unassembled) here
+        k = math.inf
+    if k >= unreliable:
+        om1 = om2 = al1 = al2 = math.nan
+    _set_rates(Q, T, i1, a0, a1, n, vAx, vAy, aAx, aAy, om1, al1)
+    _set_rates(Q, T, i2, c0, c1, n, vCx, vCy, aCx, aCy, om2, al2)
+    x0, x1, x2 = _sizes_2(Q, i1, n, L, inv_omega)
+    y0, y1, y2 = _sizes_2(Q, i2, n, L, inv_omega)
+    _group_error_2(k, m, E, j, eps, max(x0, y0), max(x1, y1), max(x2, y2))
+    return k
 
 
 @_loop(2)
@@ -225,26 +250,36 @@ def rrp_positions(Q0, T, iA, A, ig, P, e0, rsq, tol, branch, ir, ib, k, r, ok):
     block keeps the guide's angle. A squared half chord below zero by rounding only (above tol)
     counts as zero."""
     for n in range(Q0.shape[2]):
-        cg, sg = T[ig, 0, n], T[ig, 1, n]
-        ax, ay = _world(Q0, T, iA, A[0], A[1], n)
-        qx, qy = _world(Q0, T, ig, P[0], P[1], n)
-        ex, ey = cg * e0[0] - sg * e0[1], sg * e0[0] + cg * e0[1]
-        wx, wy = qx - ax, qy - ay
-        b = ex * wx + ey * wy
-        disc = b * b - (wx * wx + wy * wy - rsq)
-        if disc < 0.0 and disc > tol:
-            disc = 0.0
-        lam = branch[n] * math.sqrt(disc) - b  # NaN where the rod's circle misses the track
-        px, py = qx + lam * ex, qy + lam * ey
-        if not (px - px == 0.0 and py - py == 0.0):  # NaN or ∞
+        good, r[0, n], r[1, n] = _rrp_position(
+            Q0, T, iA, A[0], A[1], ig, P[0], P[1], e0[0], e0[1], rsq, tol, branch[n], ir, ib,
+            k[0], k[1], n)
+        if not good:
             ok[n] = False
-        rx, ry = px - ax, py - ay
-        nr = 1.0 / math.sqrt(rx * rx + ry * ry)
-        c, sn = (rx * k[0] + ry * k[1]) * nr, (ry * k[0] - rx * k[1]) * nr
-        _place(Q0, T, ir, c, sn, A[0], A[1], ax, ay, n)
-        _place(Q0, T, ib, cg, sg, P[0], P[1], px, py, n)
-        Q0[ib, 2, n] = Q0[ig, 2, n]
-        r[0, n], r[1, n] = rx, ry
+
+
+@_loop()
+def _rrp_position(Q0, T, iA, a0, a1, ig, p0, p1, e00, e01, rsq, tol, sign, ir, ib, k0, k1, n):
+    """`rrp_positions` at sample n (branch sign `sign`): places the rod and the block (the
+    block's angle too); returns whether the dyad assembles and the rod's vector A → P."""
+    cg, sg = T[ig, 0, n], T[ig, 1, n]
+    ax, ay = _world(Q0, T, iA, a0, a1, n)
+    qx, qy = _world(Q0, T, ig, p0, p1, n)
+    ex, ey = cg * e00 - sg * e01, sg * e00 + cg * e01
+    wx, wy = qx - ax, qy - ay
+    b = ex * wx + ey * wy
+    disc = b * b - (wx * wx + wy * wy - rsq)
+    if disc < 0.0 and disc > tol:
+        disc = 0.0
+    lam = sign * math.sqrt(disc) - b  # NaN where the rod's circle misses the track
+    px, py = qx + lam * ex, qy + lam * ey
+    good = px - px == 0.0 and py - py == 0.0  # not NaN or ∞
+    rx, ry = px - ax, py - ay
+    nr = 1.0 / math.sqrt(rx * rx + ry * ry)
+    c, sn = (rx * k0 + ry * k1) * nr, (ry * k0 - rx * k1) * nr
+    _place(Q0, T, ir, c, sn, a0, a1, ax, ay, n)
+    _place(Q0, T, ib, cg, sg, p0, p1, px, py, n)
+    Q0[ib, 2, n] = Q0[ig, 2, n]
+    return good, rx, ry
 
 
 @_loop(3)
@@ -259,37 +294,46 @@ def rrp_rates(Q, T, iA, A, ig, P, e0, AP, length, ir, ib, unreliable, cond, L, o
     (|r| + |r × e|)/|r·e|: infinite where the rod stands square to the track (the dyad's
     limit position). Error bounds carried on as in `rrr_rates`."""
     for n in range(Q.shape[3]):
-        vAx, vAy, aAx, aAy = _point_rates(Q, T, iA, A[0], A[1], n)
-        c, sn, cg, sg = T[ir, 0, n], T[ir, 1, n], T[ig, 0, n], T[ig, 1, n]
-        rx, ry = c * AP[0] - sn * AP[1], sn * AP[0] + c * AP[1]
-        ex, ey = cg * e0[0] - sg * e0[1], sg * e0[0] + cg * e0[1]
-        # P's place along the track (the block and the guide have the same angle)
-        lam = (Q[0, ib, 0, n] - Q[0, ig, 0, n]) * ex + (Q[0, ib, 1, n] - Q[0, ig, 1, n]) * ey
-        vcx, vcy, acx, acy = _point_rates(Q, T, ig, P[0] + lam * e0[0], P[1] + lam * e0[1], n)
-        inv = 1.0 / (rx * ex + ry * ey)
-        wx, wy = vcx - vAx, vcy - vAy
-        om = (ex * wy - ey * wx) * inv
-        slide = -(rx * wx + ry * wy) * inv  # λ̇
-        og = Q[1, ig, 2, n]
-        cor, oo = 2.0 * slide * og, om * om
-        w2x = acx - cor * ey - aAx + oo * rx
-        w2y = acy + cor * ex - aAy + oo * ry
-        al = (ex * w2y - ey * w2x) * inv
-        k = (length + abs(rx * ey - ry * ex)) * abs(inv)
-        if not k < math.inf:  # NaN and ∞: at the limit position (or unassembled)
-            k = math.inf
+        k = _rrp_rate(Q, T, iA, A[0], A[1], ig, P[0], P[1], e0[0], e0[1], AP[0], AP[1], length,
+                      ir, ib, unreliable, L, 1.0 / omega[n], m, E, n, eps, n)
         if k > cond[n]:
             cond[n] = k
-        if k >= unreliable:
-            om = al = math.nan
-        _set_rates(Q, T, ir, A[0], A[1], n, vAx, vAy, aAx, aAy, om, al)
-        _set_rates(Q, T, ib, P[0], P[1], n, vAx - om * ry, vAy + om * rx,
-                   aAx - al * ry - om * om * rx, aAy + al * rx - om * om * ry, og,
-                   2.0 * Q[2, ig, 2, n])
-        inv = 1.0 / omega[n]
-        a0, a1, a2 = _sizes_2(Q, ir, n, L, inv)
-        b0, b1, b2 = _sizes_2(Q, ib, n, L, inv)
-        _group_error_2(k, m, E, n, eps, max(a0, b0), max(a1, b1), max(a2, b2))
+
+
+@_loop()
+def _rrp_rate(Q, T, iA, a0, a1, ig, p0, p1, e00, e01, ap0, ap1, length, ir, ib, unreliable, L,
+              inv_omega, m, E, j, eps, n):
+    """`rrp_rates` at sample n, the error bounds in column j of m and E; returns the condition
+    number."""
+    vAx, vAy, aAx, aAy = _point_rates(Q, T, iA, a0, a1, n)
+    c, sn, cg, sg = T[ir, 0, n], T[ir, 1, n], T[ig, 0, n], T[ig, 1, n]
+    rx, ry = c * ap0 - sn * ap1, sn * ap0 + c * ap1
+    ex, ey = cg * e00 - sg * e01, sg * e00 + cg * e01
+    # P's place along the track (the block and the guide have the same angle)
+    lam = (Q[0, ib, 0, n] - Q[0, ig, 0, n]) * ex + (Q[0, ib, 1, n] - Q[0, ig, 1, n]) * ey
+    vcx, vcy, acx, acy = _point_rates(Q, T, ig, p0 + lam * e00, p1 + lam * e01, n)
+    inv = 1.0 / (rx * ex + ry * ey)
+    wx, wy = vcx - vAx, vcy - vAy
+    om = (ex * wy - ey * wx) * inv
+    slide = -(rx * wx + ry * wy) * inv  # λ̇
+    og = Q[1, ig, 2, n]
+    cor, oo = 2.0 * slide * og, om * om
+    w2x = acx - cor * ey - aAx + oo * rx
+    w2y = acy + cor * ex - aAy + oo * ry
+    al = (ex * w2y - ey * w2x) * inv
+    k = (length + abs(rx * ey - ry * ex)) * abs(inv)
+    if not k < math.inf:  # NaN and ∞: at the limit position (or unassembled)
+        k = math.inf
+    if k >= unreliable:
+        om = al = math.nan
+    _set_rates(Q, T, ir, a0, a1, n, vAx, vAy, aAx, aAy, om, al)
+    _set_rates(Q, T, ib, p0, p1, n, vAx - om * ry, vAy + om * rx,
+               aAx - al * ry - om * om * rx, aAy + al * rx - om * om * ry, og,
+               2.0 * Q[2, ig, 2, n])
+    x0, x1, x2 = _sizes_2(Q, ir, n, L, inv_omega)
+    y0, y1, y2 = _sizes_2(Q, ib, n, L, inv_omega)
+    _group_error_2(k, m, E, j, eps, max(x0, y0), max(x1, y1), max(x2, y2))
+    return k
 
 
 @_loop(2)
@@ -297,10 +341,16 @@ def driver_positions(Q0, T, b, i, H, u, u0):
     """Revolute driver: link i turns about the hinge H of its base link b by the input u,
     θ = θ_b + u − u0 (u0 the input at the design position)."""
     for n in range(Q0.shape[2]):
-        hx, hy = _world(Q0, T, b, H[0], H[1], n)
-        th = Q0[b, 2, n] + (u[n] - u0)
-        _place(Q0, T, i, math.cos(th), math.sin(th), H[0], H[1], hx, hy, n)
-        Q0[i, 2, n] = th
+        _driver_position(Q0, T, b, i, H[0], H[1], u[n], u0, n)
+
+
+@_loop()
+def _driver_position(Q0, T, b, i, h0, h1, u, u0, n):
+    """`driver_positions` at sample n (input u)."""
+    hx, hy = _world(Q0, T, b, h0, h1, n)
+    th = Q0[b, 2, n] + (u - u0)
+    _place(Q0, T, i, math.cos(th), math.sin(th), h0, h1, hx, hy, n)
+    Q0[i, 2, n] = th
 
 
 @_loop(3)
@@ -310,12 +360,19 @@ def driver_rates(Q, T, b, i, H, u1, u2, kappa, L, omega, m, E, eps):
     condition number is kappa at every sample; the error bounds are carried on as in
     `rrr_rates`."""
     for n in range(Q.shape[3]):
-        vx, vy, ax, ay = _point_rates(Q, T, b, H[0], H[1], n)
-        om = Q[1, b, 2, n] + u1[n]
-        al = 2.0 * (Q[2, b, 2, n] + u2[n])
-        _set_rates(Q, T, i, H[0], H[1], n, vx, vy, ax, ay, om, al)
-        a0, a1, a2 = _sizes_2(Q, i, n, L, 1.0 / omega[n])
-        _group_error_2(kappa, m, E, n, eps, a0, a1, a2)
+        _driver_rate(Q, T, b, i, H[0], H[1], u1[n], u2[n], kappa, L, 1.0 / omega[n], m, E, n,
+                     eps, n)
+
+
+@_loop()
+def _driver_rate(Q, T, b, i, h0, h1, u1, u2, kappa, L, inv_omega, m, E, j, eps, n):
+    """`driver_rates` at sample n, the error bounds in column j of m and E."""
+    vx, vy, ax, ay = _point_rates(Q, T, b, h0, h1, n)
+    om = Q[1, b, 2, n] + u1
+    al = 2.0 * (Q[2, b, 2, n] + u2)
+    _set_rates(Q, T, i, h0, h1, n, vx, vy, ax, ay, om, al)
+    a0, a1, a2 = _sizes_2(Q, i, n, L, inv_omega)
+    _group_error_2(kappa, m, E, j, eps, a0, a1, a2)
 
 
 @_loop(1)
@@ -443,19 +500,25 @@ def rate_scales(C, per, out):
     """Ω per sample: the largest |c_k/per|^(1/k) over the drivers' Taylor coefficients
     C[driver, k, n] (k ≥ 1; per: 1, or L for a slide); 1 where every rate is zero."""
     for n in range(C.shape[2]):
-        top = 0.0
-        for d in range(C.shape[0]):
-            for k in range(1, C.shape[1]):
-                v = abs(C[d, k, n]) / per[d]
-                if k == 2:
-                    v = math.sqrt(v)
-                elif k == 4:
-                    v = math.sqrt(math.sqrt(v))
-                elif k > 1:
-                    v = v ** (1.0 / k)
-                if v > top:
-                    top = v
-        out[n] = top if top > 0.0 else 1.0
+        out[n] = _rate_scale(C, per, n)
+
+
+@_loop()
+def _rate_scale(C, per, n):
+    """`rate_scales` at sample n."""
+    top = 0.0
+    for d in range(C.shape[0]):
+        for k in range(1, C.shape[1]):
+            v = abs(C[d, k, n]) / per[d]
+            if k == 2:
+                v = math.sqrt(v)
+            elif k == 4:
+                v = math.sqrt(math.sqrt(v))
+            elif k > 1:
+                v = v ** (1.0 / k)
+            if v > top:
+                top = v
+    return top if top > 0.0 else 1.0
 
 
 @_loop(1)
@@ -463,11 +526,108 @@ def relative_errors(E, m, eps, weights, out):
     """out[n]: the largest E[k, n] (k ≤ out's orders: positions, velocities, accelerations)
     over the larger of 1 and m[k, n], times weights[k], plus eps (the rounding of the stored
     answer); inf where NaN."""
-    K = min(E.shape[0], 3)
     for n in range(E.shape[1]):
-        top = 0.0
-        for k in range(K):  # positions against the scale L; rates against their size too
-            v = (E[k, n] / max(m[k, n], 1.0) if k else E[0, n]) * weights[k]
-            if not v <= top:  # NaN too
-                top = v if v == v else math.inf
-        out[n] = top + eps
+        out[n] = _relative_error(E, m, eps, weights, n)
+
+
+@_loop()
+def _relative_error(E, m, eps, weights, n):
+    """`relative_errors` of column n."""
+    K = min(E.shape[0], 3)
+    top = 0.0
+    for k in range(K):  # positions against the scale L; rates against their size too
+        v = (E[k, n] / max(m[k, n], 1.0) if k else E[0, n]) * weights[k]
+        if not v <= top:  # NaN too
+            top = v if v == v else math.inf
+    return top + eps
+
+
+# ---------------------------------------------------------------------------- the fused pass
+#: opcodes of `fused_positions` / `fused_rates` (the solution order as tables, `fused.Tables`)
+DRIVER, RRR, RRP = 0, 1, 2
+
+
+@_loop(0)
+def fused_positions(ok, ops, fl, Q0, T, U, signs, R, lo, hi):
+    """Positions of every group of a mechanism at the samples lo … hi − 1 (a block), through
+    the whole solution order (the tables `ops`, `fl` of `fused.tables`: per group its opcode,
+    link indices and constants), each group's loop over the block that of its own kernel
+    (`driver_positions`, `rrr_positions`, `rrp_positions`: the block stays in the CPU's cache,
+    and a loop over samples with the group's constants in registers is what the compiler
+    vectorises). ok[n]: every group assembles. U[driver, k, n]: the inputs' Taylor
+    coefficients; signs[row, n − lo]: the dyads' assembly signs; the dyads' hinge vectors go to
+    R[col …, n − lo] for the caller's vectorised arctan2."""
+    for n in range(lo, hi):
+        ok[n] = True
+    for g in range(ops.shape[0]):
+        op, i1, i2, i3, i4, row, c = (ops[g, 0], ops[g, 1], ops[g, 2], ops[g, 3], ops[g, 4],
+                                      ops[g, 5], ops[g, 6])
+        f0, f1, f2, f3, f4, f5, f6 = fl[g, 0], fl[g, 1], fl[g, 2], fl[g, 3], fl[g, 4], fl[g, 5], \
+            fl[g, 6]
+        f7, f8, f9, f10, f11 = fl[g, 7], fl[g, 8], fl[g, 9], fl[g, 10], fl[g, 11]
+        if op == DRIVER:
+            for n in range(lo, hi):
+                u = U[i3, 0, n]
+                _driver_position(Q0, T, i1, i2, f0, f1, u, f2, n)
+                if not u - u == 0.0:  # NaN or ∞
+                    ok[n] = False
+        elif op == RRR:
+            for n in range(lo, hi):
+                j = n - lo
+                gd, R[c, j], R[c + 1, j], R[c + 2, j], R[c + 3, j] = _rrr_position(
+                    Q0, T, i1, f0, f1, i2, f2, f3, i3, i4, f4, f5, f6, signs[row, j], f8, f9,
+                    f10, f11, n)
+                if not gd:
+                    ok[n] = False
+        else:
+            for n in range(lo, hi):
+                j = n - lo
+                gd, R[c, j], R[c + 1, j] = _rrp_position(
+                    Q0, T, i1, f0, f1, i2, f2, f3, f4, f5, f6, f7, signs[row, j], i3, i4, f9,
+                    f10, n)
+                if not gd:
+                    ok[n] = False
+
+
+@_loop(0)
+def fused_rates(cond, ops, fl, Q, T, U, per, L, eps, m0, unreliable, plain, weighted, err, serr,
+                E0, m, E, lo, hi):
+    """Velocities and accelerations of every group at the samples lo … hi − 1 (a block),
+    through the solution order as in `fused_positions`, with the condition numbers (cond[n]
+    raised to the groups'), the forward error bounds of `precision.ErrorBudget` (work arrays
+    m, E of the block's size; m0: the drawing's coordinates over L) and their relative values
+    (`relative_errors` with the weights `plain` into err, `weighted` into serr); E0[n]: the
+    positions' bound."""
+    for n in range(lo, hi):
+        j = n - lo
+        m[0, j], m[1, j], m[2, j] = m0, 0.0, 0.0
+        E[0, j], E[1, j], E[2, j] = 0.0, 0.0, 0.0
+        E0[n] = 1.0 / _rate_scale(U, per, n)  # 1/Ω here until the end
+    for g in range(ops.shape[0]):
+        op, i1, i2, i3, i4 = ops[g, 0], ops[g, 1], ops[g, 2], ops[g, 3], ops[g, 4]
+        f0, f1, f2, f3, f4, f5 = fl[g, 0], fl[g, 1], fl[g, 2], fl[g, 3], fl[g, 4], fl[g, 5]
+        f11, f12, f13, f14, f15, f16, f17 = fl[g, 11], fl[g, 12], fl[g, 13], fl[g, 14], \
+            fl[g, 15], fl[g, 16], fl[g, 17]
+        if op == DRIVER:
+            for n in range(lo, hi):
+                _driver_rate(Q, T, i1, i2, f0, f1, U[i3, 1, n], U[i3, 2, n], f3, L, E0[n], m, E,
+                             n - lo, eps, n)
+                if f3 > cond[n]:
+                    cond[n] = f3
+        elif op == RRR:
+            for n in range(lo, hi):
+                k = _rrr_rate(Q, T, i1, f0, f1, i2, f2, f3, i3, i4, f12, f13, f14, f15, f16, f17,
+                              unreliable, L, E0[n], m, E, n - lo, eps, n)
+                if k > cond[n]:
+                    cond[n] = k
+        else:
+            for n in range(lo, hi):
+                k = _rrp_rate(Q, T, i1, f0, f1, i2, f2, f3, f4, f5, f11, f12, f13, i3, i4,
+                              unreliable, L, E0[n], m, E, n - lo, eps, n)
+                if k > cond[n]:
+                    cond[n] = k
+    for n in range(lo, hi):
+        j = n - lo
+        err[n] = _relative_error(E, m, eps, plain, j)
+        serr[n] = _relative_error(E, m, eps, weighted, j)
+        E0[n] = E[0, j]

@@ -150,6 +150,9 @@ def whole_motion(mech: Mechanism, *, step: float | None = None, speed: float | N
                  order: int = 2) -> Solution:
     """Solve the whole motion. `step` is the input increment (radians or length unit; default
     1° or 1/200 of the stroke); `speed` overrides the driver's constant speed."""
+    if not mech.drivers:
+        raise InputError(f"mechanism '{mech.name}' has no driver: a chain driven by given point "
+                         "velocities is solved at its drawn position only (point_inputs.solve_given)")
     if len(mech.drivers) != 1:
         laws = [d.law for d in mech.drivers]
         if all(law.duration for law in laws):

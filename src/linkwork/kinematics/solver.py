@@ -16,6 +16,7 @@ from ..errors import InputError, StructureError
 from ..model import ConstantSpeed, Mechanism, Prismatic
 from ..topology import solution_order
 from .branches import branch_schedule, path_schedule
+from . import fused
 from .contact import interference, rows
 from .continuation import PathEnd, continuation_guesses
 from .groups import GroupSolver, State, input_coefficients
@@ -29,6 +30,9 @@ BLOCK = 8192  # samples per block when every group has a closed form
 #: not the batch's (ten million samples of a four-bar: 3.7 GB of answer, a gigabyte less at
 #: the peak)
 KERNEL_BLOCK = 1 << 17
+#: mechanisms whose every group has a compiled closed form take the fused pass (`fused`); off,
+#: they take the per-group path (the tests compare the two)
+FUSED = True
 
 
 @lru_cache(maxsize=64)
@@ -98,7 +102,8 @@ def _plain_numbers(mech: Mechanism, inputs, times, *rates) -> tuple:
 
 
 def solve(mech: Mechanism, inputs=None, *, times=None, velocities=None, accelerations=None,
-          jerks=None, snaps=None, order: int = 2, resume: PathEnd | None = None) -> Solution:
+          jerks=None, snaps=None, order: int = 2, resume: PathEnd | None = None,
+          previous: Mechanism | None = None) -> Solution:
     """Solve `mech` at the given input values (shape (N,) for one driver, (N, drivers) else) or
     at `times` (each driver's law evaluated at those times).
 
@@ -119,6 +124,10 @@ def solve(mech: Mechanism, inputs=None, *, times=None, velocities=None, accelera
     `path_end` is where it left off: `resume=` that in the next solve goes on from there
     instead of from the design input, so that samples solved in chunks are solved as in one
     piece. (One driver: every sample is solved on its own; `path_end` is None.)
+
+    `previous`: a mechanism of the same structure solved before, with other dimensions (the
+    last frame of a drag): the Newton-solved groups' march starts from its march, checked step
+    by step (`continuation._carry`; what was taken: `continuation.carried(mech)`).
     """
     if order not in (1, 2, 3, 4):
         raise InputError("order must be 1 (velocities), 2 (accelerations), 3 (jerks) or 4 "
@@ -156,7 +165,7 @@ def solve(mech: Mechanism, inputs=None, *, times=None, velocities=None, accelera
 
         def branches_in(sl: slice) -> dict:  # the signs of a block only (no N-long temporaries)
             return {g: sch.signs(values[sl, 0]) for g, sch in schedules.items()}
-        guesses = continuation_guesses(mech, solvers, values) if generic else {}
+        guesses = continuation_guesses(mech, solvers, values, previous=previous) if generic else {}
     else:  # a path through the samples
         schedules, lam, path = path_schedule(mech, solvers, values, resume)
         branches = {g: sch.signs(lam) for g, sch in schedules.items()}
@@ -165,7 +174,7 @@ def solve(mech: Mechanism, inputs=None, *, times=None, velocities=None, accelera
             return {g: b[sl] for g, b in branches.items()}
         ends: dict = {}
         guesses = continuation_guesses(mech, solvers, values, schedules, start=resume,
-                                       ends=ends) if generic else {}
+                                       ends=ends, previous=previous) if generic else {}
         if np.isfinite(values).all() and len(path.vertices) > 0:
             end = path.knots[len(path.vertices) - 1]
             prev = len(path.vertices) >= 2
@@ -186,36 +195,42 @@ def solve(mech: Mechanism, inputs=None, *, times=None, velocities=None, accelera
     compiled = order == 2 and all(s.compiled for s in solvers)
     block = max(N, 1) if generic else KERNEL_BLOCK if compiled else BLOCK
     can_polish = polishable(mech)
-    for lo in range(0, N, block):
-        sl = slice(lo, lo + block)
-        state = State(mech, Q[:, sl], {j: c[:, sl] for j, c in inputs.items()}, T=T[:, :, sl],
-                      known={frame}, branches=branches_in(sl))
-        ok = assembled[sl]  # a view: updated in place
-        for s in solvers:
-            g = guesses.get(s.group)
-            ok &= s.positions(state, None if g is None else g[sl])
-        if not ok.all():
-            # NaN marks them; the other samples keep their cos θ, sin θ (not recomputed: a
-            # sample's answer does not depend on the others in its batch)
-            state.Q[:, ~ok] = np.nan
-            state.T[:, :, ~ok] = np.nan
-            state.rots.clear()
-        cond = condition[sl]
-        budget = state.budget = ErrorBudget(mech, state)
-        for s in solvers:
-            np.maximum(cond, s.derivatives(state, ok), out=cond)
-        if not ok.all():
-            state.Q[1:, ~ok] = np.nan
-        _finish_block(state)
-        err = budget.relative(errors[sl])
-        serr = budget.relative(status_errors[sl], for_status=True)
-        # samples near a singular position: once more in extended precision
-        sel = np.flatnonzero(ok & (serr > TOLERANCE) & (cond < POLISH_LIMIT)) if can_polish \
-            else np.zeros(0, dtype=int)
-        if sel.size:
-            e, se, c = polish(mech, solvers, state.Q, state.T, state.inputs, sel, budget.E[0, sel])
-            done = np.isfinite(e)  # else the double answer stays, with its bound
-            err[sel[done]], serr[sel[done]], cond[sel[done]] = e[done], se[done], c[done]
+    tab = fused.tables(mech, solvers) if FUSED and order == 2 and not generic and \
+        n_rows == len(mech.link_names) else None
+    if tab is not None:  # one compiled pass through the solution order per sample
+        fused.solve_blocks(mech, tab, solvers, Q, T, inputs, branches_in, assembled, condition,
+                           errors, status_errors, can_polish)
+    else:
+        for lo in range(0, N, block):
+            sl = slice(lo, lo + block)
+            state = State(mech, Q[:, sl], {j: c[:, sl] for j, c in inputs.items()}, T=T[:, :, sl],
+                          known={frame}, branches=branches_in(sl))
+            ok = assembled[sl]  # a view: updated in place
+            for s in solvers:
+                g = guesses.get(s.group)
+                ok &= s.positions(state, None if g is None else g[sl])
+            if not ok.all():
+                # NaN marks them; the other samples keep their cos θ, sin θ (not recomputed: a
+                # sample's answer does not depend on the others in its batch)
+                state.Q[:, ~ok] = np.nan
+                state.T[:, :, ~ok] = np.nan
+                state.rots.clear()
+            cond = condition[sl]
+            budget = state.budget = ErrorBudget(mech, state)
+            for s in solvers:
+                np.maximum(cond, s.derivatives(state, ok), out=cond)
+            if not ok.all():
+                state.Q[1:, ~ok] = np.nan
+            _finish_block(state)
+            err = budget.relative(errors[sl])
+            serr = budget.relative(status_errors[sl], for_status=True)
+            # samples near a singular position: once more in extended precision
+            sel = np.flatnonzero(ok & (serr > TOLERANCE) & (cond < POLISH_LIMIT)) if can_polish \
+                else np.zeros(0, dtype=int)
+            if sel.size:
+                e, se, c = polish(mech, solvers, state.Q, state.T, state.inputs, sel, budget.E[0, sel])
+                done = np.isfinite(e)  # else the double answer stays, with its bound
+                err[sel[done]], serr[sel[done]], cond[sel[done]] = e[done], se[done], c[done]
     if n_rows > len(mech.link_names):  # higher pairs: a contact cut into is no contact
         cut = interference(mech, Q[0])
         if cut.any():

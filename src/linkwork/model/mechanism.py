@@ -26,6 +26,7 @@ import numpy as np
 from ..errors import ModelError
 from ..geometry.profiles import Profile
 from .higher_pairs import CamContact, RollingContact, validate_higher_pair, with_pivot_carrier
+from .given import normalized
 from .intermittent import GenevaPair, StarWheelPair, validate_intermittent
 from .laws import ConstantSpeed, MotionLaw, PolynomialLaw, TabulatedLaw
 
@@ -146,13 +147,15 @@ class Mechanism:
     frame: str
     description: str = ""
     profiles: Mapping[str, Profile] = field(default_factory=lambda: MappingProxyType({}))
+    #: given point velocities or directions (`given`): the inputs of a chain without drivers
+    given: tuple = ()
 
     # ------------------------------------------------------------------ construction
     @classmethod
     def build(cls, *, name: str, points: Mapping[str, object], links: Mapping[str, list[str]],
               joints: list[Joint], drivers: list[dict] | list[Driver], frame: str = "frame",
               length_unit: str = "mm", description: str = "",
-              profiles: Mapping[str, Profile] | None = None) -> "Mechanism":
+              profiles: Mapping[str, Profile] | None = None, given=()) -> "Mechanism":
         pts = {k: _ro(v) for k, v in points.items()}
         for k, v in pts.items():
             if v.shape != (2,) or not np.isfinite(v).all():
@@ -169,6 +172,8 @@ class Mechanism:
                    links=link_objs, joints=joint_objs, drivers=mech_drivers, frame=frame,
                    description=description, profiles=MappingProxyType(dict(profiles or {})))
         mech._validate()
+        if given:
+            object.__setattr__(mech, "given", normalized(mech, given))
         return mech
 
     # ------------------------------------------------------------------ lookups

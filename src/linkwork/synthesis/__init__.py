@@ -15,6 +15,9 @@
   from several starts, with or without prescribed timing).
 - `second_order`: Alt's dwell linkage and Pröll's substitution, from curvature theory.
 - `cognates`: the Roberts–Chebyshev cognates of a four-bar's coupler point.
+- `straight_line`: straight-line guidance: the straightness of any path (over a stroke), a
+  Ball-point tracer, Watt's, Chebyshev's and Evans's linkages from requirements, Hart's exact
+  line from any four-bar.
 """
 
 from .burmester import (BurmesterPoints, Cubic, Dyad, burmester_points, centre_point_curve,
@@ -26,6 +29,9 @@ from .function import FunctionGenerator, FunctionTask, chebyshev_spacing, freude
 from .linkages import Linkage, LinkageCheck, linkages
 from .path import PathGenerator, path_generator
 from .second_order import DwellLinkage, Substitution, alt_dwell, proell_substitution
+from .straight_line import (Straightness, StraightLineLinkage, ball_point_linkage, chebyshev_linkage,
+                            evans_linkage, hart_straight_line, path_straightness, straightness,
+                            watt_linkage)
 from .positions import (Positions, SynthesisError, centre_points, circle_points, image_point,
                         image_pole, pole_triangle)
 
@@ -36,4 +42,6 @@ __all__ = ["BurmesterPoints", "CamReport", "Cognates", "cognates", "Cubic", "Dwe
            "circle_point_curve", "circle_points", "corners", "curve_samples", "cusps", "dyad",
            "follower_diagrams", "image_point", "image_pole", "linkages", "mechanism_text",
            "pole_triangle", "pressure_angle", "radius_of_curvature", "smallest_base_radius",
-           "with_base_radius"]
+           "with_base_radius", "Straightness", "StraightLineLinkage", "ball_point_linkage",
+           "chebyshev_linkage", "evans_linkage", "hart_straight_line", "path_straightness", "straightness",
+           "watt_linkage"]

@@ -7,7 +7,8 @@ them. The analyses that need the solver (real mobility, Grashof, Assur classes) 
 """
 
 from .counts import kutzbach
-from .groups import Group, RotationClasses, constraint_count, slider_loop, solution_order
+from .groups import (Group, RotationClasses, constraint_count, slider_loop, solution_order,
+                     structure_key)
 
 __all__ = ["Group", "RotationClasses", "constraint_count", "kutzbach", "slider_loop",
-           "solution_order"]
+           "solution_order", "structure_key"]

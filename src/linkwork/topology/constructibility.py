@@ -93,6 +93,9 @@ class Chain:
     #: curved slots (pair, guide link, pin link, pin point, centre point of the guide link): the
     #: relative velocity is tangent to the arc, so both links project equally on its radius
     arcs: tuple[tuple[str, str, str, str, str], ...] = ()  # the link whose images are the pole o (None: a free chain)
+    #: points that lie on a cam contact's common normal at every position (pair, point): a
+    #: roller's centre (the normal of a circle passes through its centre)
+    on_normals: tuple[tuple[str, str], ...] = ()
 
     def restricted(self, links, known) -> "Chain":
         """The part of the chain on ``links`` with the links ``known`` given (a group of the
@@ -106,7 +109,8 @@ class Chain:
                      known=tuple(known), collinear=self.collinear, frame=self.frame,
                      contacts=tuple(c for c in self.contacts if {c[1], c[2]} <= keep),
                      rolls=tuple(c for c in self.rolls if {c[1], c[2]} <= keep),
-                     arcs=tuple(c for c in self.arcs if {c[1], c[2]} <= keep))
+                     arcs=tuple(c for c in self.arcs if {c[1], c[2]} <= keep),
+                     on_normals=self.on_normals)
 
     @classmethod
     def free(cls, links: Mapping[str, str | tuple[str, ...]], *, given: tuple[str, ...] = (),
@@ -128,6 +132,7 @@ class Chain:
     def from_mechanism(cls, mech: Mechanism) -> "Chain":
         links = {ln.name: tuple(ln.points) for ln in mech.links}
         hinges, slides, slots, meshes, unsupported, contacts, rolls, arcs = [], [], [], [], [], [], [], []
+        on_normals = []
         for j in mech.joints:
             if isinstance(j, Revolute):
                 hinges.append((j.point, *j.links))
@@ -137,6 +142,8 @@ class Chain:
                 slots.append((j.name, j.links[0], j.links[1], j.point))
             elif isinstance(j, CamContact):
                 contacts.append((j.name, *j.links, contact_point_name(mech, j)))
+                if j.follower == "roller" and j.point:
+                    on_normals.append((j.name, j.point))
             elif isinstance(j, CircularSlot):
                 arcs.append((j.name, *j.links, j.point, j.center))
             elif isinstance(j, RollingContact):
@@ -171,10 +178,14 @@ class Chain:
                 drivers.append((d.driven, j.point, None))
             else:
                 unsupported.append(f"driver {d.joint} ({j.kind})")
+        # given point velocities and directions (a chain without drivers, Rosenauer 1937 paper 2)
+        given = tuple(g.point for g in mech.given if g.kind == "velocity")
+        directions = tuple(g.point for g in mech.given if g.kind == "direction")
         return cls(links, tuple(hinges), tuple(slides), tuple(slots), tuple(meshes),
-                   known=(mech.frame,), drivers=tuple(drivers),
+                   known=(mech.frame,), drivers=tuple(drivers), given=given, directions=directions,
                    collinear=collinear, unsupported=tuple(unsupported),
-                   frame=mech.frame, contacts=tuple(contacts), rolls=tuple(rolls), arcs=tuple(arcs))
+                   frame=mech.frame, contacts=tuple(contacts), rolls=tuple(rolls), arcs=tuple(arcs),
+                   on_normals=tuple(on_normals))
 
 
 def contact_point_name(mech: Mechanism, pair) -> str:
@@ -294,6 +305,10 @@ class VelocityScript:
     #: 1937 paper 7, remark: a binary link driving)
     trial: tuple[str, str, str] | None = None
     scale_by: tuple[str, str, str] | None = None
+    #: false position with two trials: the binary link (name, end K, its link there, end M, its
+    #: link there) left out of the trial chain; the trial rate is found where the trial images
+    #: of K and M again satisfy km ⟂ KM (the check, affine in the trial rate: two trials)
+    check: tuple[str, str, str, str, str] | None = None
 
     @property
     def direct(self) -> bool:
@@ -306,6 +321,14 @@ class VelocityScript:
         return not self.unreached and not self.unsupported
 
     def verdict(self) -> str:
+        if self.check is not None:
+            t, d, c = self.trial, self.scale_by, self.check
+            return (f"not directly constructible from the driver {d[0]} (Rosenauer's rule fails, and "
+                    f"no second crank's trial rate makes it direct); by false position with two trials: "
+                    f"without the binary link {c[0]} the chain is direct from {d[0]} and a trial rate of "
+                    f"{t[0]} about {upper(t[1])}; two trial rates give two rows of images, and the check "
+                    f"{lower(c[1])}{lower(c[3])} ⟂ {upper(c[1])}{upper(c[3])} fixes the point of each "
+                    "row (similar point rows)")
         if self.trial is not None:
             t, d = self.trial, self.scale_by
             return (f"not directly constructible from the driver {d[0]} (Rosenauer's rule fails); "
@@ -327,7 +350,9 @@ class VelocityScript:
     def as_dict(self) -> dict:
         return {"direct": self.direct, "verdict": self.verdict(),
                 "false_position": None if self.trial is None else
-                {"trial_driver": self.trial[0], "pivot": self.trial[1], "scaled_to": self.scale_by[0]},
+                {"trial_driver": self.trial[0], "pivot": self.trial[1], "scaled_to": self.scale_by[0],
+                 "trials": 1 if self.check is None else 2,
+                 "check_link": None if self.check is None else self.check[0]},
                 "auxiliary_points": [{"name": a.name, "link": a.link,
                                       "lines": [ln.text() for ln in a.lines]} for a in self.aux],
                 "order": list(self.order), "unreached": list(self.unreached),
@@ -400,8 +425,10 @@ class _Lines:
             self.lines.append((MechLine("join", (pts[0], pts[1])), set(s)))
 
     def join(self, p: str, q: str) -> MechLine:
+        # every line of the drawing is straight: a guide's or a contact's normal through two
+        # known points of it is that line
         for line, members in self.lines:
-            if line.kind == "join" and p in members and q in members:
+            if line.kind != "direction" and p in members and q in members:
                 return line
         line = MechLine("join", (p, q))
         self.lines.append((line, {p, q}))
@@ -433,6 +460,10 @@ class _Planner:
         self.hinges = chain.hinges + tuple((t, g1, g2) for _, g1, g2, t, _, _ in chain.meshes) + \
             tuple((k, a, b) for _, a, b, k in chain.rolls)
         self.lines = _Lines(chain.collinear)
+        for pair, point in chain.on_normals:
+            for name, a, b, k in chain.contacts:
+                if name == pair:
+                    self.lines.members(self.lines.special("contact", k, pair)).add(point)
         self.steps: list[Step] = []
         self.aux: list[AuxPoint] = []
         self.order: list[str] = []
@@ -535,6 +566,13 @@ class _Planner:
         r = self._rfind(ln)
         partner = next((k for k in self.known if self._rfind(k) == r and k != ln
                         and (k in self.c.known or len(self.kpoints[k]) >= 2)), None)
+        if kp and partner is not None and partner in self.c.known:
+            # a link translating with the frame: every image is the known one (no intersection
+            # that the drawing's position could make parallel)
+            self.steps.append(Step("copy", ln, p, f"{self.label(ln, p)} = {self.label(ln, kp[0])} "
+                                   f"({ln} translates with the frame)", base=(kp[0],), partner=partner))
+            self.mark(ln, p)
+            return
         if len(kp) >= 2:
             for i, x in enumerate(kp):
                 for y in kp[i + 1:]:
@@ -751,7 +789,7 @@ def plan_velocities(chain: Chain | Mechanism) -> VelocityScript:
     if script.direct or script.unsupported or len(chain.drivers) != 1 or chain.given \
             or chain.directions or chain.drivers[0][2] is None or chain.frame is None:
         return script
-    return _false_position(chain) or script
+    return _false_position(chain) or _two_trials(chain) or script
 
 
 def _false_position(chain: Chain) -> VelocityScript | None:
@@ -785,4 +823,54 @@ def _false_position(chain: Chain) -> VelocityScript | None:
                 f"o{lower(dr)}*"))
             return replace(trial, steps=(first,) + trial.steps[1:] + (scale,),
                            trial=(link, p, ref), scale_by=driver)
+    return None
+
+
+def _two_trials(chain: Chain) -> VelocityScript | None:
+    """False position with two trials (*ähnliche Punktreihen* in their general form): where no
+    second crank's trial rate alone makes the plan direct, leave out a binary link KM and give
+    a second crank a trial rate besides the true driver. The images are then affine in the trial
+    rate, so they move on lines (similar point rows) that do not pass through o; two trials give
+    each row, and the left-out link's check km ⟂ KM picks the point of every row."""
+    from dataclasses import replace
+
+    driver = chain.drivers[0]
+    binary = [ln for ln, pts in chain.links.items() if len(set(pts)) == 2 and ln != chain.frame
+              and ln != driver[0]]
+    cranks = []
+    for p, a, b in chain.hinges:
+        if chain.frame in (a, b):
+            link = b if a == chain.frame else a
+            ref = next((q for q in chain.links[link] if q != p), None)
+            if link != driver[0] and ref is not None:
+                cranks.append((link, p, ref))
+    for cut in binary:
+        K, M = dict.fromkeys(chain.links[cut])
+        ends = []
+        for X in (K, M):
+            ends.append(next((ln for q, a, b in chain.hinges for ln in (a, b)
+                              if q == X and cut in (a, b) and ln != cut), None))
+        if None in ends or chain.frame in ends:
+            continue
+        rest = replace(chain, links={ln: p for ln, p in chain.links.items() if ln != cut},
+                       hinges=tuple(h for h in chain.hinges if cut not in h[1:]))
+        for link, p, ref in cranks:
+            if link == cut:
+                continue
+            trial = _Planner(replace(rest, drivers=(driver, (link, p, ref)))).run()
+            if not trial.direct:
+                continue
+            steps = list(trial.steps)
+            k = next(i for i, s in enumerate(steps) if s.kind == "driver" and s.link == link)
+            steps[k] = replace(steps[k], text=(
+                f"trial: {lower(ref)}* = o + ω*·{upper(p)}{upper(ref)} turned 90° (two "
+                f"arbitrary rates ω* of {link} about {upper(p)}, drawn one after the other; the "
+                f"images that follow are trial images x*, x**; the binary link {cut} is left out)"))
+            check = Step("check", cut, M, (
+                f"check {cut}: the true images satisfy {lower(K)}{lower(M)} ⟂ {upper(K)}{upper(M)}; "
+                f"on the trial rows {lower(K)}*{lower(K)}** and {lower(M)}*{lower(M)}** this holds at one "
+                f"ratio, and every image x divides x*x** in that ratio (similar point rows)"),
+                base=(K,))
+            return replace(trial, steps=tuple(steps) + (check,), trial=(link, p, ref), scale_by=driver,
+                           check=(cut, K, ends[0], M, ends[1]))
     return None

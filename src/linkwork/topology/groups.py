@@ -33,7 +33,9 @@ solver (`_check_slider_group`).
 
 from __future__ import annotations
 
+from collections import OrderedDict
 from dataclasses import dataclass
+from threading import Lock
 
 import numpy as np
 
@@ -260,6 +262,22 @@ def _connected_subsets(unknown: list[str], joints: list[Joint], size: int):
                       key=lambda t: [index[ln] for ln in t])
 
 
+def structure_key(mech: Mechanism) -> tuple:
+    """What the solution order depends on: the links, the frame, each pair's name, kind, the
+    links it involves and the freedoms it removes, and the driven pairs. Not the drawing: a
+    design point moved (a drag in the workbench) keeps the key, and with it the order."""
+    return (mech.frame, mech.link_names,
+            tuple((j.name, j.kind, _involved(j), pair_constraints(j)) for j in mech.joints),
+            tuple(d.joint for d in mech.drivers))
+
+
+#: structure key -> (the groups found, the message of the StructureError that ended the
+#: search or None); the last ORDERS_KEPT structures
+_orders: OrderedDict = OrderedDict()
+ORDERS_KEPT = 64
+_orders_lock = Lock()
+
+
 def solution_order(mech: Mechanism) -> tuple[Group, ...]:
     """The groups of `mech` in solution order, from the frame and the drivers.
 
@@ -269,14 +287,53 @@ def solution_order(mech: Mechanism) -> tuple[Group, ...]:
     Raises `StructureError` naming the links that stay undetermined (too few inputs), the pairs
     that over-determine a group (redundant constraints), or the parallel guides of a wedge that
     cannot transmit motion.
+
+    The search counts freedoms only, so it is kept per `structure_key` and done once for every
+    mechanism of that structure; the one check that reads the drawing (the guides of a group of
+    sliding pairs, `_check_slider_group`) is made for each mechanism, group by group in the
+    order, before the search's own verdict.
     """
+    key = structure_key(mech)
+    with _orders_lock:
+        found = _orders.get(key)
+        if found is not None:
+            _orders.move_to_end(key)
+    if found is None:
+        found = _search(mech)
+        with _orders_lock:
+            _orders[key] = found
+            while len(_orders) > ORDERS_KEPT:
+                _orders.popitem(last=False)
+    groups, failure = found
+    rotations = RotationClasses(mech.link_names)
+    solved: set[str] = set()
+    for g in groups:
+        _, rot = _wedge_pairs([mech.joint(n) for n in g.joints], rotations)
+        _check_slider_group(mech, g, rot, solved)
+        rotations = rot
+        solved.update(g.joints)
+    if failure is not None:
+        raise StructureError(failure)
+    return groups
+
+
+def _search(mech: Mechanism) -> tuple[tuple[Group, ...], str | None]:
+    """The groups in solution order (`solution_order`, without the check of the guides), and
+    the message of the StructureError that stopped the search after them (None: complete)."""
+    groups: list[Group] = []
+    try:
+        _search_into(mech, groups)
+    except StructureError as exc:
+        return tuple(groups), str(exc)
+    return tuple(groups), None
+
+
+def _search_into(mech: Mechanism, groups: list[Group]) -> None:
     driver_joints = {d.joint for d in mech.drivers}
     known = {mech.frame}
     unknown = [n for n in mech.link_names if n != mech.frame]
     remaining = list(mech.joints)
     rotations = RotationClasses(mech.link_names)
-    solved: set[str] = set()
-    groups: list[Group] = []
     _check_connected(mech)
     while unknown:
         found = None
@@ -306,10 +363,8 @@ def solution_order(mech: Mechanism) -> tuple[Group, ...]:
                 f"under-constrained: the links {', '.join(unknown)} are not determined by the "
                 f"drivers ({', '.join(sorted(driver_joints)) or 'none'}); the mechanism needs "
                 f"{max(missing, 1)} more input{'s' if missing > 1 else ''} or pairs")
-        _check_slider_group(mech, found, rot, solved)
         groups.append(found)
         rotations = rot
-        solved.update(found.joints)
         known.update(found.links)
         unknown = [n for n in unknown if n not in found.links]
         remaining = [j for j in remaining if j.name not in found.joints]
@@ -318,4 +373,3 @@ def solution_order(mech: Mechanism) -> tuple[Group, ...]:
             "over-constrained: the pairs " + ", ".join(j.name for j in remaining)
             + " join links that the other pairs already determine (redundant constraints); "
             "remove them or a link")
-    return tuple(groups)

@@ -105,12 +105,14 @@ def _design_inputs(mech: Mechanism) -> np.ndarray:
     return np.array([mech.driver_input_at_design(d) for d in mech.drivers])
 
 
-def solve_at(mech: Mechanism, req: m.At, order: int = 2) -> Solution:
-    """Solve where the request says: its inputs, its times, or the design position."""
+def solve_at(mech: Mechanism, req: m.At, order: int = 2, previous: Mechanism | None = None) -> Solution:
+    """Solve where the request says: its inputs, its times, or the design position.
+    `previous`: the mechanism of the drag's previous frame (`Loaded.previous`), whose march
+    the Newton-solved groups carry over (`solve(..., previous=)`)."""
     if req.times is not None:
-        return solve(mech, times=np.asarray(req.times, float), order=order)
+        return solve(mech, times=np.asarray(req.times, float), order=order, previous=previous)
     if req.at is None:
-        return solve(mech, _design_inputs(mech)[None, :], order=order)
+        return solve(mech, _design_inputs(mech)[None, :], order=order, previous=previous)
     n = len(mech.drivers)
     if isinstance(req.at[0], list):
         bad = [len(v) for v in req.at if len(v) != n]
@@ -123,7 +125,7 @@ def solve_at(mech: Mechanism, req: m.At, order: int = 2) -> Solution:
             raise InputError(f"mechanism '{mech.name}' has {n} drivers: give at as one list "
                              f"of {n} values per sample")
         values = np.asarray(req.at, float)[:, None]
-    return solve(mech, values, order=order)
+    return solve(mech, values, order=order, previous=previous)
 
 
 def mechanism_info(loaded, warned: list[str]) -> dict:
@@ -148,12 +150,14 @@ def mechanism_info(loaded, warned: list[str]) -> dict:
     }
 
 
-def drawing(mech: Mechanism, req: m.DrawingRequest) -> dict:
-    """The drawing of `linkwork draw` for the request, with what the page needs beside it."""
+def drawing(mech: Mechanism, req: m.DrawingRequest, previous: Mechanism | None = None) -> dict:
+    """The drawing of `linkwork draw` for the request, with what the page needs beside it
+    (`previous`: the drag's previous frame, see `solve_at`)."""
     from ..constructions import construct
     from ..drawing import Scene, scene_figure
+    from ..kinematics.continuation import carried
 
-    sol = solve_at(mech, req, order=2)
+    sol = solve_at(mech, req, order=2, previous=previous)
     if len(sol) != 1:
         raise InputError(f"a drawing shows one position; got {len(sol)} samples")
     where = "the design position" if req.at is None and req.times is None else (
@@ -197,7 +201,8 @@ def drawing(mech: Mechanism, req: m.DrawingRequest) -> dict:
                        for p in mech.points for xy in [sol.point(p).position[0]]},
             "poses": {ln: (None if not np.all(np.isfinite(q)) else [float(v) for v in q])
                       for ln in mech.link_names for q in [sol.pose_derivatives(ln)[0, 0]]},
-            "transforms": fig.transforms(), "steps": steps}
+            "transforms": fig.transforms(), "steps": steps,
+            "march": None if carried(mech) is None else str(carried(mech))}
 
 
 def compile_kernels() -> None:
@@ -300,7 +305,8 @@ def create_app(workdir: str | Path | None = None, *, compiled: bool = False) -> 
     def solve_(req: m.SolveRequest):
         """`linkwork.solve` at the given inputs or times (`analyze --at … --format json`)."""
         with _warnings() as warned:
-            sol = solve_at(load(req.source).mechanism, req, req.order)
+            loaded = load(req.source)
+            sol = solve_at(loaded.mechanism, req, req.order, loaded.previous)
             doc = to_document(sol)
         return respond({**doc, "warnings": warned})
 
@@ -379,7 +385,8 @@ def create_app(workdir: str | Path | None = None, *, compiled: bool = False) -> 
         """The SVG of `linkwork draw` at one position, with the layers and construction asked,
         the point positions drawn and how the drawing maps world to SVG coordinates."""
         with _warnings() as warned:
-            doc = drawing(load(req.source).mechanism, req)
+            loaded = load(req.source)
+            doc = drawing(loaded.mechanism, req, loaded.previous)
         return respond({**doc, "warnings": warned})
 
     @app.post("/api/drawing.png", responses={**errors, 200: {"content": {"image/png": {}}}},

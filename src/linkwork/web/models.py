@@ -215,4 +215,8 @@ class Drawing(BaseModel):
         description="per panel: x_svg = origin[0] + (x − lo[0])/per_mm, "
                     "y_svg = origin[1] + (hi[1] − y)/per_mm")
     steps: list[str] = []
+    march: Optional[str] = Field(
+        None, description="a moved mechanism with Newton-solved groups: whether their march "
+                          "was carried over from the drag's previous frame, or marched again "
+                          "from the design position's branch and why")
     warnings: list[str] = []

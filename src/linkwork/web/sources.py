@@ -27,11 +27,14 @@ MAX_TEXT = 200_000
 
 @dataclass(frozen=True)
 class Loaded:
-    """A mechanism with the text it was read from and the label its messages name."""
+    """A mechanism with the text it was read from and the label its messages name; a moved
+    mechanism (a frame of a drag) also with the mechanism loaded from the same source before
+    it (`previous`), whose march its solves may carry over (`solve(..., previous=)`)."""
 
     mechanism: Mechanism
     text: str
     label: str
+    previous: Mechanism | None = None
 
 
 def library_folder() -> Path:
@@ -99,6 +102,9 @@ class Sources:
         self.workdir = None if workdir is None else Path(workdir).resolve()
         self._cache: OrderedDict[tuple, Loaded] = OrderedDict()
         self._lock = Lock()
+        # per source (without moved points): the mechanism last built from it, the previous
+        # frame of the next one moved
+        self._last: OrderedDict[tuple, Mechanism] = OrderedDict()
 
     def _read(self, library: str | None, file: str | None, text: str | None,
               name: str | None) -> Loaded:
@@ -130,15 +136,22 @@ class Sources:
                     self._cache.move_to_end(key)
                     return self._cache[key]
         if points:  # the file as read (kept for the next frame of a drag), then moved
+            with self._lock:
+                previous = self._last.get(key[:4])
             base = self.load(library=library, file=file, text=text, name=name)
-            out = Loaded(moved(base.mechanism, points), base.text, base.label)
+            out = Loaded(moved(base.mechanism, points), base.text, base.label,
+                         previous or base.mechanism)
         else:
             out = self._read(library, file, text, name)
-        if file is None:
-            with self._lock:
+        with self._lock:
+            if file is None:
                 self._cache[key] = out
                 while len(self._cache) > self.SIZE:
                     self._cache.popitem(last=False)
+            self._last[key[:4]] = out.mechanism
+            self._last.move_to_end(key[:4])
+            while len(self._last) > self.SIZE:
+                self._last.popitem(last=False)
         return out
 
     @staticmethod

@@ -1,0 +1,137 @@
+"""The fused pass: one compiled walk through the whole solution order per sample, for the
+mechanisms whose every group has a compiled closed form (revolute drivers on the frame, RRR and
+RRP dyads: four-bars, slider-cranks, the Watt and Stephenson six-bars, Jansen's linkage).
+
+The per-group path (`solver.solve` with `groups.GroupSolver`) makes one pass over the batch per
+group and kind of work (positions, rates, error bounds), each reading and writing the work
+arrays of all samples again. Here the solution order is encoded once per mechanism as small
+tables (`tables`: an opcode per group, its link indices and constants), and two loops of
+`kernels` interpret them sample by sample: `fused_positions` (every group's positions) and
+`fused_rates` (every group's velocities, accelerations, condition number and the forward error
+bounds of `precision`, kept in registers). Between the two, the links' angles are taken with
+NumPy's vectorised arctan2 from the hinge vectors (a scalar atan2 costs more than the rest of
+the positions). The tables are data: one compiled interpreter serves every mechanism.
+
+The arithmetic is that of the per-group kernels (the same per-sample helpers), so the results
+are the same to the last bit but for numba's contractions; the statuses, condition numbers,
+error bounds and the polishing of samples near singular positions are those of the per-group
+path (tests/kinematics/test_fused.py holds the two to each other).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import lru_cache
+
+import numpy as np
+
+from ..model import Mechanism
+from . import kernels
+from .groups import UNRELIABLE_CONDITION, GroupSolver
+from .precision import (_PLAIN, _STATUS_WEIGHTS, EPS, POLISH_LIMIT, TOLERANCE, coordinate_size,
+                        polish)
+
+#: samples per block: the hinge vectors and assembly signs are block-sized, and a block's poses
+#: are still in the CPU's cache when the rates pass reads them
+BLOCK = 4096
+
+
+@dataclass(frozen=True)
+class Tables:
+    """A mechanism's solution order for the fused loops (see `kernels.fused_positions`)."""
+
+    ops: np.ndarray  # (groups, 7) int64: opcode, link indices, sign row, hinge-vector row
+    fl: np.ndarray  # (groups, 18) float64: the group's constants (`GroupSolver.fast`)
+    #: in order: (hinge-vector row, link, φ): the link's angle is arctan2 of the row's vector
+    #: less φ; (−1, block, guide): the block keeps the guide's angle
+    angles: tuple
+    vectors: int  # rows of hinge vectors
+    signs: tuple  # per sign row: (group, design sign)
+
+
+@lru_cache(maxsize=64)
+def tables(mech: Mechanism, solvers: tuple[GroupSolver, ...]) -> Tables | None:
+    """The tables of `mech` (its group solvers in solution order), or None when a group has no
+    compiled closed form (Newton groups, cams, gears, prismatic drivers, a driver whose base
+    is not the frame, higher pairs): such a mechanism takes the per-group path."""
+    frame = mech.link_index[mech.frame]
+    joints = {d.joint: i for i, d in enumerate(mech.drivers)}
+    ops, fl, angles, signs = [], [], [], []
+    vectors = 0
+    for s in solvers:
+        f = s.fast
+        if f is None or (s.kind == "driver" and f["b"] != frame):
+            return None
+        o, c = np.full(7, -1, dtype=np.int64), np.zeros(18)
+        if s.kind == "driver":
+            o[:4] = kernels.DRIVER, f["b"], f["i"], joints[f["joint"]]
+            c[:4] = *f["H"], f["u0"], f["cond"]
+        elif s.kind == "RRR":
+            o[:7] = kernels.RRR, f["iA"], f["iC"], f["i1"], f["i2"], len(signs), vectors
+            c[:] = (*f["A"], *f["C"], f["diff"], f["L1sq"], f["tol"], f["branch"], *f["k1"],
+                    *f["k2"], *f["BA"], *f["BC"], f["mid"], f["hd2"])
+            angles += [(vectors, f["i1"], f["phi1"]), (vectors + 2, f["i2"], f["phi2"])]
+            vectors += 4
+        elif s.kind == "RRP":
+            o[:7] = kernels.RRP, f["iA"], f["ig"], f["ir"], f["ib"], len(signs), vectors
+            c[:14] = (*f["A"], *f["P"], *f["e0"], f["rsq"], f["tol"], s.design_sign, *f["k"],
+                      *f["AP"], f["length"])
+            angles += [(vectors, f["ir"], f["phi"]), (-1, f["ib"], f["ig"])]
+            vectors += 2
+        else:
+            return None
+        if s.kind != "driver":
+            signs.append((s.group, s.design_sign))
+        ops.append(o)
+        fl.append(c)
+    return Tables(np.array(ops), np.array(fl), tuple(angles), vectors, tuple(signs))
+
+
+def solve_blocks(mech: Mechanism, tab: Tables, solvers, Q: np.ndarray, T: np.ndarray,
+                 inputs: dict, branches_in, assembled: np.ndarray, condition: np.ndarray,
+                 errors: np.ndarray, status_errors: np.ndarray, can_polish: bool) -> None:
+    """Fill Q (Q[k, n, link, (x, y, θ)], order 2), T, and per sample `assembled`, `condition`,
+    `errors`, `status_errors` as the per-group loop of `solver.solve` does, block by block."""
+    N = Q.shape[1]
+    Qm = Q.transpose(0, 2, 3, 1)  # Qm[k, link, (x, y, θ), n]: the memory's order
+    Q0 = Qm[0]
+    U = np.stack([inputs[d.joint] for d in mech.drivers])  # (drivers, 3, N)
+    per = np.array([mech.length_scale if mech.joint(d.joint).kind == "prismatic" else 1.0
+                    for d in mech.drivers])
+    B = max(1, min(N, BLOCK))
+    R = np.empty((max(tab.vectors, 1), B))
+    signs = np.empty((max(len(tab.signs), 1), B))
+    E0 = np.empty(N)
+    m, E = np.empty((3, B)), np.empty((3, B))
+    L, m0 = mech.length_scale, coordinate_size(mech)
+    for lo in range(0, N, B):
+        hi = min(N, lo + B)
+        sl, nb = slice(lo, hi), hi - lo
+        given = branches_in(sl)
+        for row, (group, design) in enumerate(tab.signs):
+            signs[row, :nb] = given.get(group, design)
+        kernels.fused_positions(assembled, tab.ops, tab.fl, Q0, T, U, signs, R, lo, hi)
+        for row, i, phi in tab.angles:
+            if row >= 0:
+                np.subtract(np.arctan2(R[row + 1, :nb], R[row, :nb]), phi, out=Q0[i, 2, sl])
+            else:  # a block turns with its guide
+                Q0[i, 2, sl] = Q0[phi, 2, sl]
+        ok = assembled[sl]
+        Qb = Q[:, sl]
+        if not ok.all():  # as `solver.solve`: NaN marks them
+            Qb[:, ~ok] = np.nan
+            T[:, :, sl][:, :, ~ok] = np.nan
+        kernels.fused_rates(condition, tab.ops, tab.fl, Qm, T, U, per, L, EPS, m0,
+                            UNRELIABLE_CONDITION, _PLAIN, _STATUS_WEIGHTS, errors, status_errors,
+                            E0, m, E, lo, hi)
+        if not ok.all():
+            Qb[1:, ~ok] = np.nan
+        err, serr, cond = errors[sl], status_errors[sl], condition[sl]
+        # samples near a singular position: once more in extended precision (`precision`)
+        sel = np.flatnonzero(ok & (serr > TOLERANCE) & (cond < POLISH_LIMIT)) if can_polish \
+            else np.zeros(0, dtype=int)
+        if sel.size:
+            e, se, c = polish(mech, solvers, Qb, T[:, :, sl],
+                              {j: v[:, sl] for j, v in inputs.items()}, sel, E0[sl][sel])
+            done = np.isfinite(e)
+            err[sel[done]], serr[sel[done]], cond[sel[done]] = e[done], se[done], c[done]
