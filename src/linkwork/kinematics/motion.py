@@ -24,7 +24,7 @@ from ..errors import InputError
 from ..model import ConstantSpeed, Mechanism
 from .branches import branch_schedule, chain_period, near_change_point, placed
 from .contact import interference, rows
-from .continuation import march_limit
+from .continuation import march_limit, march_period
 from .solution import Solution
 from .solver import plan, solve
 
@@ -134,8 +134,12 @@ def _march_limits(mech: Mechanism, solvers, u0: float, span: float,
     Newton's residual tolerance blurs the turning point), which is where bisection on `solve`
     ends too, since solve's Newton starts from that march and finds nothing beyond it; but the
     bisection would take sixty solves next to the turning point, where Newton's method converges
-    slowly."""
+    slowly. A revolute input turns fully where the marches upwards and downwards meet at half a
+    turn (or a few turns) each way: those are the marches the whole motion's samples beyond
+    half a turn are solved from, so the limit search marches nothing the solve does not."""
     d = mech.drivers[0]
+    if not prismatic and march_period(mech, solvers) is not None:
+        return None  # the marches to ±half a turn meet: a crank (and the solve needs them)
     upper = march_limit(mech, solvers, +1, span)
     if upper is None and not prismatic:
         return None

@@ -26,6 +26,7 @@ from fastapi.staticfiles import StaticFiles
 from ..errors import LinkworkError, LinkworkWarning, InputError, UnknownMechanismError
 from ..kinematics import Solution, Status, solve, whole_motion
 from ..kinematics.export import to_document
+from ..kinematics.warmup import compile_kernels
 from ..model import Mechanism, Prismatic
 from . import models as m
 from .sources import Sources
@@ -203,25 +204,6 @@ def drawing(mech: Mechanism, req: m.DrawingRequest, previous: Mechanism | None =
                       for ln in mech.link_names for q in [sol.pose_derivatives(ln)[0, 0]]},
             "transforms": fig.transforms(), "steps": steps,
             "march": None if carried(mech) is None else str(carried(mech))}
-
-
-def compile_kernels() -> None:
-    """Run the kinematics' compiled loops for every batch size from now on.
-
-    A command line solve of a few samples runs them interpreted, because loading numba costs a
-    second or more per process; a server pays that once, and a drag frame of a four-bar (a
-    branch scan of 2 049 inputs and the solve) then takes a few milliseconds instead of a
-    hundred. The loops are compiled (or loaded from numba's cache) first by batches large
-    enough to take the compiled path anyway, so no request waits for the compiler; only then
-    is the threshold lowered."""
-    from ..io import load
-    from ..io.library import LIBRARY_PREFIX
-    from ..kinematics import kernels
-    inputs = np.linspace(0.0, 2 * np.pi, kernels.INTERPRETED_UP_TO + 1)[:, None]
-    for name in ("crank-rocker", "slider-crank-centric"):  # the RRR and RRP dyads, the driver
-        solve(load(LIBRARY_PREFIX + name), inputs, order=2)
-    kernels.INTERPRETED_UP_TO = 0
-
 
 
 def create_app(workdir: str | Path | None = None, *, compiled: bool = False) -> FastAPI:
