@@ -18,7 +18,7 @@ from ..topology import solution_order
 from .branches import branch_schedule, path_schedule
 from . import fused, kernels
 from .contact import interference, rows
-from .continuation import PathEnd, continuation_guesses
+from .continuation import PathEnd, continuation_guesses, follow
 from .groups import GroupSolver, State, input_coefficients
 from .precision import POLISH_LIMIT, TOLERANCE, ErrorBudget, polish, polishable
 from .solution import Solution, Status
@@ -127,7 +127,7 @@ def solve(mech: Mechanism, inputs=None, *, times=None, velocities=None, accelera
 
     `previous`: a mechanism of the same structure solved before, with other dimensions (the
     last frame of a drag): the Newton-solved groups' march starts from its march, checked step
-    by step (`continuation._carry`; what was taken: `continuation.carried(mech)`).
+    by step (`continuation.follow`; what was taken: `continuation.carried(mech)`).
 
     `compiled`: run the numba-compiled loops (True), their interpreted source (False: no numba
     import, for a few samples), or choose by the batch's size (None; see
@@ -162,6 +162,8 @@ def solve(mech: Mechanism, inputs=None, *, times=None, velocities=None, accelera
                 (velocities, "velocities"), (accelerations, "accelerations"), (jerks, "jerks"),
                 (snaps, "snaps")))
     N = values.shape[0]
+    if previous is not None:  # every march of mech from here on, the change points' scans too
+        follow(mech, previous)
     solvers = plan(mech)
     frame = mech.link_index[mech.frame]
     n_rows = len(rows(mech))  # the links, then the contact coordinates of higher pairs
@@ -174,7 +176,7 @@ def solve(mech: Mechanism, inputs=None, *, times=None, velocities=None, accelera
 
         def branches_in(sl: slice) -> dict:  # the signs of a block only (no N-long temporaries)
             return {g: sch.signs(values[sl, 0]) for g, sch in schedules.items()}
-        guesses = continuation_guesses(mech, solvers, values, previous=previous) if generic else {}
+        guesses = continuation_guesses(mech, solvers, values) if generic else {}
     else:  # a path through the samples
         schedules, lam, path = path_schedule(mech, solvers, values, resume)
         branches = {g: sch.signs(lam) for g, sch in schedules.items()}
@@ -183,7 +185,7 @@ def solve(mech: Mechanism, inputs=None, *, times=None, velocities=None, accelera
             return {g: b[sl] for g, b in branches.items()}
         ends: dict = {}
         guesses = continuation_guesses(mech, solvers, values, schedules, start=resume,
-                                       ends=ends, previous=previous) if generic else {}
+                                       ends=ends) if generic else {}
         if np.isfinite(values).all() and len(path.vertices) > 0:
             end = path.knots[len(path.vertices) - 1]
             prev = len(path.vertices) >= 2

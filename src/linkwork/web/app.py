@@ -112,6 +112,12 @@ def solve_at(mech: Mechanism, req: m.At, order: int = 2, previous: Mechanism | N
     """Solve where the request says: its inputs, its times, or the design position.
     `previous`: the mechanism of the drag's previous frame (`Loaded.previous`), whose march
     the Newton-solved groups carry over (`solve(..., previous=)`)."""
+    if mech.given:  # driven by given point velocities: its drawn position only
+        if req.times is not None or req.at is not None:
+            raise InputError(f"mechanism '{mech.name}' is driven by given point velocities: it is "
+                             "solved at its drawn position only (no at, no times)")
+        from ..kinematics.point_inputs import solve_given
+        return solve_given(mech)
     if req.times is not None:
         return solve(mech, times=np.asarray(req.times, float), order=order, previous=previous)
     if req.at is None:
