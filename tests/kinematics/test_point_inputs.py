@@ -240,8 +240,18 @@ def test_too_few_conditions_say_how_many_more():
 
 def test_too_many_conditions_name_the_points():
     given = [GivenVelocity("A", [1.0, 2.0]), GivenVelocity("B", [0.0, 1.0]), GivenDirection("D", [1.0, 0.0])]
-    with pytest.raises(StructureError, match=r"over-determined: 1 condition too many.*the direction of v_D"):
+    with pytest.raises(StructureError, match=r"over-determined: 1 condition too many.*the direction of v_D.*(drop 1 condition)"):
         solve_given(free_chain(WATT, WATT_POS, given))
+
+
+@pytest.mark.parametrize("vb,word", [([1.0, 5.0], "say 1 time what the others fix already"),
+                                     ([0.0, 1.0], "contradict each other")])
+def test_two_velocities_of_one_free_bar_repeat_or_contradict(vb, word):
+    """A free bar AB (3 degrees of freedom) with v_A and v_B given: four conditions, one too many;
+    consistent when the components along AB agree (projection theorem), else contradictory."""
+    bar = hinge_chain("bar", {"A": [0.0, 0.0], "B": [50.0, 0.0]}, {"AB": ["A", "B"]})
+    with pytest.raises(StructureError, match=rf"over-determined: 1 condition too many.*{word}"):
+        solve_given(bar, [GivenVelocity("A", [1.0, 0.0]), GivenVelocity("B", vb)])
 
 
 def test_triad_with_concurrent_binary_links_is_singular_and_says_about_which_point():
