@@ -86,7 +86,7 @@ def test_user_names_are_printed_as_written_in_calculus_figures(tmp_path):
     assert r"$v_{\mathrm{piston\_pin}}$" in labels
     figs[-1].savefig(tmp_path / "x.png")  # the label parses and renders
     fig, _ = plans_figure(mech, "crank_pin", solution=linkwork.whole_motion(mech, order=3))
-    assert "crank_pin" in fig.texts[0].get_text()
+    assert "crank_pin" in fig._suptitle.get_text()
     from linkwork.drawing.plots import motion_plot
     fig = motion_plot(mech, points=["piston_pin"], links=["rod"])
     labels = [ln.get_label() for ax in fig.axes for ln in ax.get_lines()]

@@ -153,3 +153,42 @@ def test_pole_lines_reach_their_poles_and_do_not_double_a_bar():
         for f in (0.25, 0.5, 0.75):
             q = a + f * (b - a)
             assert min(dist(q, s) for s in segs) > 0.05
+
+
+def test_inset_draws_the_cut_layers_whole_at_their_own_scale():
+    mech, sc, fig, root = figure("inset")
+    assert set(fig.spaces) == {"mechanism", "inset"}
+    main, inset = fig.spaces["mechanism"], fig.spaces["inset"]
+    assert inset.per_mm > main.per_mm and inset.unit == main.unit
+    # the mechanism panel is cut at its frame, as with --frame mechanism ...
+    assert root.find(f".//{SVG}g[@id='frame-mechanism']") is not None
+    # ... but no arrows there: the centres off the sheet are drawn (and labelled) in the inset
+    assert not list(root.find(f".//{SVG}g[@id='layer-return']").iter(f"{SVG}line"))
+    tf = fig.transforms()["inset"]
+    lo, hi = np.array(tf["lo"]), np.array(tf["hi"])
+    c = return_circle(sc.sol, "coupler")[0]
+    for q in (c.centre.xy + c.radius * np.array([1, 0]), c.centre.xy - c.radius * np.array([0, 1])):
+        assert np.all(q >= lo - 1e-9) and np.all(q <= hi + 1e-9)  # the return circle whole
+    clo, chi = fig.clip["mechanism"]
+    assert np.all(clo >= lo) and np.all(chi <= hi)  # and the frame, marked in it
+    assert root.find(f".//{SVG}*[@id='inset-frame']") is not None
+    text = " ".join("".join(t.itertext()) for t in root.iter(f"{SVG}text"))
+    assert "centre of the return circle (coupler)" in text and "M_l (inset)" not in text
+    assert "(inset): 1 mm" in text  # its scale bar in the legend
+
+
+def test_no_inset_when_nothing_runs_past_the_frame():
+    mech = linkwork.load("library:crank-rocker")
+    fig = scene_figure(scene_at(mech, np.radians(30)), ["mechanism", "poles"], frame="inset")
+    assert set(fig.spaces) == {"mechanism"}
+    assert "inset" not in fig.to_svg()
+
+
+def test_cli_frame_inset(tmp_path):
+    out = tmp_path / "i.svg"
+    r = CliRunner().invoke(app, ["draw", "library:crank-rocker", "--at", "30", "--show", ",".join(ALL),
+                                 "--frame", "inset", "-o", str(out)])
+    assert r.exit_code == 0, r.output
+    assert 'id="inset-frame"' in out.read_text()
+    r = CliRunner().invoke(app, ["draw", "library:crank-rocker", "--frame", "corner", "-o", str(out)])
+    assert r.exit_code != 0 and "inset" in r.output

@@ -47,7 +47,7 @@ def register(app: typer.Typer) -> None:
         length_scale: Optional[float] = typer.Option(None, "--length-scale", help="mechanism units per mm of paper"),
         velocity_scale: Optional[float] = typer.Option(None, "--velocity-scale", help="velocity units per mm of paper"),
         acceleration_scale: Optional[float] = typer.Option(None, "--acceleration-scale", help="acceleration units per mm of paper"),
-        frame: str = typer.Option("mechanism", "--frame", help="mechanism: the mechanism stays the subject, larger layers are cut at a frame around it (arrows to centres off the sheet); all: everything drawn fits the sheet"),
+        frame: str = typer.Option("mechanism", "--frame", help="mechanism: the mechanism stays the subject, larger layers are cut at a frame around it (arrows to centres off the sheet); inset: cut at the frame too, and drawn whole in an inset at their own scale; all: everything drawn fits the sheet"),
         dpi: float = typer.Option(200.0, "--dpi", help="resolution of PNG output"),
         output: str = typer.Option(..., "-o", "--output", help="FILE.svg, FILE.png, FILE.pdf or FILE.dxf (mechanism and paths layers, in the file's length unit, for CAD)"),
     ) -> None:

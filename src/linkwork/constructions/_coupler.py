@@ -32,6 +32,7 @@ from ..kinematics import Solution
 from ..model import Mechanism
 from ._common import conjugate_pairs, coupler_link, norm, perp, rotate
 from ._plan import upper
+from ..topology.constructibility import script
 
 ANGLE_A = np.radians(60.0)  # direction of the arbitrary line (a) against the ray
 
@@ -82,7 +83,7 @@ def coupler_data(mech: Mechanism, sol: Solution, link: str | None = None,
         if c.centre is not None:
             return Point.from_xy(sol.point(c.centre).position), upper(c.centre)
         g = np.broadcast_to(np.asarray(c.guide, float), (n, 2))
-        return Point.at_infinity(perp(g)), f"C_{upper(c.point).replace('_', '')}"
+        return Point.at_infinity(perp(g)), "C_" + script(c.point)
     Ca, la = centre(a)
     Cb, lb = centre(b)
     design = mech.points

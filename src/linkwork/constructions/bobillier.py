@@ -34,6 +34,7 @@ from ..model import Mechanism
 from ._common import singular_positions, as_solution
 from ._coupler import coupler_data, draw_given, draw_pole, inflection_from_two_rays
 from ._plan import upper
+from ..topology.constructibility import script
 
 SOURCE = "Rosenauer §21–25 (Bobillier, collineation axis, Aronhold), Pöschl §34, Beispiel 9"
 
@@ -71,16 +72,16 @@ def bobillier(mech: Mechanism, inputs, *, link: str | None = None,
     Q = b.meet("Q", AB, CC, Role.AUXILIARY, "Q", k1="lAB", k2="lCC", finite=False)
     axis = b.join("axis", P, Q, Role.RESULT, "a", why="Q coincides with the pole")
     b.step(f"Through P draw the parallel to {la}{lb}; it meets {nA}{nB} in S. Through S draw the parallel "
-           f"to the collineation axis; it meets ray I in W_{nA.replace('_', '')} and ray II in "
-           f"W_{nB.replace('_', '')}.")
+           f"to the collineation axis; it meets ray I in W_{script(cd.names[0])} and ray II in "
+           f"W_{script(cd.names[1])}.")
     PS = b.parallel("PS", P, CC)
     S = b.meet("S", PS, AB, Role.AUXILIARY, "S", k1="PS", k2="lAB", finite=not np.all(cd.Ca.is_infinite & cd.Cb.is_infinite),
                why=f"{nA}{nB} is parallel to {la}{lb} (Q at infinity), so S falls to infinity and "
                    "Bobillier's construction gives no inflection points; use Euler\u2013Savary Task I "
                    "(construction euler-savary) at this position")
     SW = b.parallel("SW", S, axis)
-    Wa = b.meet("Wa", SW, r1, Role.RESULT, f"W_{nA.replace('_', '')}", k1="SW", k2="ray1", finite=False)
-    Wb = b.meet("Wb", SW, r2, Role.RESULT, f"W_{nB.replace('_', '')}", k1="SW", k2="ray2", finite=False)
+    Wa = b.meet("Wa", SW, r1, Role.RESULT, "W_" + script(cd.names[0]), k1="SW", k2="ray1", finite=False)
+    Wb = b.meet("Wb", SW, r2, Role.RESULT, "W_" + script(cd.names[1]), k1="SW", k2="ray2", finite=False)
     # a point on a straight guide is its own inflection point (centre at infinity, Rosenauer §26)
     inf_a, inf_b = cd.Ca.is_infinite, cd.Cb.is_infinite
     if np.any(inf_a | inf_b):
@@ -96,9 +97,9 @@ def bobillier(mech: Mechanism, inputs, *, link: str | None = None,
     L, o = cd.L, cd.origin
     if cd.C is not None:
         nC = upper(cd.c_name)
-        c = nC.replace("_", "")
+        c = script(cd.c_name)
         b.step(f"Third ray P{nC}: it meets the inflection circle in W_{c} (foot of W_0). By the chord theorem "
-               f"the collineation axis of rays I and III is the parallel to W_{nA.replace('_', '')}W_{c} "
+               f"the collineation axis of rays I and III is the parallel to W_{script(cd.names[0])}W_{c} "
                f"through P; it meets {nA}{nC} in F; F{la} meets ray III in the centre of curvature C_{c}.")
         r3 = b.join("ray3", P, cd.C, Role.AUXILIARY, "III")
         Wc = b.foot("Wc", W0, r3, Role.AUXILIARY, f"W_{c}", k="ray3")
@@ -107,7 +108,7 @@ def bobillier(mech: Mechanism, inputs, *, link: str | None = None,
                     finite=False)
         Cc = b.meet("Cc", b.join("F1Ca", F1, cd.Ca), r3, Role.RESULT, f"C_{c}", k1="F1Ca", k2="ray3",
                     finite=False)
-        b.step(f"Check with ray II: the axis of rays II and III is the parallel to W_{nB.replace('_', '')}W_{c} "
+        b.step(f"Check with ray II: the axis of rays II and III is the parallel to W_{script(cd.names[1])}W_{c} "
                f"through P; it meets {nB}{nC} in F'; F'{lb} meets ray III in the same point C_{c}.")
         ax23 = b.parallel("axis23", P, b.join("WbWc", Wb, Wc), Role.AUXILIARY, "a_23")
         F2 = b.meet("F2", b.join("lBC", cd.B, cd.C), ax23, Role.AUXILIARY, "F'", k1="lBC", k2="axis23",

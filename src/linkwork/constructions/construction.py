@@ -31,6 +31,7 @@ import numpy as np
 from ..errors import LinkworkError
 from ..geometry import Circle, Line, Point, Vector, intersect
 from ..geometry._base import Batch
+from ..topology.constructibility import literal, prose  # noqa: F401  (literal: re-exported)
 
 #: the tolerance of the issue: a construction result may differ from the analytic value by at
 #: most this much, relative to the result's reference scale
@@ -250,7 +251,7 @@ class Construction:
             fail = ok & ref & ~(e <= rtol)
             if fail.any():
                 k = int(np.argmax(np.where(fail, np.nan_to_num(e, nan=np.inf), -1)))
-                bad.append(f"{r.label} ({r.description}): relative error {e[k]:.3g} at sample {k} "
+                bad.append(f"{prose(r.label)} ({prose(r.description)}): relative error {e[k]:.3g} at sample {k} "
                            f"(constructed {np.asarray(r.constructed)[k]}, analytic "
                            f"{np.asarray(r.analytic)[k]}), {int(fail.sum())} of {self.n} samples fail")
         if bad:
@@ -296,18 +297,11 @@ class Construction:
         for r in self.results.values():
             c, a = (np.asarray(x) for x in (r.shown or (r.constructed, r.analytic)))
             if self.n == 1:
-                lines.append(f"    {r.label} = {_fmt(c[0])} {r.unit}  (analytic {_fmt(a[0])}, "
+                lines.append(f"    {prose(r.label)} = {_fmt(c[0])} {r.unit}  (analytic {_fmt(a[0])}, "
                              f"relative error {float(np.asarray(r.error)[0]):.1e})")
         for m in self.messages():
             lines.append(f"    note: {m}")
         return "\n".join(lines)
-
-
-def literal(name: str) -> str:
-    """A user's point or link name for a label, escaped so that the drawing prints it as written
-    (``link_j`` stays link_j; only the books' own notation, P_{13} or v_A, is set as sub- or
-    superscript)."""
-    return "".join("\\" + c if c in "\\_^{}" else c for c in name)
 
 
 def _fmt(v: Any) -> str:
@@ -376,7 +370,7 @@ class Builder:
     # ------------------------------------------------------------------ bookkeeping
     def step(self, text: str) -> None:
         """Begin a new step with its sentence."""
-        self.steps.append((text, []))
+        self.steps.append((prose(text), []))
 
     def add(self, key: str, obj: Any, role: Role = Role.AUXILIARY, label: str | None = None, *,
             kind: str = "", space: str = "mechanism", span: Iterable[Point] = (),
@@ -400,14 +394,14 @@ class Builder:
         """Record that the construction degenerates where ``mask`` holds; returns the mask."""
         mask = np.broadcast_to(np.asarray(mask, bool), (self.n,)).copy()
         if mask.any():
-            self.notes.append(Note(mask, message))
+            self.notes.append(Note(mask, prose(message)))
         return mask
 
     def limiting(self, mask: Any, message: str) -> np.ndarray:
         """Record that the limiting construction is used where ``mask`` holds (results stand)."""
         mask = np.broadcast_to(np.asarray(mask, bool), (self.n,)).copy()
         if mask.any():
-            self.notes.append(Note(mask, message, limiting=True))
+            self.notes.append(Note(mask, prose(message), limiting=True))
         return mask
 
     @property

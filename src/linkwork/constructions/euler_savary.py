@@ -27,6 +27,7 @@ from ..model import Mechanism
 from ._common import as_solution, dot, singular_positions
 from ._coupler import coupler_data, draw_given, draw_pole, inflection_from_two_rays, task_I, task_II, task_III
 from ._plan import upper
+from ..topology.constructibility import script
 
 SOURCE = "Rosenauer §18–19 (Euler–Savary, Tasks I–III), §21 (W\u2080 from two rays)"
 
@@ -50,10 +51,10 @@ def euler_savary(mech: Mechanism, inputs, *, link: str | None = None,
     draw_given(b, cd)
     P, r1, r2 = draw_pole(b, cd)
     nA, nB = upper(cd.names[0]), upper(cd.names[1])
-    Wa = task_I(b, "T1a", P, cd.A, cd.Ca, r1, names=(nA, cd.centre_names[0], f"W_{nA.replace('_', '')}"),
-                ray_key="ray1", label=f"W_{nA.replace('_', '')}", tag="1")
-    Wb = task_I(b, "T1b", P, cd.B, cd.Cb, r2, names=(nB, cd.centre_names[1], f"W_{nB.replace('_', '')}"),
-                ray_key="ray2", label=f"W_{nB.replace('_', '')}", tag="2")
+    Wa = task_I(b, "T1a", P, cd.A, cd.Ca, r1, names=(nA, cd.centre_names[0], "W_" + script(cd.names[0])),
+                ray_key="ray1", label="W_" + script(cd.names[0]), tag="1")
+    Wb = task_I(b, "T1b", P, cd.B, cd.Cb, r2, names=(nB, cd.centre_names[1], "W_" + script(cd.names[1])),
+                ray_key="ray2", label="W_" + script(cd.names[1]), tag="2")
     W0 = inflection_from_two_rays(b, P, r1, r2, Wa, Wb)
     ins = instant(sol, cd.link)
     L, o = cd.L, cd.origin
@@ -61,13 +62,13 @@ def euler_savary(mech: Mechanism, inputs, *, link: str | None = None,
     Cc = None
     if cd.C is not None:
         nC = upper(cd.c_name)
-        b.step(f"The ray P{nC} meets the inflection circle again in W_{nC.replace('_', '')}, the foot of "
+        b.step(f"The ray P{nC} meets the inflection circle again in W_{script(cd.c_name)}, the foot of "
                f"the perpendicular from W_0 (Thales).")
         r3 = b.join("ray3", P, cd.C, Role.AUXILIARY, "III")
-        Wc = b.foot("Wc", W0, r3, Role.AUXILIARY, f"W_{nC.replace('_', '')}", k="ray3")
-        Cc = task_II(b, "T2c", P, cd.C, Wc, r3, names=(nC, f"W_{nC.replace('_', '')}", f"C_{nC.replace('_', '')}"),
-                     ray_key="ray3", label=f"C_{nC.replace('_', '')}", tag="3")
-    A3 = task_III(b, "T3a", P, Wa, cd.Ca, r1, names=(f"W_{nA.replace('_', '')}", cd.centre_names[0], nA + "'"),
+        Wc = b.foot("Wc", W0, r3, Role.AUXILIARY, "W_" + script(cd.c_name), k="ray3")
+        Cc = task_II(b, "T2c", P, cd.C, Wc, r3, names=(nC, "W_" + script(cd.c_name), "C_" + script(cd.c_name)),
+                     ray_key="ray3", label="C_" + script(cd.c_name), tag="3")
+    A3 = task_III(b, "T3a", P, Wa, cd.Ca, r1, names=("W_" + script(cd.names[0]), cd.centre_names[0], nA + "'"),
                   ray_key="ray1", label=nA + "'", tag="4")
     # ---- checks against the curvature layer
     b.compare_points("P", "P", "pole", P, ins.pole, L, o)

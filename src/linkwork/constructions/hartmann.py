@@ -28,7 +28,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from .construction import Builder, Construction, Role, literal, pt
+from .construction import Builder, Construction, Role, pt
+from ..topology.constructibility import script
 from ..instant import curvature_centre, instant
 from ..model import Mechanism, Revolute
 from ._common import as_solution, cross, norm, perp, singular_positions
@@ -64,11 +65,11 @@ def hartmann(mech: Mechanism, inputs, *, link: str | None = None, point: str | N
     b.step(f"Given: the velocity v_{nA} of {nA} (\u27c2 ray I). The line from its tip to {cd.centre_names[0]} "
            f"meets the perpendicular to ray I through P in the tip of u_{nA}.")
     ta = pt(A.xy + kv * vA)
-    b.arrow("vA", A, ta, Role.GIVEN, "v_{" + literal(nA) + "}", kind="velocity")
+    b.arrow("vA", A, ta, Role.GIVEN, "v_" + script(cd.names[0]), kind="velocity")
     l1 = b.join("taCa", ta, cd.Ca)
     p1 = b.perpendicular("p1", P, r1)
     tuA = b.meet("tuA", l1, p1, Role.AUXILIARY, None, k1="taCa", k2="p1", finite=False)
-    b.arrow("uA", P, tuA, Role.AUXILIARY, "u_{" + literal(nA) + "}", kind="velocity")
+    b.arrow("uA", P, tuA, Role.AUXILIARY, "u_" + script(cd.names[0]), kind="velocity")
     b.step(f"Velocity of {nB}: the line P to the tip of v_{nA} makes the angle \u03b4 (tan \u03b4 = \u03c9) "
            f"with ray I; lay off \u03b4 at P from ray II; it meets the perpendicular to ray II at {nB} in the "
            f"tip of v_{nB}. The line from that tip to {cd.centre_names[1]} meets the perpendicular to ray "
@@ -79,11 +80,11 @@ def hartmann(mech: Mechanism, inputs, *, link: str | None = None, point: str | N
     nB_ = b.perpendicular("nvB", B, r2)
     tb = b.meet("tb", dline, nB_, Role.AUXILIARY, None, k1="delta2", k2="nvB",
                 why=f"{nB} lies at the pole")
-    b.arrow("vB", B, tb, Role.RESULT, "v_{" + literal(nB) + "}", kind="velocity")
+    b.arrow("vB", B, tb, Role.RESULT, "v_" + script(cd.names[1]), kind="velocity")
     l2 = b.join("tbCb", tb, cd.Cb)
     p2 = b.perpendicular("p2", P, r2)
     tuB = b.meet("tuB", l2, p2, Role.AUXILIARY, None, k1="tbCb", k2="p2", finite=False)
-    b.arrow("uB", P, tuB, Role.AUXILIARY, "u_{" + literal(nB) + "}", kind="velocity")
+    b.arrow("uB", P, tuB, Role.AUXILIARY, "u_" + script(cd.names[1]), kind="velocity")
     b.step("The parallel to ray I through the tip of u_A and the parallel to ray II through the tip of "
            "u_B meet in the tip of the pole-transfer velocity u; its direction is the pole tangent t.")
     q1 = b.parallel("q1", tuA, r1)
@@ -123,11 +124,11 @@ def hartmann(mech: Mechanism, inputs, *, link: str | None = None, point: str | N
         r3 = b.join("ray3", P, C, Role.AUXILIARY, "III")
         dl3 = b.copy_angle("delta3", P, A, ta, P, C, radius=0.25 * norm(A.xy - P.xy))
         tc = b.meet("tc", dl3, b.perpendicular("nvC", C, r3), Role.AUXILIARY, None, k1="delta3", k2="nvC")
-        b.arrow("vC", C, tc, Role.RESULT, "v_{" + literal(c) + "}", kind="velocity")
+        b.arrow("vC", C, tc, Role.RESULT, "v_" + script(c), kind="velocity")
         p3 = b.perpendicular("p3", P, r3)
         tuC = b.foot("tuC", tu, p3, Role.AUXILIARY, None, k="p3")
-        b.arrow("uC", P, tuC, Role.AUXILIARY, "u_{" + literal(c) + "}", kind="velocity")
-        K = b.meet("KC", b.join("tips", tc, tuC), r3, Role.RESULT, "K_{" + literal(c) + "}", k1="tips", k2="ray3",
+        b.arrow("uC", P, tuC, Role.AUXILIARY, "u_" + script(c), kind="velocity")
+        K = b.meet("KC", b.join("tips", tc, tuC), r3, Role.RESULT, "K_" + script(c), k1="tips", k2="ray3",
                    finite=False)
         b.compare_points("KC", f"K_{cd.c_name}", f"centre of curvature of {cd.c_name}", K,
                          curvature_centre(sol, cd.link, cd.c_name).centre, L, o)

@@ -29,7 +29,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from .construction import Builder, Construction, Role, literal, pt
+from .construction import Builder, Construction, Role, pt
+from ..topology.constructibility import script
 from ..geometry import Point
 from ..instant import instant
 from ..model import Mechanism
@@ -83,11 +84,11 @@ def inflection_from_two_points(mech: Mechanism, inputs, *, link: str | None = No
     b.point("A", Ap, Role.GIVEN, uA)
     b.point("B", Bp, Role.GIVEN, uB)
     b.segment("AB", Ap, Bp, Role.GIVEN)
-    b.arrow("vA", Ap, pt(A + kv * vA), Role.GIVEN, "v_{" + literal(uA) + "}", kind="velocity")
-    b.arrow("vB", Bp, pt(B + kv * vB), Role.GIVEN, "v_{" + literal(uB) + "}", kind="velocity")
+    b.arrow("vA", Ap, pt(A + kv * vA), Role.GIVEN, "v_" + script(nA), kind="velocity")
+    b.arrow("vB", Bp, pt(B + kv * vB), Role.GIVEN, "v_" + script(nB), kind="velocity")
     ta, tb = pt(A + ka * aA), pt(B + ka * aB)
-    b.arrow("aA", Ap, ta, Role.GIVEN, "a_{" + literal(uA) + "}", kind="acceleration")
-    b.arrow("aB", Bp, tb, Role.GIVEN, "a_{" + literal(uB) + "}", kind="acceleration")
+    b.arrow("aA", Ap, ta, Role.GIVEN, "a_" + script(nA), kind="acceleration")
+    b.arrow("aB", Bp, tb, Role.GIVEN, "a_" + script(nB), kind="acceleration")
 
     b.step("The normals to the velocities at the two points meet in the pole P.")
     nA_ = b.perpendicular("nA", Ap, b.join("lvA", Ap, pt(A + kv * vA), Role.AUXILIARY))

@@ -34,14 +34,19 @@ def _angle_between(a: np.ndarray, b: np.ndarray) -> float:
     return float(np.degrees(abs(np.arctan2(a[0] * b[1] - a[1] * b[0], a @ b))))
 
 
+def _num(v: float) -> str:
+    """A scale's round number written out as the books do (20000, not 2e+04)."""
+    return f"{v:.6g}" if 1e-4 <= abs(v) < 1e7 else f"{v:.3g}"
+
+
 def _scale_bar(ax, scale: float, unit: str, quantity: str) -> None:
     """A bar of 1, 2 or 5 cm under the drawing with the value it stands for (the book's scale)."""
     x0, x1 = ax.get_xlim()
     y0, _ = ax.get_ylim()
     cm = 1.0 if (x1 - x0) < 8 else 2.0
     ax.plot([x0 + 0.3, x0 + 0.3 + cm], [y0 + 0.3] * 2, color=INK, lw=1.6, solid_capstyle="butt")
-    ax.text(x0 + 0.3 + cm / 2, y0 + 0.45, f"{cm * scale:.4g} {unit}", ha="center", va="bottom", fontsize=7)
-    ax.set_title(ax.get_title() + f"\n${quantity}$ = {scale:.4g} {unit} per cm", fontsize=8)
+    ax.text(x0 + 0.3 + cm / 2, y0 + 0.45, f"{_num(cm * scale)} {unit}", ha="center", va="bottom", fontsize=7)
+    ax.set_title(ax.get_title() + f"\n${quantity}$ = {_num(scale)} {unit} per cm", fontsize=8)
 
 
 def _frame(ax, pts: np.ndarray, pad: float = 1.0) -> None:
@@ -66,8 +71,12 @@ def _tangent_line(ax, at: np.ndarray, direction: np.ndarray, length: float, labe
     d = direction / np.linalg.norm(direction)
     a, b = at - d * length / 2, at + d * length / 2
     ax.plot([a[0], b[0]], [a[1], b[1]], "--", color=TAN, lw=0.9, zorder=4)
+    # labelled at the end nearer the middle of the drawing, so that the label stays inside it
+    mid = np.array([np.mean(ax.get_xlim()), np.mean(ax.get_ylim())])
+    if np.linalg.norm(a - mid) < np.linalg.norm(b - mid):
+        a, b, d = b, a, -d
     ax.annotate(label, b, fontsize=7, color=TAN, xytext=(3 * np.sign(d[0] or 1), 3),
-                textcoords="offset points", ha="left" if d[0] >= 0 else "right")
+                textcoords="offset points", ha="left" if d[0] >= 0 else "right", annotation_clip=True)
 
 
 def _arrow(ax, tail, head, color, label: str, lw: float = 1.4) -> None:
@@ -105,16 +114,16 @@ def _motion(mech: Mechanism, point: str, solution: Solution | None) -> tuple[Sol
     return sol, t
 
 
-def _index(sol: Solution, at: float | None) -> int:
-    """The sample nearest the input value ``at`` (radians or length), kept off the two ends where
-    the drawn tangent has one neighbour only; default an eighth into the motion."""
-    n = len(sol)
+def _index(sol: Solution, at: float | None, keep: np.ndarray) -> int:
+    """The sample among ``keep`` nearest the input value ``at`` (radians or length), kept off the
+    two ends where the drawn tangent has one neighbour only; default an eighth into them."""
+    idx = np.flatnonzero(keep)
     if at is None:
-        k = n // 8
+        j = len(idx) // 8
     else:
-        u = sol.inputs[:, 0]
-        k = int(np.argmin(np.abs(np.angle(np.exp(1j * (u - at)))) if np.ptp(u) > 6 else np.abs(u - at)))
-    return int(min(max(k, 1), n - 2))
+        u = sol.inputs[idx, 0]
+        j = int(np.argmin(np.abs(np.angle(np.exp(1j * (u - at)))) if np.ptp(u) > 6 else np.abs(u - at)))
+    return int(idx[min(max(j, 1), len(idx) - 2)])
 
 
 def plans_figure(mech: Mechanism, point: str, *, at: float | None = None,
@@ -125,8 +134,21 @@ def plans_figure(mech: Mechanism, point: str, *, at: float | None = None,
     v-plan's (∥ b, the acceleration is the v-plan's velocity), at B the b-plan's (∥ jerk). Each
     plan at a round scale given under it. Returns the figure and the check against the engine."""
     sol, t = _motion(mech, point, solution)
-    k = _index(sol, at)
     m = sol.point(point)
+    # the plans over the samples where every vector is defined (at a dead centre or a jump of an
+    # intermittent mechanism the rates are not): the plan's curve is broken there, not invented
+    keep = np.all(np.isfinite(np.hstack([m.position, m.velocity, m.acceleration, m.jerk])), axis=1)
+    if keep.sum() < 3:
+        raise InputError(f"'{point}' has too few positions with defined rates to draw its plans")
+    if not keep.all():
+        runs = np.flatnonzero(np.diff(np.concatenate([[0], keep.astype(int), [0]])))
+        i0, i1 = max(zip(runs[::2], runs[1::2]), key=lambda r: r[1] - r[0])
+        keep = np.zeros(len(keep), bool)
+        keep[i0:i1] = True
+    k_abs = _index(sol, at, keep)
+    m = type(m)(*(None if x is None else x[keep] for x in (m.position, m.velocity, m.acceleration, m.jerk)))
+    t = t[keep]
+    k = k_abs - int(np.flatnonzero(keep)[0])
     u = mech.length_unit
     l_r = plan_scale(m.position)
     rp = plan(t, m.position, scale=l_r)
@@ -134,7 +156,7 @@ def plans_figure(mech: Mechanism, point: str, *, at: float | None = None,
     bp = plan(t, m.acceleration, scale=plan_scale(m.acceleration))
     tv, tb, tr = vp.tangent()[k], bp.tangent()[k], rp.tangent()[k]
     a_read = vp.rate()[k]
-    check = PlanCheck(k, _angle_between(tv, m.acceleration[k]), _angle_between(tb, m.jerk[k]),
+    check = PlanCheck(k_abs, _angle_between(tv, m.acceleration[k]), _angle_between(tb, m.jerk[k]),
                       a_read, m.acceleration[k])
     plt = _plt()
     fig, axes = plt.subplots(1, 3, figsize=(11.0, 4.6))
@@ -157,12 +179,14 @@ def plans_figure(mech: Mechanism, point: str, *, at: float | None = None,
         _tangent_line(ax, W[k], tan, 0.45 * span, tan_label)
         _scale_bar(ax, p.scale, unit, sym)
     # the acceleration drawn from Q parallel to the v-plan's tangent at V: the associated point B
-    axes[2].annotate(f"the arrow from Q ∥ the v-plan's tangent: {check.tangent_v_vs_acceleration_deg:.2g}° off the engine's a\n"
-                     f"the b-plan's tangent: {check.tangent_b_vs_jerk_deg:.2g}° off the engine's jerk",
-                     (0.02, 0.98), xycoords="axes fraction", fontsize=6.5, va="top", color=AUX)
+    import textwrap
+    fig.text(0.01, 0.01, textwrap.fill(f"The arrow from Q is parallel to the v-plan's tangent at V: the acceleration is the "
+             f"velocity of V along the v-plan (drawn tangent {check.tangent_v_vs_acceleration_deg:.2g}° off the "
+             f"engine's acceleration); the b-plan's tangent at B is the jerk's direction "
+             f"({check.tangent_b_vs_jerk_deg:.2g}° off the engine's).", 190), fontsize=7, color=AUX)
     fig.suptitle(f"{mech.name}: plans of {point} (Pöschl §13), the associated points at "
-                 f"{_input_words(mech, sol, k)}", fontsize=10)
-    fig.tight_layout()
+                 f"{_input_words(mech, sol, k_abs)}", fontsize=10)
+    fig.tight_layout(rect=(0, 0.06, 1, 1))
     return fig, check
 
 

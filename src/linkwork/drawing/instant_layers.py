@@ -52,6 +52,12 @@ def _label_on_curve(fig: Figure, xy: np.ndarray, text: str, colour: str, at: flo
     xy = np.asarray(xy, float).reshape(-1, 2)
     ok = np.flatnonzero(_inside(fig, xy))
     if not len(ok):
+        if "inset" in fig.spaces:  # off the frame: labelled where it is drawn whole, in the inset
+            ok = np.flatnonzero(np.all(np.isfinite(xy), axis=1))
+            if len(ok):
+                k = ok[np.argmin(abs(ok - at * (len(xy) - 1)))]
+                fig.label(xy[k], text, space="inset", colour=colour, size=2.6, italic=False)
+                return True
         return False
     k = ok[np.argmin(abs(ok - at * (len(xy) - 1)))]
     fig.label(xy[k], text, colour=colour, size=2.8, italic=False)
@@ -59,8 +65,13 @@ def _label_on_curve(fig: Figure, xy: np.ndarray, text: str, colour: str, at: flo
 
 
 def _towards(fig: Figure, centre: np.ndarray, text: str, colour: str, layer: str) -> None:
-    """An arrow at the frame's edge pointing to a centre off the sheet, labelled with it."""
+    """An arrow at the frame's edge pointing to a centre off the sheet, labelled with it (with an
+    inset the centre is drawn there instead, marked and labelled)."""
     if "mechanism" not in fig.clip or _inside(fig, centre)[0]:
+        return
+    if "inset" in fig.spaces:
+        fig.dot(centre, space="inset", r=0.5, style=Style(stroke=colour), layer="inset")
+        fig.label(centre, text, space="inset", colour=colour, size=2.6, italic=False)
         return
     lo, hi = (np.asarray(v, float) for v in fig.clip["mechanism"])
     mid = (lo + hi) / 2

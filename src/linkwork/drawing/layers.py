@@ -22,7 +22,7 @@ adds its primitives to a :class:`~.svg.Figure`:
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from functools import cached_property
 from typing import Iterable, Sequence
 
@@ -481,7 +481,10 @@ def _points_labelled_by(con: Construction, sc: Scene) -> set[str]:
 #: how a figure is framed: ``mechanism`` keeps the mechanism the subject (layers larger than
 #: the sheet are cut at a frame around it, arrows point to centres off the sheet); ``all`` fits
 #: everything drawn on the sheet, however small the mechanism becomes
-FRAMES = ("mechanism", "all")
+FRAMES = ("mechanism", "all", "inset")
+
+#: the largest size (mm of paper) of the inset that shows a framed drawing whole
+INSET_MM = (110.0, 120.0)
 
 
 def scene_figure(sc: Scene, show: Iterable[str] = ("mechanism",), *,
@@ -524,9 +527,12 @@ def scene_figure(sc: Scene, show: Iterable[str] = ("mechanism",), *,
         cb = construction_box(con)
         if cb is not None:
             box = (np.minimum(box[0], cb[0]), np.maximum(box[1], cb[1]))
-    if frame == "mechanism":
+    if frame in ("mechanism", "inset"):
         fig.clip["mechanism"] = box
         fig.framed.add("mechanism")
+    if frame == "inset":
+        # its scale is known when everything is drawn (_finish_inset); labels may go there before
+        fig.space("inset", sc.scales.length)
     for layer in show:
         if layer == "mechanism":
             # a construction that labels the mechanism's points in its own notation hides the
@@ -545,6 +551,8 @@ def scene_figure(sc: Scene, show: Iterable[str] = ("mechanism",), *,
         elif layer in HIGHER_LAYERS:
             from .higher_layers import draw_higher
             draw_higher(fig, sc, layer)
+    if frame == "inset":
+        _finish_inset(fig)
     if construction is not None:
         con = construction.sample(sc.index) if construction.sampled is None else construction
         draw_construction(fig, con, upto=step, highlight=step)
@@ -558,3 +566,51 @@ def scene_figure(sc: Scene, show: Iterable[str] = ("mechanism",), *,
                 if name not in fig.view:
                     fig.view[name] = (np.array(tf["lo"]), np.array(tf["hi"]))
     return fig
+
+
+class InsetScale(Scale):
+    """The length scale of an inset (its own legend symbol, M_l of the inset)."""
+
+    @property
+    def symbol(self) -> str:
+        return "M_l (inset)"
+
+
+def _finish_inset(fig: Figure) -> None:
+    """``--frame inset``: the mechanism panel is cut at its frame, and what runs past it is drawn
+    whole in a second panel at its own, smaller scale, with the frame marked in it. Without
+    anything past the frame there is no inset."""
+    main = [p for p in fig.prims if p.space == "mechanism"]
+    if not fig._cut("mechanism"):
+        del fig.spaces["inset"]
+        fig.labels = [lab for lab in fig.labels if lab.space != "inset"]
+        fig.prims = [p for p in fig.prims if p.space != "inset"]
+        return
+    # the inset shows what is bounded whole: the frame, the circles and the centres and poles;
+    # lines and curves running off to infinity (a centrode's far branch) are cut at its edge
+    lo, hi = (np.asarray(v, float) for v in fig.clip["mechanism"])
+    pts = [lo, hi] + [lab.xy for lab in fig.labels if lab.space == "inset"]
+    reach = 60.0 * float(np.max(hi - lo))  # a circle larger than this is a straight line here
+    for p in fig.prims:
+        if p.space in ("mechanism", "inset") and p.kind in ("circle", "dot"):
+            q = fig._world_points(p)
+            if p.kind == "dot" or p.data["r"] < reach:
+                pts += q
+    pts = np.array([q for q in pts if np.all(np.isfinite(q))]).reshape(-1, 2)
+    size = pts.max(0) - pts.min(0)
+    fig.view["inset"] = (pts.min(0), pts.max(0))
+    length = fig.scales.length
+    per_mm = nice_ceil(max(size[0] / INSET_MM[0], size[1] / INSET_MM[1], length.per_mm))
+    scale = InsetScale(length.quantity, length.unit, per_mm)
+    fig.spaces["inset"] = scale
+    fig.titles["inset"] = "inset: the whole drawing"
+    fig.extra_scales = [*getattr(fig, "extra_scales", []), scale]
+    # the mechanism as bars and plates only: joint symbols and hatching at their paper size
+    # would bury it at the inset's scale
+    inset = [replace(p, space="inset", ident=None, layer="inset") for p in main
+             if p.kind != "symbol" or p.data["name"] in ("bar", "plate")]
+    frame = np.array([lo, [hi[0], lo[1]], hi, [lo[0], hi[1]]])
+    fig.prims += inset
+    fig.path(frame, space="inset", closed=True, style=Style(stroke="#000", width=0.3, dash="1.2,0.8"),
+             layer="inset", ident="inset-frame")
+    fig.label(np.array([lo[0], hi[1]]), "frame", space="inset", size=2.4, italic=False, colour="#333")

@@ -211,8 +211,12 @@ def graphical_motion(mech: Mechanism, point: str, *, chords: int = 36, H: float 
     l_s = float(np.ptp(S)) / 5.0 or 1.0
     dv = differentiate(T, S, l_t=l_t, l_x=l_s, H=H)
     da = differentiate(T, V, l_t=l_t, l_x=dv.l_y, H=H)
-    A = np.interp(T, t[ok], a[ok])
-    dj = differentiate(T, A, l_t=l_t, l_x=da.l_y, H=H)
+    # the a–t line's chords over the samples where the acceleration is finite (an intermittent
+    # mechanism's acceleration jumps, and is undefined at the jump)
+    fa = ok & np.isfinite(a)
+    A = np.interp(T, t[fa], a[fa]) if fa.sum() >= 2 else np.full(len(T), np.nan)
+    good = np.isfinite(A)
+    dj = differentiate(T[good], A[good], l_t=l_t, l_x=da.l_y, H=H) if good.sum() >= 3 else None
     u = mech.length_unit
     plt = _plt()
     fig, axes = plt.subplots(4, 1, figsize=(7.5, 10.0), sharex=True)
@@ -230,9 +234,10 @@ def graphical_motion(mech: Mechanism, point: str, *, chords: int = 36, H: float 
     axes[2].set_title(f"a–t line, $l_a = l_v/(H\\,l_t)$ = {da.l_y:.3g} {u}/s² per cm", fontsize=9)
     if jerk is not None:
         axes[3].plot(t, jerk, lw=1.2, color="#7a4b1b", label="engine (d³s/dt³)")
-    axes[3].plot(dj.x, dj.y, "o", ms=3, color="#b3001b", label=f"chord slopes, H = {H:g} cm")
     axes[3].set_ylabel(f"j [{u}/s³]")
-    axes[3].set_title(f"jerk–t line, $l_j = l_a/(H\\,l_t)$ = {dj.l_y:.3g} {u}/s³ per cm", fontsize=9)
+    if dj is not None:
+        axes[3].plot(dj.x, dj.y, "o", ms=3, color="#b3001b", label=f"chord slopes, H = {H:g} cm")
+        axes[3].set_title(f"jerk–t line, $l_j = l_a/(H\\,l_t)$ = {dj.l_y:.3g} {u}/s³ per cm", fontsize=9)
     axes[3].set_xlabel(tlabel)
     for ax in axes:
         ax.axhline(0.0, color="#888", lw=0.5)

@@ -35,6 +35,12 @@ MARGIN = 9.0  # mm around a panel's content
 GAP = 10.0  # mm between panels
 TITLE_H = 9.0
 FRAME_PAD = 6.0  # mm between a framed panel's content and its frame
+#: how far (mm) a label's nearest edge may be put from its point, nearest first
+LABEL_DISTANCES = (1.0, 2.2, 3.8, 5.6, 8.0)
+#: a label farther than this (mm) from its point is joined to it by a leader line
+LEADER_FROM = 4.5
+#: half the width of a bar's stroke and a little more: a label keeps this clear of drawn lines
+INK_PAD = 0.6
 SCALE_BAR = 20.0  # mm, the length of a scale bar
 SCALE_TEXT_SIZE, SCALE_VALUE_SIZE = 2.8, 2.5
 LEGEND_SIZE, LEGEND_LINE = 3.0, 4.2  # legend lines: font size and baseline distance (mm)
@@ -674,10 +680,12 @@ class Figure:
         return "", []
 
     def _place_labels(self, tfs: dict, panels: dict, samples: list, animate: float | None) -> list[str]:
-        grid = _Grid(samples)
-        placed: list[tuple[float, float, float, float]] = []
-        out = []
+        """Each label beside its point where it covers least: other labels (measured boxes), the
+        drawn geometry (sampled lines, symbols) and the other labels' points. Greedy first, in
+        order, then a second pass moves each label to its best place among all the others (a
+        crowded corner settles); a label put far from its point gets a thin leader line."""
         cut = {n: self._cut(n) for n in panels}
+        todo = []  # (label, anchor on paper, width, height, frame box or None)
         for lab in self.labels:
             if lab.space not in tfs:
                 continue
@@ -692,23 +700,48 @@ class Figure:
                 if not (frame[0] <= a[0] <= frame[2] and frame[1] <= a[1] <= frame[3]):
                     continue  # its point is cut off with the drawing at the frame
             w, h = text_width(lab.text, lab.size, lab.italic) + 0.4, lab.size * 0.95
-            best, best_score = None, math.inf
-            cands = _candidates(lab.prefer)
-            for k, (dx, dy) in enumerate(cands):
-                for dist in (lab.clear + 1.0, lab.clear + 2.2, lab.clear + 3.8):
-                    # box anchored so that its nearest edge is `dist` away in direction (dx, dy)
-                    cx = a[0] + dx * (dist + w / 2)
-                    cy = a[1] + dy * (dist + h / 2)
-                    box = (cx - w / 2, cy - h / 2, cx + w / 2, cy + h / 2)
-                    score = 40.0 * sum(_overlap(box, q) for q in placed) / (w * h)
-                    score += grid.count(box) * 1.0 + 0.15 * k + 0.6 * dist
-                    if frame is not None and not (frame[0] <= box[0] and box[2] <= frame[2]
-                                                  and frame[1] <= box[1] and box[3] <= frame[3]):
-                        score += 1e4  # across the frame
-                    if score < best_score:
-                        best, best_score = box, score
-            placed.append(best)
-            x0, y0, x1, y1 = best
+            todo.append((lab, a, w, h, frame))
+        ink = np.asarray(samples, float).reshape(-1, 2)
+        ink = ink[np.all(np.isfinite(ink), axis=1)]
+        points = np.array([t[1] for t in todo], float).reshape(-1, 2)
+        placed = np.full((len(todo), 4), np.nan)  # the boxes chosen so far (x0, y0, x1, y1)
+
+        def best_box(i: int):
+            """The candidate box of label i that covers least (all candidates scored at once:
+            directions in order of preference, each at the distances nearest first)."""
+            lab, a, w, h, frame = todo[i]
+            dirs = np.array(_candidates(lab.prefer))
+            dist = np.array(LABEL_DISTANCES) + lab.clear
+            k = np.repeat(np.arange(len(dirs)), len(dist))
+            d = np.tile(dist, len(dirs))
+            c = a + dirs[k] * (d[:, None] + np.array([w, h]) / 2)  # box centres
+            box = np.hstack([c - [w / 2, h / 2], c + [w / 2, h / 2]])
+            others = np.delete(placed, i, axis=0)
+            others = others[np.isfinite(others[:, 0])]
+            ow = np.minimum(box[:, None, 2], others[None, :, 2]) - np.maximum(box[:, None, 0], others[None, :, 0])
+            oh = np.minimum(box[:, None, 3], others[None, :, 3]) - np.maximum(box[:, None, 1], others[None, :, 1])
+            score = 40.0 * np.sum(np.clip(ow, 0, None) * np.clip(oh, 0, None), axis=1) / (w * h)
+            # the drawn lines have a width: what runs just past a box touches it too
+            wide = box + np.array([-INK_PAD, -INK_PAD, INK_PAD, INK_PAD])
+            reach = float(d.max()) + w + h + INK_PAD
+            for pts, weight in ((ink, 2.0), (np.delete(points, i, axis=0), 12.0)):
+                # another label's point under this label costs most (its own is never inside)
+                near = pts[np.all(np.abs(pts - a) <= reach, axis=1)]
+                inside = ((near[None, :, 0] >= wide[:, None, 0]) & (near[None, :, 0] <= wide[:, None, 2])
+                          & (near[None, :, 1] >= wide[:, None, 1]) & (near[None, :, 1] <= wide[:, None, 3]))
+                score += weight * inside.sum(axis=1)
+            score += 0.15 * k + 0.6 * d
+            if frame is not None:
+                across = ((box[:, 0] < frame[0]) | (box[:, 2] > frame[2]) | (box[:, 1] < frame[1])
+                          | (box[:, 3] > frame[3]))
+                score += 1e4 * across
+            return box[int(np.argmin(score))]
+
+        for _ in range(2):  # greedy, then each label again among all the others
+            for i in range(len(todo)):
+                placed[i] = best_box(i)
+        out = []
+        for (lab, a, w, h, frame), (x0, y0, x1, y1) in zip(todo, placed):
             ident = f' id="{lab.ident}"' if lab.ident else ""
             style = ' font-style="italic"' if lab.italic else ""
             el = (f'<text{ident} x="{sym._f(x0 + 0.2)}" y="{sym._f(y1 - 0.22 * lab.size)}" '
@@ -716,7 +749,13 @@ class Figure:
             # a white halo keeps labels readable over thin construction lines
             halo = (f'<rect x="{sym._f(x0)}" y="{sym._f(y0 + 0.1)}" width="{sym._f(x1 - x0)}" '
                     f'height="{sym._f(y1 - y0 - 0.1)}" fill="#fff" fill-opacity="0.75"/>')
-            el = f"<g>{halo}{el}</g>"
+            leader = ""
+            q = np.clip(a, [x0, y0], [x1, y1])  # the box's point nearest the label's point
+            if np.linalg.norm(q - a) > LEADER_FROM + lab.clear:
+                e = a + (q - a) * (lab.clear + 0.6) / np.linalg.norm(q - a)
+                leader = (f'<line class="leader" x1="{sym._f(e[0])}" y1="{sym._f(e[1])}" x2="{sym._f(q[0])}" '
+                          f'y2="{sym._f(q[1])}" stroke="{lab.colour}" stroke-width="0.12"/>')
+            el = f"<g>{leader}{halo}{el}</g>"
             if animate and lab.step is not None:
                 el = _appear(el, lab.step, animate)
             out.append(el)
@@ -846,34 +885,3 @@ def _candidates(prefer: np.ndarray | None) -> list[tuple[float, float]]:
         p = np.asarray(prefer, float) / np.linalg.norm(prefer)
         dirs.sort(key=lambda d: -(d[0] * p[0] + d[1] * p[1]))
     return dirs
-
-
-def _overlap(a, b) -> float:
-    w = min(a[2], b[2]) - max(a[0], b[0])
-    h = min(a[3], b[3]) - max(a[1], b[1])
-    return w * h if w > 0 and h > 0 else 0.0
-
-
-class _Grid:
-    """Sample points of the drawn geometry in 2 mm buckets, to count what a label would cover."""
-
-    def __init__(self, pts: list, cell: float = 2.0) -> None:
-        self.cell = cell
-        self.b: dict[tuple[int, int], list] = {}
-        if not len(pts):
-            return
-        # at once for all points (a drawing has thousands; one NumPy call each cost milliseconds)
-        a = np.asarray(pts, dtype=float).reshape(-1, 2)
-        a = a[np.all(np.isfinite(a), axis=1)]
-        for key, p in zip(np.floor_divide(a, cell).astype(np.int64).tolist(), a.tolist()):
-            self.b.setdefault(tuple(key), []).append(p)
-
-    def count(self, box) -> int:
-        x0, y0, x1, y1 = box
-        n = 0
-        for i in range(int(x0 // self.cell), int(x1 // self.cell) + 1):
-            for j in range(int(y0 // self.cell), int(y1 // self.cell) + 1):
-                for p in self.b.get((i, j), ()):
-                    if x0 <= p[0] <= x1 and y0 <= p[1] <= y1:
-                        n += 1
-        return n

@@ -67,7 +67,8 @@ def revolute(c: np.ndarray, colour: str = INK) -> tuple[str, list]:
     c = np.asarray(c, float)
     svg = (f'<circle cx="{_f(c[0])}" cy="{_f(c[1])}" r="{_f(JOINT_R)}" fill="#fff" '
            f'stroke="{colour}" stroke-width="0.35"/>')
-    return svg, [c]
+    t = np.linspace(0.0, 2 * np.pi, 9)[:-1]  # its ring, so that labels keep off the circle
+    return svg, [c] + list(c + JOINT_R * np.stack([np.cos(t), np.sin(t)], -1))
 
 
 def fixed_pivot(c: np.ndarray, down: np.ndarray = (0.0, 1.0), colour: str = INK) -> tuple[str, list]:
