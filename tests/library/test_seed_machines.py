@@ -535,3 +535,43 @@ def test_roemer_slide_velocity_by_rosenauers_construction_one():
     assert fair.mean() > 0.9
     scale = np.abs(sol.point("B").velocity[good]).max()
     np.testing.assert_allclose(sol.point("B").velocity[good][fair], vB[fair], atol=1e-9 * scale)
+
+
+def test_eight_link_chain_by_rosenauers_auxiliary_points_q_and_r():
+    """Rosenauer 1937, paper 4, Example V (digest 000 §6.5) on the solved positions only: the
+    crank O1KD at ω (60 rpm) gives D and K; E's velocity is normal to O2E with D's component
+    along DE; L (on DLE) and M (on O2ME) follow by the projection theorem. Q = BL ∩ KA and
+    R = BL ∩ MC, taken as points of ABC, get their velocities from two projections each (along
+    KA and BL, along MC and BL); the normals to them meet at the pole P of ABC, about which
+    A, B and C turn."""
+    name = "rosenauer-eight-link-chain"
+    m, sol = mech(name), motion(name)
+    good = ok(name)
+    x = {p: sol.point(p).position[good] for p in m.points}
+
+    def J(v):  # a quarter turn counter-clockwise
+        return np.stack([-v[..., 1], v[..., 0]], axis=-1)
+
+    def dot(a, b):
+        return np.sum(a * b, axis=-1)
+
+    w1 = 2 * np.pi  # 60 rpm
+    vD, vK = w1 * J(x["D"] - x["O1"]), w1 * J(x["K"] - x["O1"])
+    eDE = unit(x["E"] - x["D"])
+    wr = dot(vD, eDE) / dot(J(x["E"] - x["O2"]), eDE)
+    vE, vM = wr[:, None] * J(x["E"] - x["O2"]), wr[:, None] * J(x["M"] - x["O2"])
+    eDL, eEL = unit(x["L"] - x["D"]), unit(x["L"] - x["E"])
+    vL = from_projections(eDL, dot(vD, eDL), eEL, dot(vE, eEL))
+    eKA, eBL, eMC = unit(x["A"] - x["K"]), unit(x["B"] - x["L"]), unit(x["C"] - x["M"])
+    Q = line_meet(x["L"], eBL, x["K"], eKA)
+    R = line_meet(x["L"], eBL, x["M"], eMC)
+    vQ = from_projections(eKA, dot(vK, eKA), eBL, dot(vL, eBL))
+    vR = from_projections(eMC, dot(vM, eMC), eBL, dot(vL, eBL))
+    P = line_meet(Q, J(vQ), R, J(vR))
+    w = dot(vQ, J(Q - P)) / dot(Q - P, Q - P)
+    fair = np.abs(dot(J(unit(vQ)), unit(vR))) > 0.05  # the normals meet at a finite pole
+    assert fair.mean() > 0.9
+    for p in ("A", "B", "C"):
+        v = sol.point(p).velocity[good]
+        expect = w[:, None] * J(x[p] - P)
+        np.testing.assert_allclose(v[fair], expect[fair], atol=1e-8 * np.abs(v).max())
