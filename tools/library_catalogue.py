@@ -29,6 +29,10 @@ PICS = DOCS / "library"
 def drawing(name: str) -> str:
     """The SVG of `library:NAME` at its design position, with the paths of its points."""
     mech = linkwork.load(f"library:{name}")
+    if mech.given:  # a chain driven by given point velocities: those, at its drawn position
+        from linkwork.kinematics.point_inputs import solve_given
+        return scene_figure(Scene(mech, solve_given(mech)), ("mechanism", "velocities"),
+                            title=mech.name).to_svg()
     value = np.array([mech.driver_input_at_design(d) for d in mech.drivers])[None, :]
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", LinkworkWarning)  # over-closed chains say so

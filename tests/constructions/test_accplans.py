@@ -17,9 +17,10 @@ import numpy as np
 import pytest
 
 import linkwork
-from linkwork.constructions import acceleration_plan, rotated_velocities, slide_pairs, velocity_plan
+from linkwork.constructions import (acceleration_plan, relative_normals, rolling_lever, rotated_velocities,
+                                    slide_pairs, velocity_plan)
 from linkwork.kinematics import Status, solve
-from linkwork.topology.constructibility import plan_velocities
+from linkwork.topology.constructibility import Chain, plan_velocities
 
 DATA = Path(__file__).parent / "data"
 
@@ -160,7 +161,7 @@ def test_chained_plan_has_two_images_where_loops_do_not_close():
             assert np.allclose(arrow.vector, aP, atol=1e-9 * scale)
     # the plan figure of ABC: homothetic to the link with factor ω²_ABC
     w2 = sol.link("abc").omega ** 2
-    pts = {p: el[f"a.direct.abc.{p}.plan"].obj.xy for p in ("A", "B", "C")}
+    pts = {p: el[f"a.tri.abc.{p}.plan"].obj.xy for p in ("A", "B", "C")}
     for X, Y in (("A", "B"), ("B", "C"), ("C", "A")):
         d = sol.point(Y).position - sol.point(X).position
         assert np.allclose(pts[Y] - pts[X], w2[:, None] * d, atol=1e-9 * np.abs(w2[:, None] * d).max())
@@ -214,3 +215,145 @@ def test_slotted_lever_parallelograms_are_rectangles():
 def test_slide_pairs_needs_a_slide_between_moving_links():
     with pytest.raises(linkwork.LinkworkError, match="no sliding pair between two moving links"):
         slide_pairs(linkwork.load("library:slider-crank-centric"), [0.3])
+
+
+# ------------------------------------------------------------------ the inscribed triangle
+@pytest.mark.parametrize("name", ["closed-8-link", "closed-8-link-straight"])
+def test_inscribed_perpendicular_similar_triangle(name):
+    """Paper 4, Ex. III and V (digest 000 §2.8): the ends of the accelerations of A, B, C lie on
+    the locus lines and form a triangle with sides perpendicular to ABC's, found from a trial
+    triangle by the homothety from Q (the trial corner, Q and the true corner in line); with A, B,
+    C on one line the trial corner divides the opposite side (paper 5, Ex. III). The accelerations
+    read off are the engine's (`check`), and each vertex minus its plan point is too."""
+    mech = load(name)
+    sol = positions(mech)
+    con = acceleration_plan(mech, sol)
+    con.check()
+    assert con.max_error() <= 1e-9 and not con.degenerate.any()
+    el = con.elements
+    res = {p: el[f"a.tri.abc.{p}.laid"].obj for p in ("A", "B", "C")}
+    for p, arrow in res.items():
+        a = sol.point(p).acceleration
+        assert np.allclose(arrow.vector, a, atol=1e-9 * np.linalg.norm(a, axis=1).max())
+    # sides perpendicular to the link's sides
+    P = {p: sol.point(p).position for p in ("A", "B", "C")}
+    for X, Y in (("A", "B"), ("B", "C"), ("C", "A")):
+        side = res[Y].head.xy - res[X].head.xy
+        d = P[Y] - P[X]
+        assert np.all(abs(np.sum(side * d, axis=1)) <= 1e-9 * np.linalg.norm(side, axis=1).max()
+                      * np.linalg.norm(d, axis=1))
+    # the homothety: Q, a trial corner and its true corner in line (for the corner on the ray)
+    Q = el["a.tri.Q"].obj.xy
+    trial = {k.split(".")[-1][0]: el[k].obj.xy for k in el if k.startswith("a.tri.trial.")}
+    hits = 0
+    for p, t in trial.items():
+        u, v = t - Q, res[p].head.xy - Q
+        if np.all(abs(u[:, 0] * v[:, 1] - u[:, 1] * v[:, 0]) <= 1e-9 * np.linalg.norm(u, axis=1)
+                  * np.linalg.norm(v, axis=1)):
+            hits += 1
+    assert hits == 3  # every corner: the whole trial triangle is homothetic from Q
+
+
+# ------------------------------------------------------------------ Thales semicircles
+@pytest.mark.parametrize("name", ["library:crank-rocker", "library:holst-mechanism",
+                                  "library:rolling-lever-valve-gear", "closed-8-link"])
+def test_thales_semicircle_gives_the_relative_normal_accelerations(name):
+    """Digest 000 §2.6: XE² = XN·XY in the right triangle over the semicircle, so the arc of
+    radius |u| (the rotated relative velocity) about X cuts off XN = u²/XY: the relative
+    normal acceleration ω²·XY (engine ω) at the scale k_v². Every side of every link."""
+    mech = load(name)
+    sol = positions(mech, 0.1)
+    con = relative_normals(mech, sol)
+    con.check()
+    assert con.max_error() <= 1e-9 and not con.degenerate.any()
+    sides = sum(1 if len(set(mech.link(ln).points)) == 2 else len(set(mech.link(ln).points))
+                for ln in mech.moving_links if len(set(mech.link(ln).points)) >= 2)
+    assert len([k for k in con.results if k.startswith("an_")]) >= min(sides, 3)
+
+
+# ------------------------------------------------------------------ runtime coincidences
+TRIAD = {"ABC": "ABC", "AK": "AK", "BL": "BL", "CM": "CM"}
+
+
+def _triad_geometry(pts):
+    return {k: np.array([v], float) for k, v in pts.items()}
+
+
+def test_planner_avoids_lines_parallel_in_the_drawing():
+    """The triad with v_K, v_L, v_M given (paper 2, Ex. II): the graph alone takes the auxiliary
+    point on KA and LB. Drawn with KA ∥ LB, the planner takes the lines that do meet."""
+    chain = Chain.free(TRIAD, given=("K", "L", "M"))
+    first = plan_velocities(chain)
+    lines = {frozenset(ln.points) for ln in first.aux[0].lines}
+    assert lines == {frozenset("AK"), frozenset("BL")}
+    geo = _triad_geometry({"K": (0, 0), "A": (0, 1), "L": (2, 0), "B": (2, 1.2), "M": (5, 0), "C": (3.5, 2)})
+    s = plan_velocities(chain, geo)
+    assert s.direct and not s.coincidences
+    for a in s.aux:
+        pair = [frozenset(ln.points) for ln in a.lines]
+        assert {frozenset("AK"), frozenset("BL")} != set(pair)
+
+
+def test_planner_names_a_coincidence_it_cannot_avoid():
+    chain = Chain.free(TRIAD, given=("K", "L", "M"))
+    # all three arms parallel: every pair of lines is parallel (the triad is at a dead centre)
+    geo = _triad_geometry({"K": (0, 0), "A": (0, 1), "L": (2, 0), "B": (2, 1.2), "M": (5, 0), "C": (5, 2)})
+    s = plan_velocities(chain, geo)
+    assert s.coincidences and "no other lines" in s.coincidences[0]
+
+
+@pytest.mark.parametrize("name", ["rolling-lever-valve-gear", "stephenson-link-motion"])
+@pytest.mark.parametrize("build", [velocity_plan, rotated_velocities, acceleration_plan],
+                         ids=["plan", "rotated", "acceleration"])
+def test_drawing_position_coincidences_are_chosen_around(name, build):
+    """At their drawing positions the rolling lever's rod AD is parallel to the common normal
+    n–n (the auxiliary point AD ∩ n–n at infinity), and the Stephenson link motion has Q, E, K in
+    line. The planner, given the drawing, takes the paper-8 pole (the normal to the slide at B
+    ∩ n–n) and a division on a known line instead: nothing degenerates."""
+    mech = linkwork.load(f"library:{name}")
+    x0 = mech.driver_input_at_design(mech.drivers[0])
+    sol = solve(mech, x0 + np.array([0.0, 1e-6, 0.3]))
+    con = build(mech, sol)
+    con.check()
+    assert con.max_error() <= 1e-9 and not con.degenerate.any()
+    if name == "rolling-lever-valve-gear" and build is velocity_plan:
+        # the graph's first choice, AD ∩ n–n, is at infinity here: another pair is taken
+        steps = " ".join(st.text for st in con.steps)
+        assert "= AD \u2229 the common normal of E" not in steps
+        assert "Q = AD \u2229 the normal to guide at B" in steps or "the normal to guide at B \u2229" in steps
+
+
+# ------------------------------------------------------------------ paper 8
+def test_rolling_lever_construction_of_paper_8():
+    """Paper 8 (M18): the lever's pole on the normal to the slide at B and on n–n; W by
+    Euler–Savary from the centres of curvature and the auxiliary point D; the inflection circle
+    through B, P, W and the inflection pole W₀ opposite P (the curvature layer's W₀ = P + a_P/ω²);
+    V_p = |v_W₀| (the pole-change velocity); j_p = ω·V_p (the pole acceleration); the check
+    end(j_p) on the line through b parallel to the slide; j_d and the valve's j_b (engine)."""
+    mech = linkwork.load("library:rolling-lever-valve-gear")
+    x0 = mech.driver_input_at_design(mech.drivers[0])
+    sol = solve(mech, x0 + np.array([0.3, 1.0, 2.0, -0.7]))
+    con = rolling_lever(mech, sol)
+    con.check()
+    assert con.max_error() <= 1e-9 and not con.degenerate.any()
+    assert {"P", "W0", "Vp", "jp", "check_jp", "a_D", "a_B", "arel_valve"} <= set(con.results)
+    # W lies on the inflection circle: the circle with diameter PW₀ (from the curvature layer)
+    P = con.elements["rl.P"].obj.xy
+    W = con.elements["rl.W"].obj.xy
+    W0 = con.results["W0"].analytic
+    from linkwork.constructions._common import inflection_pole
+    W0 = inflection_pole(sol, "lever")
+    assert np.allclose(np.sum((W - P) * (W - W0), axis=1), 0.0,
+                       atol=1e-9 * np.linalg.norm(W0 - P, axis=1).max() ** 2)
+
+
+def test_rolling_lever_says_why_at_its_drawing_position():
+    """At its drawing position the rod AD is instantaneously translating (ω_rod = 0, engine), so
+    the lever's pole lies on AD, and BD is perpendicular to the slide: the paper's lines for j_d
+    and j_b are parallel there. Said, not invented."""
+    mech = linkwork.load("library:rolling-lever-valve-gear")
+    sol = solve(mech, [mech.driver_input_at_design(mech.drivers[0])])
+    assert abs(sol.link("rod").omega[0]) <= 1e-12 * abs(sol.link("crank").omega[0])
+    con = rolling_lever(mech, sol)
+    assert con.degenerate[0]
+    assert any("rod's line AD" in m or "BD is perpendicular to the slide" in m for m in con.messages(0))

@@ -30,6 +30,9 @@ CASES = {
     "klein": SLIDER_CRANKS,
     "mohr": FOUR_BARS + SLIDER_CRANKS,
     "kennedy": FOUR_BARS + SLIDER_CRANKS + SIX_BARS + SLOTTED + ["ellipsograph", "roemer-mechanism"],
+    "slide-pairs": SLOTTED + ["rosenauer-shaping-machine", "poeschl-quick-return-shaper"],
+    "relative-normals": FOUR_BARS + SLIDER_CRANKS + SIX_BARS + SLOTTED,
+    "rolling-lever": ["rolling-lever-valve-gear"],
 }
 
 

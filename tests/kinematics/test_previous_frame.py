@@ -160,3 +160,22 @@ def test_a_mechanism_of_another_structure_is_not_carried_over():
     assert got.carried == 0 and "another structure" in got.reason
     fresh = linkwork.solve(with_points(five), [u])
     np.testing.assert_allclose(poses(sol), poses(fresh), rtol=0, atol=1e-12 * five.length_scale)
+
+
+def test_the_change_point_scan_below_a_newton_group_carries_the_march_too():
+    """alt-ten-link: a dyad with change points below the Newton group, whose scan (`branches.
+    branch_schedule`, before the solve's own guesses) marches that group over a turn; it starts
+    from the previous frame's march as well, and the solve is the fresh one."""
+    base = linkwork.load("library:alt-ten-link")
+    u = base.driver_input_at_design(base.drivers[0]) + np.array([0.3, 1.0, -2.0])
+    linkwork.solve(base, u)
+    previous = base
+    for k in range(3):
+        m = with_points(base, O1=base.points["O1"] + 0.002 * base.length_scale * np.array([np.cos(k), np.sin(k)]))
+        sol = linkwork.solve(m, u, previous=previous)
+        got = continuation.carried(m)
+        assert got is not None and got.reason is None and got.carried > 0
+        fresh = linkwork.solve(with_points(m), u)
+        assert np.array_equal(sol.status, fresh.status)
+        np.testing.assert_allclose(poses(sol), poses(fresh), rtol=0, atol=1e-12 * m.length_scale)
+        previous = m

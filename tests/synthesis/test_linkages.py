@@ -143,3 +143,54 @@ def test_four_positions_without_chosen_pivots(tmp_path):
     assert found and found[0].check.usable()
     for lk in found[:3]:
         assert engine_reproduces(lk, tmp_path) <= 1e-9
+
+
+def slider_crank_poses(degrees, r=1.0, l=3.5, e=0.4):
+    """Coupler poses (origin at the crank pin A, x-axis towards the slider pin B) of the offset
+    slider-crank A0 = (0, 0), crank r, coupler l, slider on the line y = e, by hand."""
+    th = np.radians(degrees)
+    A = r * np.column_stack([np.cos(th), np.sin(th)])
+    B = np.column_stack([A[:, 0] + np.sqrt(l**2 - (e - A[:, 1]) ** 2), np.full(len(th), e)])
+    return Positions.from_poses(np.column_stack([A, np.arctan2(*(B - A).T[::-1])])), A, B
+
+
+def test_five_positions_of_a_slider_crank_give_the_slider(tmp_path):
+    pos, A, B = slider_crank_poses([10, 50, 100, 160, 230])
+    bp = burmester_points(pos)
+    sliders = [d for d in bp.dyads if d.is_slider]
+    assert len(sliders) == 1
+    s = sliders[0]
+    # the slider's pin is B, its guide the line y = 0.4: the centre at infinity normal to it
+    assert np.allclose(s.circle.xy, B[0], atol=1e-9)
+    assert abs(s.centre.direction.xy[0]) <= 1e-9
+    assert any(np.allclose(d.centre.xy, [0, 0], atol=1e-9) and np.allclose(d.circle.xy, A[0], atol=1e-9)
+               for d in bp.dyads if not d.is_slider)
+    found = [lk for lk in linkages(bp.dyads) if lk.kind == "slider-crank"]
+    crank = [lk for lk in found if np.allclose(lk.input.centre.xy, [0, 0], atol=1e-9)]
+    assert crank and crank[0].check.pose_error <= 1e-9
+    assert engine_reproduces(crank[0], tmp_path) <= 1e-9
+
+
+def test_five_general_positions_have_no_slider():
+    assert not any(d.is_slider for d in burmester_points(FIVE).dyads)
+
+
+def test_the_ranking_screen_agrees_with_the_engine_check():
+    """`linkages` ranks by `Linkage.screen` (closed form, no engine): its branch defect and
+    least transmission angle are the engine's (`check`) for every candidate of an automatic
+    four-position search."""
+    from linkwork.synthesis.linkages import four_position_linkages
+
+    pos, _, _ = generated([10, 45, 80, 120])
+    found = four_position_linkages(pos, candidates=6)
+    checked = [lk for lk in found if lk.geometry_ok]
+    assert len(checked) >= 4
+    for lk in checked:
+        branch, mu = lk.screen
+        c = lk.check
+        assert branch == c.branch_defect
+        if not branch:
+            assert mu == pytest.approx(c.min_transmission, abs=1e-9)
+    # ranked: usable ones (by the screen) first
+    flags = [lk.geometry_ok and not lk.screen[0] and lk.screen[1] >= np.radians(30) for lk in found]
+    assert flags == sorted(flags, reverse=True)

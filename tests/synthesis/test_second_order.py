@@ -104,3 +104,73 @@ def test_bad_requests_are_refused():
         proell_substitution(MECH, AT, P)
     with pytest.raises(InputError, match="replace"):
         proell_substitution(MECH, AT, [1.0, 2.0], replace="coupler")
+
+
+def input_jet(sol, pivot, design):
+    """The angle of the line pivot → (coupler point `design`) and its first three time
+    derivatives in the solution `sol`: Im of log z and its derivatives, z = X − pivot."""
+    pm = sol.point_on("coupler", design)
+    z0 = complex(*(pm.position[0] - pivot))
+    z1, z2, z3 = (complex(*v[0]) for v in (pm.velocity, pm.acceleration, pm.jerk))
+    q1 = z1 / z0
+    q2 = z2 / z0 - q1**2
+    q3 = z3 / z0 - 3 * z2 * z1 / z0**2 + 2 * q1**3
+    return np.angle(z0), q1.imag, q2.imag, q3.imag
+
+
+def coupler_jet(sol, design):
+    pm, lm = sol.point_on("coupler", design), sol.link("coupler")
+    return (np.concatenate([pm.position[0], pm.velocity[0], pm.acceleration[0], pm.jerk[0]]),
+            np.array([lm.omega[0], lm.alpha[0], lm.jerk[0]]))
+
+
+@pytest.mark.parametrize("replace, pivot", [("input", [5.0, -8.0]), ("input", [-6.0, 4.0]),
+                                            ("output", [30.0, -10.0]), ("output", [60.0, 5.0])])
+def test_proell_substitution_to_third_order_keeps_the_jerk(replace, pivot):
+    """The engine's jets of the coupler (a point's position, velocity, acceleration, jerk and the
+    coupler's ω, α, dα/dt) in the old and the new four-bar, the new one driven with the old
+    motion of its own input."""
+    old = solve(MECH, [AT], order=3)
+    w = MECH.drivers[0].law.speed
+    jets = {}
+    for order in (2, 3):
+        sub = proell_substitution(MECH, AT, pivot, replace=replace, order=order)
+        assert sub.order == order
+        new = sub.mechanism()
+        # the pivot stays on its ray from the pole
+        P = sub.pole
+        u, v = np.subtract(pivot, P), sub.pivot - P
+        assert abs(u[0] * v[1] - u[1] * v[0]) <= 1e-9 * np.hypot(*u) * np.hypot(*v)
+        if replace == "output":
+            s = solve(new, [AT], order=3)
+        else:
+            a3 = old.local("coupler", sub.moving_pivot[None, :])[0]
+            th, w1, w2, w3 = input_jet(old, sub.pivot, a3)
+            design = new.driver_input_at_design(new.drivers[0])
+            s = solve(new, [design], velocities=[w1], accelerations=[w2], jerks=[w3], order=3)
+        jets[order] = [coupler_jet(s, new.points["C"]), coupler_jet(old, MECH.points["C"])]
+    (pt3, ln3), (pt_old, ln_old) = jets[3]
+    size = 40.0
+    scale = np.repeat([size, size * w, size * w**2, size * w**3], 2)
+    assert np.allclose(pt3 / scale, pt_old / scale, atol=1e-9)
+    assert np.allclose(ln3 / [w, w**2, w**3], ln_old / [w, w**2, w**3], atol=1e-9)
+    # second order only: the jerk differs
+    (pt2, ln2), _ = jets[2]
+    assert np.allclose(pt2[:6] / scale[:6], pt_old[:6] / scale[:6], atol=1e-9)
+    assert abs(ln2[2] - ln_old[2]) > 1e-6 * w**3
+
+
+def test_third_order_substitution_pivot_is_the_centre_of_a_circling_point():
+    sub = proell_substitution(MECH, AT, [5.0, -8.0], order=3)
+    old = solve(MECH, [AT], order=3)
+    a3 = old.local("coupler", sub.moving_pivot[None, :])[0]
+    cubic = stationary_curvature(old, "coupler")
+    assert abs(cubic.residual(sub.moving_pivot[None, :])[0]) <= 1e-12
+    # the circle through five nearby positions of A3 about the pivot: radius constant to h⁴
+    h = 1e-2
+    X = solve(MECH, AT + h * np.arange(-2, 3), order=1).point_on("coupler", a3).position
+    r = np.hypot(*(X - sub.pivot).T)
+    r2 = np.hypot(*(solve(MECH, AT + 2 * h * np.arange(-2, 3), order=1).point_on("coupler", a3).position
+                    - sub.pivot).T)
+    spread, spread2 = np.ptp(r), np.ptp(r2)
+    assert spread2 / spread == pytest.approx(16.0, rel=0.15)  # fourth order in h

@@ -94,6 +94,15 @@ def test_chebyshev_proportions_are_the_classical_ones():
     assert 0 < des.straightness.deviation < 0.002 * 80
 
 
+def test_chebyshev_from_the_deviation_allowed():
+    des = chebyshev_linkage(deviation=0.05)
+    assert des.straightness.deviation == pytest.approx(0.05, rel=1e-6)
+    L = des.lengths
+    assert (L["frame"], L["rocker"]) == pytest.approx((2 * L["coupler"], 2.5 * L["coupler"]), rel=1e-12)
+    with pytest.raises(InputError, match="stroke or the deviation"):
+        chebyshev_linkage(10.0, deviation=0.1)
+
+
 def watt_closed_form(stroke, r, c):
     """Minimax deviation of x = k y⁵ over |y| ≤ h: the line x = m y with the error equal and
     opposite at y = h and at the interior extremum y₁ = t h, 4t⁵ + 5t⁴ = 1 (solved here by
@@ -161,6 +170,16 @@ def test_evans_matches_the_library_file():
     assert np.allclose(des.points["E"], lib.points["E"], atol=1e-9)
 
 
+def test_evans_lever_from_the_deviation_allowed():
+    des = evans_linkage(100.0, fraction=0.8, deviation=0.1)
+    assert des.straightness.deviation == pytest.approx(0.1, rel=1e-6)
+    # a fresh engine path of the written file
+    again = path_straightness(des.mechanism(), "B", stroke=100.0 * (1 - 1e-9), samples=4001)
+    assert again.deviation == pytest.approx(0.1, rel=1e-5)
+    with pytest.raises(SynthesisError, match="even a lever"):
+        evans_linkage(100.0, fraction=0.8, deviation=0.01)
+
+
 def four_bar(points, name="four-bar"):
     return linkwork.io.load_text(mechanism_file(
         name=name, description="", length_unit="mm", points=points,
@@ -210,9 +229,21 @@ def test_straightness_closed_forms():
         straightness([[1.0, 2.0]])
 
 
+def test_watt_from_stroke_and_overall_size():
+    des = watt_linkage(20.0, frame=130.0, coupler=50.0)
+    assert des.lengths["arm"] == pytest.approx(60.0, rel=1e-12)  # 4·60² + 50² = 130²
+    mech = des.mechanism()
+    assert np.hypot(*np.subtract(mech.points["Cb"], mech.points["Ca"])) == pytest.approx(130.0, rel=1e-12)
+    assert des.straightness.deviation == pytest.approx(watt_closed_form(20.0, 60.0, 50.0), rel=0.05)
+
+
 def test_bad_requests_are_refused():
     with pytest.raises(InputError, match="two of"):
         watt_linkage(10.0, arm=5.0)
+    with pytest.raises(InputError, match="two of"):
+        watt_linkage(10.0, frame=50.0, deviation=0.1)
+    with pytest.raises(InputError, match="farther apart"):
+        watt_linkage(10.0, frame=50.0, arm=30.0)
     with pytest.raises(InputError, match="positive"):
         chebyshev_linkage(-1.0)
     with pytest.raises(InputError, match="midpoint"):

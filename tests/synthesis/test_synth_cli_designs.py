@@ -64,3 +64,45 @@ def test_mistakes_give_one_message(tmp_path, monkeypatch, args, message):
     assert r.exit_code == 2, r.output
     assert message in r.output
     assert "Traceback" not in r.output
+
+
+def test_substitute_to_third_order(tmp_path):
+    out = tmp_path / "sub.toml"
+    r = run("synth", "substitute", "library:crank-rocker", "--at", "60", "--pivot", "30,-10", "--replace",
+            "output", "--order", "3", "-o", out)
+    assert r.exit_code == 0, r.output
+    old, new = analyze_at("library:crank-rocker", [60.0])[0], analyze_at(out, [60.0])[0]
+    for q in ("position", "velocity", "acceleration"):
+        assert new["points"]["C"][q] == pytest.approx(old["points"]["C"][q], abs=1e-9 * 40 * 40)
+    r = run("synth", "substitute", "library:crank-rocker", "--at", "60", "--pivot", "30,-10", "--order", "4",
+            "-o", out)
+    assert r.exit_code == 2 and "order 2 or 3" in r.output
+
+
+def test_six_bar_path_command(tmp_path):
+    from test_six_bar_path import sampled
+
+    T, th = sampled("watt", 5)
+    out = tmp_path / "six.toml"
+    args = [a for p in T for a in ("--point", f"{float(p[0])!r},{float(p[1])!r}")]
+    r = run("synth", "six-bar-path", "--kind", "watt", *args, "--timing",
+            ",".join(repr(float(np.degrees(t - th[0]))) for t in th), "-o", out)
+    assert r.exit_code == 0, r.output
+    import linkwork
+
+    mech = linkwork.load(out)
+    # the file is drawn at the first target: its tracer is there
+    assert np.allclose(mech.points["P"], T[0], atol=1e-9 * 50)
+    r = run("synth", "six-bar-path", "--kind", "klann", *args, "-o", out)
+    assert r.exit_code == 2 and "choose one of" in r.output
+
+
+def test_poles_command_draws_the_steps(tmp_path):
+    out = tmp_path / "hamilton.svg"
+    r = run("synth", "poles", "--pose", "0,0,0", "--pose", "1,0.4,20", "--pose", "1.8,1.2,45", "--steps", "-o", out)
+    assert r.exit_code == 0, r.output
+    files = sorted(tmp_path.glob("hamilton-*.svg"))
+    assert len(files) == 8
+    assert "P_13" in r.output and "relative error" in r.output
+    r = run("synth", "poles", "--pose", "0,0,0", "--pose", "1,0,0", "--pose", "2,0,0", "-o", out)
+    assert r.exit_code == 2 and "translation" in r.output

@@ -451,13 +451,18 @@ def test_the_server_solves_with_the_compiled_loops(monkeypatch):
     kinematics' compiled loops are made ready and then used for every batch; the drawing is
     the one of the interpreted loops (to the last bits numba's fused multiply-adds change)."""
     from linkwork.kinematics import kernels
+    from linkwork.web import app as web_app
     from linkwork.web.app import compile_kernels
-    monkeypatch.setattr(kernels, "INTERPRETED_UP_TO", kernels.INTERPRETED_UP_TO)
+    monkeypatch.setattr(web_app, "KERNELS_READY", web_app.threading.Event())
     body = dict(source={"library": "crank-rocker", "points": {"C": [16.0, 24.0]}}, at=[2.0],
                 layers=["mechanism"], motion=False)
     before = TestClient(create_app(None)).post("/api/drawing", json=body).json()
     compile_kernels()
-    assert kernels.INTERPRETED_UP_TO == 0
+    assert web_app.KERNELS_READY.is_set()
+    ran = []  # the requests' loops are the compiled ones, a drawing's single sample too
+    real = kernels._compiled
+    monkeypatch.setattr(kernels, "_compiled", lambda: ran.append(1) or real())
     after = TestClient(create_app(None)).post("/api/drawing", json=body).json()
+    assert ran
     for p, xy in before["points"].items():
         assert after["points"][p] == pytest.approx(xy, abs=1e-12)

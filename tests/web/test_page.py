@@ -580,3 +580,63 @@ def test_numbers_carry_units(page):
         wait_drawn(page, lambda: page.get_attribute("#plot svg", "data-unit") == unit, f"plot {key}")
         assert f"[{unit}]" in page.inner_text("#plot")
         assert page.locator(f"#quantity option[value='{key}']").inner_text().endswith(f"[{unit}]")
+
+
+def test_keys_move_a_point_like_a_drag(page):
+    """Alt+arrows solve the moved design at the input shown, as a drag's frames do, without the
+    whole motion; it is asked for once, when the keys rest."""
+    page.focus("#input-slider")
+    for _ in range(30):
+        page.keyboard.press("ArrowRight")
+    wait_drawn(page, lambda: page.eval_on_selector("#input-slider", "e => e.value") == "30", "move the slider")
+    u = float(linkwork.whole_motion(MECH).inputs[30, 0])
+    wait_drawn(page, lambda: drawn_input(page) == pytest.approx([u], abs=1e-15), "draw sample 30")
+    asked: list[tuple[str, dict]] = []
+    page.on("request", lambda r: asked.append((r.url.split("/api/")[-1], json.loads(r.post_data or "{}")))
+            if "/api/" in r.url else None)
+    page.select_option("#selection", "point:A")
+    page.check("#edit")
+    page.focus("#drawing")
+    for _ in range(3):  # A up by three steps of 0.1 mm, quicker than the keys' rest
+        page.keyboard.press("Alt+ArrowUp")
+        page.wait_for_timeout(60)
+
+    def moved_a():
+        return json.loads(page.get_attribute("#drawing", "data-moved") or "{}").get("A")
+
+    wait_drawn(page, lambda: moved_a() == pytest.approx([0.0, 10.3]), "draw A moved up three times")
+    drawings = [body for what, body in asked if what == "drawing"]
+    assert drawings and all(body.get("motion") is False for body in drawings)
+    assert all(body["at"] == pytest.approx([u], abs=1e-15) for body in drawings)
+    assert not [w for w, _ in asked if w == "motion"] or \
+        [body["source"]["points"]["A"] for w, body in asked if w == "motion"] == [moved_a()]
+    # the drawn numbers: the moved file solved at the same input
+    ax, ay = moved_a()
+    text = resolve("library:crank-rocker")[1].replace("A  = [0, 10]", f"A  = [{ax!r}, {ay!r}]")
+    want = linkwork.solve(load_text(text), [u]).point("C").position[0]
+    assert drawn_input(page) == pytest.approx([u], abs=1e-15)
+    assert number_row(page, "C") == pytest.approx(tuple(want), abs=1e-4)
+    # the keys rest: the whole motion of the new design, once
+    wait_drawn(page, lambda: json.loads(page.get_attribute("#input-slider", "data-moved") or "{}").get("A")
+               == pytest.approx([0.0, 10.3]), "load the new design's motion")
+    assert [body["source"]["points"]["A"] for w, body in asked if w == "motion"] == [[ax, ay]]
+
+
+@pytest.mark.parametrize("size", [(1366, 768), (1280, 720)])
+def test_drawing_and_plot_fit_a_laptop_screen(browser, server, size):
+    pg = browser.new_page(viewport={"width": size[0], "height": size[1]})
+    try:
+        pg.goto(f"{server}/?library=heusinger-valve-gear")
+        pg.wait_for_selector("body[data-ready=true]", timeout=60_000)
+        pg.select_option("#quantity", "point:VX:x")
+        pg.wait_for_selector("#plot svg", timeout=60_000)
+        fit = pg.evaluate("""() => {
+            const plot = document.querySelector('#plot svg').getBoundingClientRect();
+            const drawing = document.querySelector('#drawing svg').getBoundingClientRect();
+            return {page: document.documentElement.scrollHeight, screen: window.innerHeight,
+                    plot: plot.bottom, plotHeight: plot.height, drawing: drawing.height}; }""")
+        assert fit["page"] <= fit["screen"], fit  # no page scroll
+        assert fit["plot"] <= fit["screen"] and fit["plotHeight"] > 100, fit
+        assert fit["drawing"] > 250, fit
+    finally:
+        pg.close()

@@ -150,8 +150,9 @@ function drawingRequest(): DrawingRequest {
     if (c.link) req.link = c.link;
     if (c.point) req.point = c.point;
   } else if (state.plan) req.construction = state.plan;
-  // while dragging, the frames leave the whole motion out: they follow the pointer sooner
-  if (dragging) req.motion = false;
+  // while dragging (or moving a point by keys), the frames leave the whole motion out: they
+  // follow the pointer sooner
+  if (dragging || settling !== undefined) req.motion = false;
   const traced = Array.from(ui.pathsOf.selectedOptions).map((o) => o.value);
   if (traced.length) req.paths = traced;
   return req;
@@ -851,15 +852,27 @@ function showEditFields(): void {
 }
 
 // ------------------------------------------------------------------ keyboard
+/** The whole motion of a design whose points were moved by keys is asked for once the keys
+ * have rested this long (ms): each key is solved like a drag's frame, at the input shown. */
+const SETTLE = 800;
+let settling: number | undefined; // the timer of that, while keys move points
+
 /** A design point moved by the keyboard: `by` in the file's length unit, in the design
- * coordinates of the point's link (those the file holds). */
+ * coordinates of the point's link (those the file holds). Drawn again at once like a frame of
+ * a drag; the whole motion of the new design follows when the keys rest. */
 function nudge(name: string, by: XY): void {
   const info = state.info;
   if (!info) return;
   const at = state.moved[name] ?? info.points[name];
   state.moved[name] = [at[0] + by[0], at[1] + by[1]];
-  state.generation += 1;
-  void loadMotion(sampleInput(state.index)).catch((e) => showError(messageOf(e)));
+  pause();
+  if (settling !== undefined) window.clearTimeout(settling);
+  settling = window.setTimeout(() => {
+    settling = undefined;
+    state.generation += 1;
+    void loadMotion(sampleInput(state.index)).catch((e) => showError(messageOf(e)));
+  }, SETTLE);
+  void redraw();
 }
 
 const ARROWS: Record<string, XY> = { ArrowLeft: [-1, 0], ArrowRight: [1, 0], ArrowUp: [0, 1], ArrowDown: [0, -1] };

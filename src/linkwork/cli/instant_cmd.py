@@ -54,6 +54,13 @@ def _circle_text(c: Circle, n: int) -> str:
 
 
 def _solve(mech: Mechanism, at: Optional[list[str]], order: int) -> Solution:
+    if mech.given:  # driven by given point velocities: at its drawn position only
+        from ..errors import InputError
+        from ..kinematics.point_inputs import solve_given
+        if at:
+            raise InputError(f"mechanism '{mech.name}' is driven by given point velocities: it is "
+                             "solved at its drawn position, so --at does not apply")
+        return solve_given(mech, order=min(order, 2) if order > 1 else 1)
     asked = input_values(mech, at, None)
     if asked is None:
         return solve(mech, order=order)
@@ -64,6 +71,8 @@ def _solve(mech: Mechanism, at: Optional[list[str]], order: int) -> Solution:
 def _input_text(mech: Mechanism, sol: Solution, n: int) -> str:
     if sol.time is not None:
         return f"t = {sol.time[n]:.6g} s"
+    if mech.given:
+        return "the drawn position (given point velocities)"
     def one(d, v) -> str:
         prismatic = mech.joint(d.joint).kind == "prismatic"
         return f"{v:.6g} {mech.length_unit}" if prismatic else f"{math.degrees(v):.6g}°"

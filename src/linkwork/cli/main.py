@@ -53,23 +53,26 @@ def _table(sol: Solution) -> str:
             return show_input(mech, mech.drivers[0], sol.inputs[n, 0])
         return ", ".join(f"{d.joint} {show_input(mech, d, v)}" for d, v in zip(mech.drivers, sol.inputs[n]))
 
+    none = np.full((len(sol), 2), np.nan)  # accelerations not solved (given point velocities only)
     if len(sol) <= 4:
         for n in range(len(sol)):
-            inp = inputs(n)
+            inp = "the drawn position (given point velocities)" if mech.given else inputs(n)
             t = Table(title=f"{mech.name} — input {inp} — {Status(int(sol.status[n]))}, "
                             f"condition {sol.condition[n]:.3g}")
             for c in ("point", f"x [{unit}]", "y", f"vx [{unit}/s]", "vy", f"ax [{unit}/s²]", "ay"):
                 t.add_column(c, justify="right")
             for p in mech.points:
                 m = sol.point(p)
-                t.add_row(p, *(f"{v:.6g}" for v in (*m.position[n], *m.velocity[n], *m.acceleration[n])))
+                acc = none if m.acceleration is None else m.acceleration
+                t.add_row(p, *(f"{v:.6g}" for v in (*m.position[n], *m.velocity[n], *acc[n])))
             out.print(t)
             t = Table()
             for c in ("link", "angle [°]", "ω [rad/s]", "α [rad/s²]"):
                 t.add_column(c, justify="right")
             for ln in mech.moving_links:
                 m = sol.link(ln)
-                t.add_row(ln, f"{np.degrees(m.angle[n]):.4f}", f"{m.omega[n]:.6g}", f"{m.alpha[n]:.6g}")
+                t.add_row(ln, f"{np.degrees(m.angle[n]):.4f}", f"{m.omega[n]:.6g}",
+                          "—" if m.alpha is None else f"{m.alpha[n]:.6g}")
             out.print(t)
     else:
         head = [("input" if single else f"input {d.joint}") for d in mech.drivers] + ["status"]
@@ -153,6 +156,16 @@ def analyze(
         parquet = chosen == "parquet"
         fmt = Format.table if parquet else Format(chosen)
         mech = load_mechanism(mechanism)
+        if mech.given:  # driven by given point velocities: its drawn position only
+            if at or sweep or speed:
+                raise InputError(f"mechanism '{mech.name}' is driven by given point velocities: it is "
+                                 "solved at its drawn position, so --at, --sweep and --speed do not apply")
+            from ..kinematics.point_inputs import solve_given
+            sol = solve_given(mech)
+            if parquet:
+                return sol.to_parquet(output)
+            write_output(_table(sol) if fmt is Format.table else streams.whole(sol, fmt.value), output)
+            return
         w = input_speeds(mech, speed)
         asked = input_values(mech, at, sweep)
         if w is not None and asked is not None and asked[0] == "time":

@@ -55,12 +55,14 @@ def _plan_command(mechanism: str, at: Optional[list[str]], explain: bool, mode: 
         if mech.given and at is not None:
             raise InputError(f"mechanism '{mech.name}' is driven by given point velocities: it is "
                              "drawn at its drawn position, so --at does not apply")
-        if mech.given and not script.direct:
-            lines.append("The plan of this chain from its given data needs similar point rows (two "
-                         "trials); it is not drawn.")
-        elif mech.given:  # no input: the construction at the drawn position, from the given data
+        if mech.given:  # no input: the construction at the drawn position, from the given data
             from ..kinematics.point_inputs import solve_given
-            at, values = [], solve_given(mech)
+            values = solve_given(mech)  # too few or too many conditions are reported here
+            if script.direct:
+                at = []
+            else:
+                lines.append("The plan of this chain from its given data needs similar point rows "
+                             "(two trials); it is not drawn.")
         elif at is not None:
             samples = input_values(mech, at, None)
             if samples is None or samples[0] != "input":

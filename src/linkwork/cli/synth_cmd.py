@@ -5,7 +5,8 @@
     linkwork synth function --function "log10(x)" --x 1:2 --input-range 30:120 \\
         --output-range 60:150 --points 3 -o log.toml
 
-`poses` guides a plane (a coupler) through prescribed positions x, y, angle (degrees): three
+`poles` draws Hamilton's construction of the poles, the pole triangle and homologous points
+by reflections (Pöschl §57), with --steps one drawing per step. `poses` guides a plane (a coupler) through prescribed positions x, y, angle (degrees): three
 positions with two chosen pivots (--centre for a fixed pivot, --circle for a moving pivot
 drawn in the first position), four with two fixed pivots on the centre-point curve (or
 --slider for the curve's point at infinity) or, without them, the best pairs of points along
@@ -14,9 +15,12 @@ FILE.svg draws the positions, poles, pole triangles, for four positions the cent
 circle-point curves, and the pivots used (five: the Burmester points). `function` designs a four-bar (or --slider: a slider-crank) whose output
 follows y = f(x) through precision points by Freudenstein's equation. `dwell` adds Alt's dwell
 dyad to a four-bar at a coupler point (Pöschl §37); `substitute` replaces a crank of a four-bar
-by Pröll's (Rosenauer §29), keeping the coupler's motion to second order. `path` finds a
+by Pröll's (Rosenauer §29), keeping the coupler's motion to second order (--order 3: to the jerk). `path` finds a
 four-bar whose coupler point passes through target points (least squares from several starts);
-`cognates` writes the Roberts–Chebyshev cognates of a four-bar's coupler point.
+`six-bar-path` does the same with a Watt I or Stephenson III six-bar; `cognates` writes the
+Roberts–Chebyshev cognates of a four-bar's coupler point; `straight-line` designs Watt's,
+Chebyshev's and Evans's linkages from a stroke, a Ball-point tracer or Hart's exact line from a
+four-bar, and `straightness` measures any point path against its best line.
 
 Every file written is loaded again and solved by the engine at the positions' (or precision
 points') inputs; the deviation is reported and must stay within 1e-9, else the command stops
@@ -246,10 +250,16 @@ def register(app: typer.Typer) -> None:
                     with err_console.status("trying pairs of centre points along the centre-point curve …"):
                         found = four_position_linkages(pos, name=name)
                     what = f"{len(found)} linkages from points of the centre-point curve"
-                usable = [lk for lk in found if lk.geometry_ok and lk.check.usable(math.radians(min_transmission))]
-                chosen = found if all_ else usable
                 limit = best if best is not None else (None if n == 5 else 3)
-                chosen = chosen[:limit]
+                if all_:
+                    chosen = found[:limit]
+                else:  # found is ranked without the engine: its check confirms the first usable ones
+                    chosen = []
+                    for lk in found:
+                        if limit is not None and len(chosen) >= limit:
+                            break
+                        if lk.geometry_ok and lk.check.usable(math.radians(min_transmission)):
+                            chosen.append(lk)
                 if not chosen:
                     shown = [lk for lk in found if lk.geometry_ok][:10]
                     if shown:
@@ -290,6 +300,59 @@ def register(app: typer.Typer) -> None:
             if bad:
                 raise InputError("the engine does not reproduce the positions with " + ", ".join(bad)
                                  + f" (beyond {TOLERANCE:g}): not a usable design")
+
+    @synth.command("poles")
+    def poles_command(
+        pose: Optional[list[str]] = typer.Option(None, "--pose", help="X,Y,ANGLE: a position of the moving plane (degrees); repeat, 3 to 5 times"),
+        poses_file: Optional[str] = typer.Option(None, "--poses", help="a CSV file of positions x,y,angle (degrees), one a line"),
+        point: Optional[str] = typer.Option(None, "--point", help="X,Y: the point D1 of the first position whose homologous points are found (default: the middle of its segment)"),
+        triple: str = typer.Option("1,2,3", "--triple", help="I,J,K: the three positions of the construction (numbered from 1)"),
+        steps: bool = typer.Option(False, "--steps", help="one drawing per construction step (FILE-01.svg, …)"),
+        unit: str = typer.Option("mm", "--unit", help="length unit of the drawing"),
+        output: str = typer.Option(..., "-o", "--output", help="FILE.svg (.png, .pdf): the positions with Hamilton's construction"),
+    ) -> None:
+        """Hamilton's construction (Pöschl §57): poles, pole triangle, homologous points by reflections."""
+        with user_errors():
+            from ..constructions.scales import Scales
+            from ..drawing.layers import construction_box, construction_extent, draw_construction
+            from ..drawing.svg import Figure
+            from ..synthesis.reflections import pole_construction
+            from ..units import check_length_unit
+
+            check_length_unit(unit)
+            if Path(output).suffix.lower() not in (".svg", ".png", ".pdf"):
+                raise InputError(f"-o {output}: write .svg, .png or .pdf")
+            pos = _poses(pose, poses_file)
+            try:
+                t = tuple(int(v) - 1 for v in triple.split(","))
+            except ValueError:
+                raise InputError(f"--triple {triple}: write three position numbers I,J,K") from None
+            con = pole_construction(pos, None if point is None else _pair(point, "--point"), triple=t)
+            con.require(0)
+            con.check()
+            Console().print(con.describe(), highlight=False)
+            con = con.sample(0)  # the drawing takes single items
+            out = Path(output)
+            scales = Scales.auto(unit, 1.2 * construction_extent(con))
+
+            def figure():  # the construction draws the positions itself (step 1)
+                fig = Figure(scales, title="Hamilton's construction (Pöschl §57)")
+                fig.clip["mechanism"] = construction_box(con)
+                return fig
+            if steps:
+                written = []
+                for k in range(len(con.steps)):
+                    fig = figure()
+                    draw_construction(fig, con, upto=k, highlight=k)
+                    p = out.with_name(f"{out.stem}-{k + 1:02d}{out.suffix}")
+                    fig.save(p)
+                    written.append(p)
+                Console().print(f"wrote {len(written)} drawings {written[0]} … {written[-1]}")
+            else:
+                fig = figure()
+                draw_construction(fig, con)
+                fig.save(out)
+                Console().print(f"wrote {out}")
 
     @synth.command("function")
     def function_command(
@@ -368,6 +431,18 @@ def _angle_option(text: str, what: str) -> float:
     return math.radians(_number(text, what))
 
 
+def _targets(unit: str, point, timing):
+    """The path commands' targets (--point, at least three) and timing (--timing, degrees)."""
+    from ..units import check_length_unit
+
+    check_length_unit(unit)
+    targets = np.array([_pair(p, "--point") for p in point or []])
+    if len(targets) < 3:
+        raise InputError(f"give at least three target points (--point X,Y), got {len(targets)}")
+    tm = None if timing is None else np.radians([_number(v, f"--timing {timing}") for v in timing.split(",")])
+    return targets, tm
+
+
 def register_curvature_designs(synth: typer.Typer) -> None:
     @synth.command("dwell")
     def dwell_command(
@@ -412,13 +487,8 @@ def register_curvature_designs(synth: typer.Typer) -> None:
             from ..io import load
             from ..kinematics import solve
             from ..synthesis.path import path_generator
-            from ..units import check_length_unit
 
-            check_length_unit(unit)
-            targets = np.array([_pair(p, "--point") for p in point or []])
-            if len(targets) < 3:
-                raise InputError(f"give at least three target points (--point X,Y), got {len(targets)}")
-            tm = None if timing is None else np.radians([_number(v, f"--timing {timing}") for v in timing.split(",")])
+            targets, tm = _targets(unit, point, timing)
             if starts < 1:
                 raise InputError(f"--starts {starts}: give at least 1")
             gen = path_generator(targets, timing=tm, starts=starts, name=name)
@@ -432,6 +502,31 @@ def register_curvature_designs(synth: typer.Typer) -> None:
                 ("Grashof type", c.name), ("defects", ", ".join(n.split(" (")[0] for n in c.notes) or "none"),
                 ("least transmission angle", f"{math.degrees(c.min_transmission):.2f}°"),
                 ("largest distance from the targets (engine)", f"{engine:.3g} {unit}")]))
+            Console().print(f"wrote {output}")
+
+    @synth.command("six-bar-path")
+    def six_bar_path_command(
+        kind: str = typer.Option("stephenson", "--kind", help="watt (Watt I: dyad between crank and coupler) or stephenson (Stephenson III: dyad from the coupler to a frame pivot)"),
+        point: Optional[list[str]] = typer.Option(None, "--point", help="X,Y: a target point of the tracer's path; repeat (at least 3), in order"),
+        timing: Optional[str] = typer.Option(None, "--timing", help="DEG,DEG,…: the crank angle at each target (prescribed timing), relative to the first"),
+        starts: int = typer.Option(12, "--starts", help="starting points of the search (the best-fitting random six-bars)"),
+        unit: str = typer.Option("mm", "--unit", help="length unit of the file"),
+        name: Optional[str] = typer.Option(None, "--name", help="the mechanism's name"),
+        output: str = typer.Option(..., "-o", "--output", help="the six-bar's mechanism file"),
+    ) -> None:
+        """A Watt or Stephenson six-bar whose tracer P passes through target points (least squares)."""
+        with user_errors():
+            from ..io import load
+            from ..synthesis.six_bar_path import six_bar_path_generator
+
+            targets, tm = _targets(unit, point, timing)
+            gen = six_bar_path_generator(targets, kind, timing=tm, starts=starts, name=name, length_unit=unit)
+            write_output_file(output, gen.text)
+            load(output)
+            Console().print(_summary(f"path generator ({kind} six-bar)", [
+                ("crank angles at the targets", ", ".join(f"{math.degrees(a):.6g}°" for a in gen.angles)),
+                ("assemblies (four-bar, dyad)", f"{gen.assembly[0]:+d}, {gen.assembly[1]:+d}"),
+                ("largest distance from the targets (engine)", f"{gen.engine_error:.3g} {unit}")]))
             Console().print(f"wrote {output}")
 
     @synth.command("cognates")
@@ -461,16 +556,18 @@ def register_curvature_designs(synth: typer.Typer) -> None:
         at: str = typer.Option(..., "--at", help="DEG: the input angle at which the motion is kept"),
         pivot: str = typer.Option(..., "--pivot", help="X,Y: the new fixed pivot"),
         replace: str = typer.Option("input", "--replace", help="input (the driven crank) or output (the rocker)"),
+        order: int = typer.Option(2, "--order", help="2: same pole and inflection circle; 3: the pivot moved along its ray from the pole onto the centre-point curve, the motion kept to the jerk"),
         output: str = typer.Option(..., "-o", "--output", help="the new four-bar's mechanism file"),
     ) -> None:
-        """Pröll's substitution: a crank from a new pivot with the same pole and inflection circle."""
+        """Pröll's substitution: a crank from a new pivot with the same pole and inflection circle (--order 3: and the same jerk)."""
         with user_errors():
             output_format(None, output, ("toml",), "toml")  # a mechanism file
             from ..io import load
             from ..synthesis.second_order import proell_substitution
 
             mech = load(mechanism)
-            sub = proell_substitution(mech, _angle_option(at, "--at"), _pair(pivot, "--pivot"), replace=replace)
+            sub = proell_substitution(mech, _angle_option(at, "--at"), _pair(pivot, "--pivot"), replace=replace,
+                                      order=order)
             write_output_file(output, sub.text)
             load(output)
             Console().print(_summary("Pröll's substitution", [
@@ -495,9 +592,10 @@ def register_straight_lines(synth: typer.Typer) -> None:
     def straight_line_command(
         kind: str = typer.Argument(..., help="watt, chebyshev, evans (from a stroke), ball-point or hart (from a four-bar, --mechanism)"),
         stroke: Optional[float] = typer.Option(None, "--stroke", help="L: the straight stroke of the tracer (watt, chebyshev, evans; ball-point: the stroke to measure)"),
-        deviation: Optional[float] = typer.Option(None, "--deviation", help="L: watt: the largest deviation allowed over the stroke"),
+        deviation: Optional[float] = typer.Option(None, "--deviation", help="L: watt, chebyshev, evans: the largest deviation allowed over the stroke (chebyshev: instead of --stroke; evans: instead of --lever)"),
         arm: Optional[float] = typer.Option(None, "--arm", help="L: watt: the arms' length"),
         coupler: Optional[float] = typer.Option(None, "--coupler", help="L: watt: the coupler's length"),
+        frame: Optional[float] = typer.Option(None, "--frame", help="L: watt: the overall size, the fixed pivots' distance"),
         angle: float = typer.Option(45.0, "--angle", help="DEG: evans: the bar's swing about the horizontal"),
         fraction: float = typer.Option(0.7, "--fraction", help="evans: C = A + FRACTION·(B − A) (0–1 first form, > 1 second, < 0 third)"),
         lever: Optional[float] = typer.Option(None, "--lever", help="L: evans: E's distance from line AO (default 4·AB)"),
@@ -529,14 +627,15 @@ def register_straight_lines(synth: typer.Typer) -> None:
                 length_unit = mech.length_unit
             else:
                 check_length_unit(unit)
-                if stroke is None:
+                if stroke is None and not (kind == "chebyshev" and deviation is not None):
                     raise InputError(f"straight-line {kind}: give the stroke with --stroke L")
                 if kind == "watt":
-                    des = sl.watt_linkage(stroke, deviation=deviation, arm=arm, coupler=coupler, unit=unit)
+                    des = sl.watt_linkage(stroke, deviation=deviation, arm=arm, coupler=coupler, frame=frame, unit=unit)
                 elif kind == "chebyshev":
-                    des = sl.chebyshev_linkage(stroke, unit=unit)
+                    des = sl.chebyshev_linkage(stroke, deviation=deviation, unit=unit)
                 else:
-                    des = sl.evans_linkage(stroke, angle=math.radians(angle), fraction=fraction, lever=lever, unit=unit)
+                    des = sl.evans_linkage(stroke, angle=math.radians(angle), fraction=fraction, lever=lever,
+                                           deviation=deviation, unit=unit)
                 length_unit = unit
             write_output_file(output, des.text)
             load(output)  # the engine reads the file back

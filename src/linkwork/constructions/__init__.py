@@ -23,6 +23,10 @@ two-points          inflection and Bresse circles from v and a of two points (ch
 klein               Klein's construction of the piston acceleration (seed 004)
 kennedy             Aronhold–Kennedy construction of all poles, line by line
 mohr                Mohr's construction of b_B from b_A, slider-crank and four-bar (Pöschl §47–48)
+relative-normals    relative normal accelerations v²/r by Thales semicircles on the mechanism
+                    (Rosenauer 1937, papers 4, 5, 8)
+rolling-lever       paper 8: the rolling lever's inflection circle, pole acceleration j_p = ω·V_p,
+                    the valve's sliding acceleration (Rosenauer 1937)
 slide-pairs         slides in moving planes: the velocity parallelogram, half-Coriolis by similar
                     triangles, the double parallelogram, the check lines (Rosenauer 1937, p. 3, 5)
 ==================  ========================================================================
@@ -41,6 +45,8 @@ from .hartmann import hartmann
 from .kennedy import kennedy
 from .klein import klein
 from .mohr import mohr
+from .relative_normals import relative_normals
+from .rolling_lever import rolling_lever
 from .rotated_velocities import rotated_velocities
 from .slide_pairs import slide_pairs
 from .two_points import inflection_from_two_points
@@ -58,6 +64,8 @@ CONSTRUCTIONS: dict[str, Callable[..., Construction]] = {
     "kennedy": kennedy,
     "mohr": mohr,
     "slide-pairs": slide_pairs,
+    "relative-normals": relative_normals,
+    "rolling-lever": rolling_lever,
 }
 
 
@@ -72,5 +80,5 @@ def construct(name: str, mechanism, inputs, **options) -> Construction:
 
 
 __all__ = ["CONSTRUCTIONS", "acceleration_plan", "bobillier", "construct", "euler_savary",
-           "hartmann", "inflection_from_two_points", "kennedy", "klein", "mohr", "rotated_velocities",
-           "slide_pairs", "velocity_plan"]
+           "hartmann", "inflection_from_two_points", "kennedy", "klein", "mohr", "relative_normals",
+           "rolling_lever", "rotated_velocities", "slide_pairs", "velocity_plan"]

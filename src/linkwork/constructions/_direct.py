@@ -1,14 +1,28 @@
 """Rosenauer's direct velocity construction carried out on the drawing, for the groups the
 dyad constructions of :mod:`._plan` do not handle (triads, the Heusinger six-link group, chains
-without four-bar loops, the Römer mechanism's gears and coupler).
+without four-bar loops, the Römer mechanism's gears and coupler, cam and rolling contacts), and
+the same script on accelerations.
 
-Owns :func:`draw_script`: the steps of a :class:`linkwork.topology.constructibility.VelocityScript`
-(the auxiliary points Q, R, … where two link lines meet, each image where two plan lines meet,
-points on a line of two images divided in the drawing's ratio, images copied along a sliding
-pair) performed at every sample with the drafting table of a :class:`._plan.VelocityConstruction`,
-in either of its modes: the polar plan (plan lines ⟂ the mechanism lines) or rotated velocities
-(tips on lines ∥ the mechanism lines, Rosenauer's own form). Each image is handed back to the
-velocity construction, which checks every point, auxiliary points included, against the engine.
+Owns :func:`draw_group` and :func:`draw_group_acceleration`: the steps of a
+:class:`linkwork.topology.constructibility.VelocityScript` (the auxiliary points Q, R, … where two
+link lines meet, each image where two plan lines meet, points on a line of two images divided in
+the drawing's ratio, images copied along a sliding pair) performed at every sample with the
+drafting table of a :class:`._plan.VelocityConstruction`, in either of its modes: the polar plan
+(plan lines ⟂ the mechanism lines) or rotated velocities (tips on lines ∥ the mechanism lines,
+Rosenauer's own form). The script is planned on the drawing's geometry (`drawing_geometry`), so
+that lines parallel only at this position are chosen around where the rules allow.
+
+* `ScriptDrawer`: the direct construction; `TrialDrawer`: false position, with one trial (rows
+  through o, Rosenauer's binary driver) or two (a binary link left out, its check fixes the rows);
+* `AccelerationDrawer`: the plan of relative normal accelerations (paper 4) in the books'
+  chained layout (two images of a hinge where a loop does not close), transferred across
+  hinges, slides (Coriolis), curved slots, gears and rolling contacts (the relative pole's
+  acceleration) and cam contacts (the equivalent link between the centres of curvature);
+  `AccelerationTrialDrawer`: the same after a false-position velocity plan (two trial α*);
+  `TriangleDrawer`: a triad by the inscribed perpendicular-similar triangle (paper 4).
+
+Each image is handed back to the construction, which checks every point, auxiliary points
+included, against the engine.
 """
 
 from __future__ import annotations
@@ -398,21 +412,52 @@ class TrialDrawer(ScriptDrawer):
             vc.set_known(ln, self.where(p), image, p)
 
 
+def drawing_geometry(vc, chain: Chain) -> dict:
+    """The drawing's points and the directions of the guides' and contacts' normals at every
+    sample, for the planner's choice of lines (`plan_velocities` with ``geometry``)."""
+    geo: dict = dict(vc.pos)
+    mech = vc.mech
+    for pair, g1, g2, t, c1, c2 in chain.meshes:
+        r1, r2 = mech.joint(pair).radii
+        k = r1 / (r1 + r2) if mech.joint(pair).gear_kind == "external" else r1 / (r1 - r2)
+        geo[t] = geo[c1] + k * (geo[c2] - geo[c1])
+    for pair, a, b, k in chain.contacts + chain.rolls:
+        rep = vc.sol.joint(pair)
+        geo[k] = np.asarray(rep["point"], float)
+        geo[("contact", pair)] = np.asarray(rep["normal"], float)
+    for j in mech.joints:
+        if isinstance(j, (Prismatic, Slot)):
+            geo[("normal", j.name)] = perp(vc._axis(j.links[0], j.axis))
+    return geo
+
+
+def _scripts(vc, chain: Chain, links, solved):
+    """The group's script and the whole chain's, planned on the drawing's geometry."""
+    geo = drawing_geometry(vc, chain)
+    sub = chain.restricted(solved | set(links), solved)
+    return plan_velocities(sub, geo), (lambda: plan_velocities(chain, geo))
+
+
+def _report_coincidences(b, script) -> None:
+    for text in script.coincidences:
+        b.step("Note on the drawing: " + text)
+
+
 def draw_group(vc, links: tuple[str, ...], joints: tuple[str, ...], solved: set[str],
                drivers: tuple[str, ...] = ()) -> VelocityScript:
     """Construct the images of the group ``links`` on the links ``solved`` before it by
     Rosenauer's rule; raise `InputError` where it does not reach them (similar point rows
-    would be needed) or the group has pairs the rule does not know."""
+    would be needed) or the group has pairs the rule does not know. Where the rules leave a
+    choice of lines, those crossing at the widest angle in this drawing are taken."""
     chain = Chain.from_mechanism(vc.mech)
     # the solver's own (virtual) links of a cam group are no links of the chain
     links = tuple(ln for ln in links if ln in chain.links)
     solved = {ln for ln in solved if ln in chain.links}
-    sub = chain.restricted(solved | set(links), solved)
-    script = plan_velocities(sub)
+    script, whole = _scripts(vc, chain, links, solved)
     missing = [ln for ln in links if ln in script.unreached]
     if missing and not script.unsupported:
         # false position: the whole chain from a trial driver, scaled to the given one
-        full = plan_velocities(chain)
+        full = whole()
         if full.trial is not None and full.complete:
             TrialDrawer(vc, full, solved).run(set(links))
             return full
@@ -423,6 +468,7 @@ def draw_group(vc, links: tuple[str, ...], joints: tuple[str, ...], solved: set[
         why = (f"not handled: {', '.join(bad)}" if bad else
                f"{script.verdict()}")
         raise InputError(f"the direct velocity construction of the group {', '.join(links)}: {why}")
+    _report_coincidences(vc.b, script)
     ScriptDrawer(vc, script, solved).run(set(links))
     return script
 
@@ -432,7 +478,7 @@ def draw_given(vc) -> VelocityScript:
     free or open chain, Rosenauer 1937 paper 2): the whole chain from its given data by
     Rosenauer's rule; `InputError` where the rule does not reach every link (two trials of false
     position would be needed, which is not drawn)."""
-    script = plan_velocities(vc.mech)
+    script = plan_velocities(Chain.from_mechanism(vc.mech, getattr(vc.sol, "given", None) or None))
     if not script.direct:
         raise InputError(f"the velocity construction of '{vc.mech.name}' from its given point "
                          f"velocities: {script.verdict()}; the plan of such a chain by similar point "
@@ -676,9 +722,14 @@ def draw_group_acceleration(ac, links: tuple[str, ...], joints: tuple[str, ...],
     chain = Chain.from_mechanism(ac.mech)
     links = tuple(ln for ln in links if ln in chain.links)
     solved = {ln for ln in solved if ln in chain.links}
-    script = plan_velocities(chain.restricted(solved | set(links), solved))
+    script, whole = _scripts(ac.vc, chain, links, solved)
+    triad = _triad(chain, links, solved)
+    if triad is not None and script.complete and script.trial is None:
+        if TriangleDrawer(ac, script, solved).draw(set(links), *triad):
+            return script
+        # the locus lines cross badly in this drawing: the auxiliary points' script instead
     if not script.complete:
-        full = plan_velocities(chain)
+        full = whole()
         if full.trial is not None and full.complete:
             AccelerationTrialDrawer(ac, full, {ac.mech.frame}).run(set(links))
             return full
@@ -799,3 +850,143 @@ def _similar(own, X: np.ndarray) -> np.ndarray:
     z = lambda a: a[:, 0] + 1j * a[:, 1]  # noqa: E731
     w = z(x1) + (z(x2) - z(x1)) / (z(X2) - z(X1)) * (z(X) - z(X1))
     return np.stack([w.real, w.imag], axis=-1)
+
+
+def _triad(chain: Chain, links, solved):
+    """A group of one link T and three binary links, each hinged to T at one end and to a link
+    solved before at the other (Rosenauer 1937 paper 4, Ex. III and V: the triad ABC with AK, BL,
+    CM): (T, [(point of T, binary link, its other end, the solved link there)] * 3), else None."""
+    links = set(links)
+    for T in links:
+        rest = links - {T}
+        if len(rest) != 3:
+            continue
+        arms = []
+        for B in rest:
+            pts = list(dict.fromkeys(chain.links[B]))
+            if len(pts) != 2:
+                break
+            at_T = [p for p in pts if any(h == (p, B, T) or h == (p, T, B) for h in chain.hinges)]
+            if len(at_T) != 1:
+                break
+            X = at_T[0]
+            Y = pts[1] if pts[0] == X else pts[0]
+            K = next((a if b == B else b for q, a, b in chain.hinges
+                      if q == Y and B in (a, b) and (a if b == B else b) in solved), None)
+            if K is None:
+                break
+            arms.append((X, B, Y, K))
+        else:
+            if len({a[0] for a in arms}) == 3:
+                return T, arms
+    return None
+
+
+class TriangleDrawer(AccelerationDrawer):
+    """Paper 4's solution for a triad (digest 000 §2.8; Ex. III, V): the ends of the
+    accelerations of the three points A, B, C of the link T lie on three locus lines α, β, γ
+    (through the transferred ends of the accelerations of K, L, M, perpendicular to KA, LB, MC),
+    and form a triangle whose sides are perpendicular to those of ABC. Any such trial triangle
+    A′B′C′ with B′ on β and C′ on γ is homothetic to the true one from Q = β ∩ γ, so QA′ cuts α
+    in the true A₁, and parallels to A′B′, A′C′ give B₁, C₁. Where A, B, C are collinear (paper
+    5, Ex. III) A′ divides B′C′ as A divides BC. Of the three corners Q is taken where the two
+    locus lines cross at the widest angle in this drawing (a runtime choice: lines nearly parallel
+    at this position are avoided)."""
+
+    @staticmethod
+    def _sine(u, v) -> float:
+        with np.errstate(invalid="ignore", divide="ignore"):
+            s = abs(u[:, 0] * v[:, 1] - u[:, 1] * v[:, 0]) / (norm(u) * norm(v))
+        s = s[~np.isnan(s)]
+        return float(s.min()) if s.size else 1.0
+
+    def _solve(self, loci, order) -> dict:
+        """The trial triangle and the true one for one labelling (``order``: the corner on the
+        ray from Q first, then the two whose locus lines meet in Q)."""
+        (X1, t1, d1), (X2, t2, d2), (X3, t3, d3) = (loci[i] for i in order)
+        P1, P2, P3 = (self.where(x) for x in (X1, X2, X3))
+        Q, par = _meet_lines((t2, d2), (t3, d3))
+        size = norm(t2 - t3) + norm(t1 - t2) + 1.0
+        base = np.where(par[:, None], t2, Q)
+        B2 = base + (size / norm(d2))[:, None] * d2
+        side = perp(P3 - P2)
+        C3, _ = _meet_lines((t3, d3), (B2, side))
+        e23 = P3 - P2
+        lam = dot(P1 - P2, e23) / dot(e23, e23)
+        straight = norm(P1 - (P2 + lam[:, None] * e23)) <= 1e-9 * norm(e23)
+        A1t, _ = _meet_lines((B2, perp(P1 - P2)), (C3, perp(P1 - P3)))
+        A1t = np.where(straight[:, None], B2 + lam[:, None] * (C3 - B2), A1t)
+        start = np.where(par[:, None], A1t, Q)
+        ray = np.where(par[:, None], d2, A1t - Q)
+        A1, bad = _meet_lines((start, ray), (t1, d1))
+        B1, _ = _meet_lines((t2, d2), (A1, B2 - A1t))
+        C1, _ = _meet_lines((t3, d3), (A1, C3 - A1t))
+        score = min(self._sine(d2, d3) if not par.all() else 1.0, self._sine(d3, side),
+                    self._sine(ray, d1), self._sine(d2, B2 - A1t), self._sine(d3, C3 - A1t))
+        return dict(order=order, X=(X1, X2, X3), Q=Q, par=par, B2=B2, C3=C3, A1t=A1t, start=start,
+                    ray=ray, A1=A1, B1=B1, C1=C1, bad=bad, score=score)
+
+    def draw(self, links: set[str], T: str, arms) -> bool:
+        """Draw the triangle if some labelling avoids the drawing's coincidences (True), else
+        leave everything undrawn (False: the caller takes the auxiliary points' script)."""
+        ac = self.ac
+        b = ac.b
+        names = "\u03b1\u03b2\u03b3"
+        loci = []
+        for i, (X, B, Y, K) in enumerate(arms):
+            through = self.img((K, Y)) + self.transfer(K, B, Y) + self.transfer(B, T, X)
+            loci.append((X, through, perp(self.where(X) - self.where(Y))))
+        orders = [[k, i2, 3 - k - i2] for k in range(3) for i2 in range(3) if i2 != k]
+        best = max((self._solve(loci, o) for o in orders), key=lambda r: r["score"])
+        if best["score"] < 1e-3:
+            return False
+        b.step("Locus lines (paper 4): through the ends of the accelerations of "
+               + ", ".join(upper(Y) for X, B, Y, K in arms) + " (laid off at their images in the plan "
+               "of relative normal accelerations, transferred into " + T + ") draw the perpendiculars to "
+               + ", ".join(f"{upper(Y)}{upper(X)}" for X, B, Y, K in arms) + ": "
+               + ", ".join(f"{names[i]}\u2013{names[i]}" for i in range(3)) + ".")
+        for X, through, d in loci:
+            ac._line(f"a.locus.{X}", through, d)
+        order = best["order"]
+        X1, X2, X3 = best["X"]
+        b.step(f"Inscribed triangle: Q = {names[order[1]]} \u2229 {names[order[2]]}; a trial "
+               f"{upper(X2)}\u2032 on {names[order[1]]}, {upper(X3)}\u2032 on {names[order[2]]} with "
+               f"{upper(X2)}\u2032{upper(X3)}\u2032 \u27c2 {upper(X2)}{upper(X3)}, and {upper(X1)}\u2032 "
+               f"from the sides \u27c2 {upper(X2)}{upper(X1)}, {upper(X3)}{upper(X1)} (collinear points: "
+               f"dividing {upper(X2)}\u2032{upper(X3)}\u2032 as {upper(X1)} divides {upper(X2)}{upper(X3)}); "
+               f"Q{upper(X1)}\u2032 cuts {names[order[0]]} in {upper(X1)}\u2081, the parallels to the trial's "
+               f"sides give {upper(X2)}\u2081 and {upper(X3)}\u2081 (Q at infinity: a translation).")
+        b.degenerate(best["bad"] & ~b.bad, f"the trial ray meets the locus line of {upper(X1)} at infinity here")
+        B2, C3, A1t = best["B2"], best["C3"], best["A1t"]
+        A1, B1, C1, par = best["A1"], best["B1"], best["C1"], best["par"]
+        ac._line("a.tri.QA", best["start"], best["ray"])
+        for nm, xy in ((X2 + "'", B2), (X3 + "'", C3), (X1 + "'", A1t)):
+            b.point(f"a.tri.trial.{nm}", _pt(xy), label=upper(nm[:-1]) + "\u2032", space="acceleration")
+        b.polygon("a.tri.trial", [_pt(A1t), _pt(B2), _pt(C3)], Role.AUXILIARY, space="acceleration")
+        b.polygon("a.tri.result", [_pt(A1), _pt(B1), _pt(C1)], Role.RESULT, space="acceleration")
+        if not par.all():
+            b.point("a.tri.Q", _pt(np.where(par[:, None], np.nan, best["Q"])), label="Q", space="acceleration")
+        ends = {X1: A1, X2: B1, X3: C1}
+        for X, B, Y, K in arms:
+            E = ends[X]
+            self.show(f"a.tri.{T}.{X}", _Pt(X, T), E, lower(X))
+            self.keep(T, X, E)
+            self.keep(B, X, E + self.transfer(T, B, X))
+            self.keep(B, Y, self.img((K, Y)) + self.transfer(K, B, Y))
+        for ln in links:
+            if len(self.ac.known.get(ln, [])) < 2:
+                raise InputError(f"the triad construction left {ln} with fewer than two points")
+        self._second_images(links)
+        return True
+
+
+class _Pt:
+    """What `show` needs of a step: the point and its link."""
+
+    def __init__(self, point: str, link: str) -> None:
+        self.point, self.link = point, link
+
+
+def _meet_lines(l1, l2):
+    from ._plan import _meet
+    return _meet(l1, l2)

@@ -250,11 +250,12 @@ class VelocityConstruction(_SlidingGroups):
     def run(self) -> None:
         solved = {self.mech.frame}
         self.scripts = []
-        if self.mech.given:
+        given = bool(self.mech.given or getattr(self.sol, "given", ()))
+        if given:
             # no driver: the whole chain from its given point velocities by Rosenauer's rule
             from ._direct import draw_given
             self.scripts.append(draw_given(self))
-        for gs in (() if self.mech.given else group_plan(self.mech)):
+        for gs in (() if given else group_plan(self.mech)):
             fn = getattr(self, "_g_" + gs.kind.replace("-", "_"), None)
             if fn is not None:
                 fn(gs)
@@ -471,6 +472,10 @@ class AccelerationConstruction(_SlidingGroups):
 
     def run(self) -> None:
         solved = {self.mech.frame}
+        if self.mech.given or getattr(self.sol, "given", ()):
+            raise InputError(f"the acceleration plan of '{self.mech.name}', a chain driven by given "
+                             "point velocities, is not drawn (its accelerations are solved: "
+                             "kinematics.point_inputs.solve_given)")
         for gs in group_plan(self.mech):
             fn = getattr(self, "_g_" + gs.kind.replace("-", "_"), None)
             if fn is not None:

@@ -120,7 +120,8 @@ class Scene:
         ext = self.extent()
         pts = self.moving_points
         vmax = max((float(np.linalg.norm(self.vel(p))) for p in pts), default=1.0)
-        amax = max((float(np.nan_to_num(np.linalg.norm(self.acc(p)))) for p in pts), default=1.0)
+        amax = max((float(np.nan_to_num(np.linalg.norm(self.acc(p)))) for p in pts), default=1.0) \
+            if self.sol.order >= 2 else 1.0  # a solve of velocities only (given point velocities)
         ls = length or nice_ceil(ext / paper)
         vec_mm = plan_mm or 0.3 * ext / ls
         return Scales.auto(self.mech.length_unit, ext, vmax=vmax or 1.0, amax=amax or 1.0,
@@ -306,6 +307,10 @@ def draw_paths(fig: Figure, sc: Scene, points: Sequence[str] | None = None) -> N
 
 def draw_vectors(fig: Figure, sc: Scene, which: str, points: Sequence[str] | None = None) -> None:
     """Velocity (``which='velocity'``) or acceleration vectors drawn at the points, to scale."""
+    if which != "velocity" and sc.sol.order < 2:
+        raise InputError(f"mechanism '{sc.mech.name}': its accelerations are not solved (a chain "
+                         "driven by given point velocities needs their accelerations, or the "
+                         "curvatures of their paths, for them)")
     scales = sc.scales
     k = scales.kv if which == "velocity" else scales.ka
     fig.used_scales.add(which)

@@ -1,8 +1,12 @@
 """Kinematics: solving a `Mechanism` into a `Solution` (positions, velocities, accelerations)."""
 
+from .fused import solve_designs
 from .intermittent import engagement
+from .kernels import compiled_loops
 from .motion import whole_motion
 from .solution import LinkMotion, PointMotion, Solution, Status
 from .solver import solve
 
-__all__ = ["LinkMotion", "PointMotion", "Solution", "Status", "engagement", "solve", "whole_motion"]
+__all__ = ["LinkMotion", "compiled_loops", "PointMotion", "Solution", "Status", "engagement", "solve",
+           "solve_designs",
+           "whole_motion"]

@@ -143,6 +143,9 @@ def continuation_guesses(mech: Mechanism, solvers, values: np.ndarray,
     from that one's, carried over (`_carry`; how far: `carried(mech)`)."""
     gen = _Generic(mech, solvers, schedule)
     design = np.array([mech.driver_input_at_design(d) for d in mech.drivers])
+    if previous is None:
+        with _lock:
+            previous = _lineage.get(mech)
     if values.shape[1] == 1:
         lam = (values[:, 0] - design[0]) * gen.weights[0]
         finite = np.isfinite(lam)
@@ -260,8 +263,14 @@ def _one_driver_lanes(mech: Mechanism, solvers, gen: "_Generic", design: np.ndar
         origin = design * gen.weights
         lanes = {s: _Lane(gen, np.vstack([origin, origin + s]), sense=s, ray=True)
                  for s in (+1, -1)}
-        if previous is not None:
-            old = next((v for k, v in list(_marches.items()) if k[0] is previous), None)
+        if previous is not None:  # its march of the same groups (the same solvers, else
+            # one whose Newton groups are these: a march of the groups upstream of a change point)
+            groups = [s.group for s in solvers]
+            generic = [s.group for s in solvers if s.kind == "generic"]
+            kept = [(k, v) for k, v in list(_marches.items()) if k[0] is previous and
+                    [s.group for s in k[1] if s.kind == "generic"] == generic]
+            old = next((v for k, v in kept if [s.group for s in k[1]] == groups),
+                       kept[0][1] if kept else None)
             _note(mech, _compatible(previous, mech) or (
                 "the previous mechanism's march is not kept" if old is None else
                 _carry(mech, solvers, gen, [(old[s], lanes[s], _ray_map(need, s)) for s in (+1, -1)])))
@@ -296,14 +305,25 @@ class Carried:
                 f"({self.carried} of {self.points} points carried over)")
 
 
-#: mechanism -> the `Carried` of its march; mechanism -> its last march of several drivers
+#: mechanism -> the `Carried` of its march; mechanism -> its last march of several drivers;
 _carried: OrderedDict = OrderedDict()
 _paths: OrderedDict = OrderedDict()
+_lineage: OrderedDict = OrderedDict()  # mechanism -> the one it follows (`follow`)
 PATHS_KEPT = 4
 #: a carried step may be this much longer than the step bound the march keeps to
 #: (`MAX_POSE_CHANGE`): the poses' speed differs a little from the previous mechanism's
 CARRY_STEP_SLACK = 1.5
 _lock = Lock()
+
+
+def follow(mech: Mechanism, previous: Mechanism) -> None:
+    """Let every march of `mech` it does not have yet (the solve's, the change points' scans',
+    the whole motion's) start from the corresponding march of `previous`, a mechanism of the
+    same structure solved before (a drag's previous frame), carried over (`_carry`)."""
+    with _lock:
+        _lineage[mech] = previous
+        while len(_lineage) > CACHE_SIZE:
+            _lineage.popitem(last=False)
 
 
 def carried(mech: Mechanism) -> Carried | None:
@@ -385,41 +405,43 @@ def _carry(mech: Mechanism, solvers, gen: "_Generic", lanes: list) -> Carried:
     pred = np.array([r[2] for r in rows])
     ok, q, t_arrive, t_leave, jacobians = _attempt(mech, solvers, gen, schedule, u, lams,
                                                    arrive, leave, pred)
+    lane_of = np.array([r[0] for r in rows])
     taken, failed = 0, None
     for n, (old, new, _) in enumerate(lanes):
-        idx = [i for i, r in enumerate(rows) if r[0] == n]
-        k = 0
-        for k, i in enumerate(idx):
-            why = None
-            if not ok[i]:
-                why = "the previous poses do not converge there (no assembly near them)"
-            elif k == 0 and lams[i] != new.knots[0]:
-                why = "the previous march does not start at the design position"
-            elif k > 0:
-                j = idx[k - 1]
-                h = lams[i] - lams[j]
-                tn = gen.norm(t_leave[j])
-                bound = max(MAX_POSE_CHANGE * gen.L / tn, MIN_STEP * CONTINUATION_STEP) \
-                    if np.isfinite(tn) and tn > 0 else np.inf
-                p = q[j] + h * t_leave[j] if np.isfinite(t_leave[j]).all() else q[j]
-                if h > CARRY_STEP_SLACK * bound:
-                    why = "the poses move faster there than the previous step allows"
-                elif not _smooth(gen, q[j], p, q[i], h, t_arrive[i]):
-                    why = ("the poses do not follow on smoothly there (another assembly branch, "
-                           "or a fast swing)")
-            if why is not None:
-                if failed is None:
-                    failed = (tuple(float(v) for v in u[i]), why)
-                break
-            new.started = True
+        idx = np.flatnonzero(lane_of == n)
+        if idx.size == 0:
+            continue
+        # every step's tests at once (each needs its two ends only): converged, not longer than
+        # the bound the march keeps to, smooth both ways
+        why = np.full(idx.size, None, dtype=object)
+        i, j = idx[1:], idx[:-1]
+        h = lams[i] - lams[j]
+        tn = gen.norm(t_leave[j])
+        known = np.isfinite(tn) & (tn > 0)
+        bound = np.where(known, np.maximum(MAX_POSE_CHANGE * gen.L / np.where(known, tn, 1.0),
+                                           MIN_STEP * CONTINUATION_STEP), np.inf)
+        tangent = np.isfinite(t_leave[j]).all(axis=(1, 2))[:, None, None]
+        pred = np.where(tangent, q[j] + h[:, None, None] * t_leave[j], q[j])
+        why[1:][~_smooth(gen, q[j], pred, q[i], h, t_arrive[i])] = (
+            "the poses do not follow on smoothly there (another assembly branch, or a fast swing)")
+        why[1:][h > CARRY_STEP_SLACK * bound] = "the poses move faster there than the previous step allows"
+        if lams[idx[0]] != new.knots[0]:
+            why[0] = "the previous march does not start at the design position"
+        why[~ok[idx]] = "the previous poses do not converge there (no assembly near them)"
+        bad = np.flatnonzero(why != None)  # noqa: E711 (an object array, compared elementwise)
+        k = int(bad[0]) if bad.size else idx.size
+        if bad.size and failed is None:
+            failed = (tuple(float(v) for v in u[idx[k]]), why[k])
+        for i in idx[:k]:
             new._append(float(lams[i]), q[i].copy(), t_leave[i].copy())
-            new.last = (arrive[i], {g: J[i:i + 1].copy() for g, J in jacobians.items()})
-            taken += 1
-        else:
-            k = len(idx)
+        if k:
+            new.started = True
+            last = idx[k - 1]
+            new.last = (arrive[last], {g: J[last:last + 1].copy() for g, J in jacobians.items()})
+            taken += k
         if not new.lam:
             continue
-        if k < len(idx):  # as a march goes on after a rejected step
+        if k < idx.size:  # as a march goes on after a rejected step
             new.h = (lams[idx[k]] - new.lam[-1]) / 2
             new.halved = True
             new.stopped = new.h < MIN_STEP * CONTINUATION_STEP
@@ -773,17 +795,21 @@ def _attempt(mech: Mechanism, solvers, gen: _Generic, schedule: dict, u: np.ndar
     return ok, state.Q[0][:, gen.links], t_arrive, t_leave, jacobians
 
 
-def _smooth(gen: _Generic, q0: np.ndarray, pred: np.ndarray, q: np.ndarray, h: float,
-            t: np.ndarray) -> bool:
+def _smooth(gen: _Generic, q0: np.ndarray, pred: np.ndarray, q: np.ndarray, h,
+            t: np.ndarray) -> np.ndarray:
     """Whether a step of λ-length `h` from poses `q0` to `q` changed the poses smoothly: the
     predictions from both ends along their tangents (`pred` from q0, back from q along its
     tangent `t` arriving) come close to the other end. A step into a fast swing, or onto another
-    assembly branch, fails the one from the new end."""
+    assembly branch, fails the one from the new end. One step (poses (G, 3)) or several at once
+    (a leading axis, `h` one per step)."""
+    h = np.asarray(h, dtype=float)[..., None, None]
     slack = SLACK * gen.L
     forward = gen.norm(q - pred) <= PREDICTOR_TOLERANCE * gen.norm(pred - q0) + slack
     back = q - h * t
-    return bool(forward and (not np.isfinite(back).all()  # no tangent at q: singular there
-                             or gen.norm(back - q0) <= PREDICTOR_TOLERANCE * gen.norm(h * t) + slack))
+    with np.errstate(invalid="ignore"):
+        backward = gen.norm(back - q0) <= PREDICTOR_TOLERANCE * gen.norm(h * t) + slack
+    # no tangent at q: singular there, the step is judged by the prediction from q0 alone
+    return forward & (~np.isfinite(back).all(axis=(-1, -2)) | backward)
 
 
 def _crawls(trail: list, left: int, target: float) -> bool:

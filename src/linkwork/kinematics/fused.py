@@ -25,15 +25,17 @@ from functools import lru_cache
 
 import numpy as np
 
+from ..errors import InputError
 from ..model import Mechanism
 from . import kernels
 from .groups import UNRELIABLE_CONDITION, GroupSolver
 from .precision import (_PLAIN, _STATUS_WEIGHTS, EPS, POLISH_LIMIT, TOLERANCE, coordinate_size,
                         polish)
 
-#: samples per block: the hinge vectors and assembly signs are block-sized, and a block's poses
-#: are still in the CPU's cache when the rates pass reads them
-BLOCK = 4096
+#: samples per block: the hinge vectors, assembly signs and error-bound work arrays are
+#: block-sized, not batch-sized (as `solver.KERNEL_BLOCK`; smaller blocks that stay in the CPU's
+#: cache between the two passes measured no faster)
+BLOCK = 1 << 17
 
 
 @dataclass(frozen=True)
@@ -89,22 +91,26 @@ def tables(mech: Mechanism, solvers: tuple[GroupSolver, ...]) -> Tables | None:
 
 def solve_blocks(mech: Mechanism, tab: Tables, solvers, Q: np.ndarray, T: np.ndarray,
                  inputs: dict, branches_in, assembled: np.ndarray, condition: np.ndarray,
-                 errors: np.ndarray, status_errors: np.ndarray, can_polish: bool) -> None:
+                 errors: np.ndarray, status_errors: np.ndarray, can_polish: bool,
+                 U: np.ndarray | None = None, start: int = 0, stop: int | None = None) -> None:
     """Fill Q (Q[k, n, link, (x, y, θ)], order 2), T, and per sample `assembled`, `condition`,
-    `errors`, `status_errors` as the per-group loop of `solver.solve` does, block by block."""
-    N = Q.shape[1]
+    `errors`, `status_errors` as the per-group loop of `solver.solve` does, block by block:
+    the samples start … stop − 1 (all by default) of these arrays (`solve_designs`: one
+    design's part of a batch of designs; U the stacked inputs, if at hand)."""
+    N = Q.shape[1] if stop is None else stop
     Qm = Q.transpose(0, 2, 3, 1)  # Qm[k, link, (x, y, θ), n]: the memory's order
     Q0 = Qm[0]
-    U = np.stack([inputs[d.joint] for d in mech.drivers])  # (drivers, 3, N)
+    if U is None:
+        U = np.stack([inputs[d.joint] for d in mech.drivers])  # (drivers, 3, N)
     per = np.array([mech.length_scale if mech.joint(d.joint).kind == "prismatic" else 1.0
                     for d in mech.drivers])
-    B = max(1, min(N, BLOCK))
+    B = max(1, min(N - start, BLOCK))
     R = np.empty((max(tab.vectors, 1), B))
     signs = np.empty((max(len(tab.signs), 1), B))
-    E0 = np.empty(N)
+    E0 = np.empty(B)
     m, E = np.empty((3, B)), np.empty((3, B))
     L, m0 = mech.length_scale, coordinate_size(mech)
-    for lo in range(0, N, B):
+    for lo in range(start, N, B):
         hi = min(N, lo + B)
         sl, nb = slice(lo, hi), hi - lo
         given = branches_in(sl)
@@ -132,6 +138,73 @@ def solve_blocks(mech: Mechanism, tab: Tables, solvers, Q: np.ndarray, T: np.nda
             else np.zeros(0, dtype=int)
         if sel.size:
             e, se, c = polish(mech, solvers, Qb, T[:, :, sl],
-                              {j: v[:, sl] for j, v in inputs.items()}, sel, E0[sl][sel])
+                              {j: v[:, sl] for j, v in inputs.items()}, sel, E0[sel])
             done = np.isfinite(e)
             err[sel[done]], serr[sel[done]], cond[sel[done]] = e[done], se[done], c[done]
+
+
+def solve_designs(mechs, inputs, *, velocities=None, accelerations=None,
+                  compiled: bool | None = None) -> list:
+    """Solutions of D designs of one mechanism (the same links, pairs and one driver; other
+    dimensions, e.g. `sweeps.designs.apply` of each design's parameter values) at the same N
+    inputs, as `solve(mech, inputs, …)` gives each: one batch of D·N samples, the designs'
+    dimensions the per-design rows of the fused tables, solved into one pose array (each
+    `Solution` a view of its part). Each design keeps its own assembly branch across its own
+    change points (`branches.branch_schedule`). Designs the fused pass does not take (another
+    solution order, a group without a compiled closed form, several drivers) are solved one
+    by one with `solve`, with the same result.
+
+    Plain numbers or quantities as for `solve` (the first design's units)."""
+    from .branches import branch_schedule
+    from .groups import input_coefficients
+    from .precision import polishable
+    from .solver import _as_2d, _plain_numbers, _pose_array, _solution, plan, solve
+
+    mechs = list(mechs)
+    if not mechs:
+        return []
+    first = mechs[0]
+    plans = [plan(m) for m in mechs]  # once per design (more designs than plan's cache holds)
+    tabs = [tables(m, p) if len(m.drivers) == 1 else None for m, p in zip(mechs, plans)]
+    same = all(t is not None and t.ops.shape == tabs[0].ops.shape and
+               (t.ops == tabs[0].ops).all() and m.link_names == first.link_names and
+               m.length_unit == first.length_unit for t, m in zip(tabs, mechs))
+    if not same:
+        return [solve(m, inputs, velocities=velocities, accelerations=accelerations,
+                      compiled=compiled) for m in mechs]
+    inputs, _, velocities, accelerations, _, _ = _plain_numbers(
+        first, inputs, None, velocities, accelerations, None, None)
+    if inputs is None:
+        raise InputError("solve_designs: give the inputs (one value per sample)")
+    values = _as_2d(inputs, 1, "inputs")
+    N, D = values.shape[0], len(mechs)
+    velocities, accelerations = (_as_2d(a, 1, name, rows=N) for a, name in (
+        (velocities, "velocities"), (accelerations, "accelerations")))
+    n_links = len(first.link_names)
+    Q = _pose_array(2, D * N, n_links, first.link_index[first.frame])
+    T = np.empty((n_links, 2, D * N))
+    T[first.link_index[first.frame], 0], T[first.link_index[first.frame], 1] = 1.0, 0.0
+    joint = first.drivers[0].joint
+    coef = np.empty((1, 3, D * N))  # the inputs' Taylor coefficients, design after design
+    for d, m in enumerate(mechs):
+        coef[0, :, d * N:(d + 1) * N] = input_coefficients(m, values, velocities, accelerations,
+                                                           None, 2)[m.drivers[0].joint]
+    inputs_all = {joint: coef[0]}
+    assembled = np.ones(D * N, dtype=bool)
+    condition, errors, status_errors = np.ones(D * N), np.zeros(D * N), np.zeros(D * N)
+    out = []
+    with kernels.compiled_loops(compiled):  # by default by the size of the whole batch
+        for d, (m, tab, solvers) in enumerate(zip(mechs, tabs, plans)):
+            lo = d * N
+            schedules = branch_schedule(m)
+
+            def branches_in(sl: slice, lo=lo, schedules=schedules) -> dict:
+                return {g: sch.signs(values[sl.start - lo:sl.stop - lo, 0])
+                        for g, sch in schedules.items()}
+            solve_blocks(m, tab, solvers, Q, T, inputs_all, branches_in, assembled, condition,
+                         errors, status_errors, polishable(m), U=coef, start=lo, stop=lo + N)
+    for d, m in enumerate(mechs):
+        sl = slice(d * N, (d + 1) * N)
+        out.append(_solution(m, values, None, Q[:, sl], T[:, :, sl], assembled[sl],
+                             condition[sl], errors[sl], status_errors[sl]))
+    return out

@@ -12,7 +12,8 @@ has this one implementation; the generic path (constraints on jets and a linear 
 A batch of a few thousand samples or fewer runs the same loops interpreted (`_loop`): numba's
 import and the loading of its cached machine code cost a second or more per process, more than
 the interpreted loops take for a command asking for a few positions or one turn
-(tests/kinematics/test_kernel_modes.py holds the two executions to each other).
+(tests/kinematics/test_kernel_modes.py holds the two executions to each other). The choice can
+be made explicitly: `compiled_loops(True)` (or `solve(..., compiled=True)`) for every batch.
 
 Array conventions (as in `groups.State`): Q[k, link, (x, y, θ), n] holds the k-th Taylor
 coefficient q⁽ᵏ⁾/k! of every link pose, the sample axis last; T[link, (cos θ, sin θ), n].
@@ -25,6 +26,8 @@ from __future__ import annotations
 
 import math
 import types
+from contextlib import contextmanager
+from contextvars import ContextVar
 from functools import lru_cache, wraps
 
 import numpy as np
@@ -35,6 +38,21 @@ import numpy as np
 #: inputs) should not pay. The same source either way; the compiled loops may differ in the
 #: last bits (numba contracts a·b + c to one fused multiply-add).
 INTERPRETED_UP_TO = 4096
+#: the choice of `compiled_loops` in force: None (by batch size), True or False
+_CHOICE: ContextVar[bool | None] = ContextVar("linkwork_compiled_loops", default=None)
+
+
+@contextmanager
+def compiled_loops(compiled: bool | None = True):
+    """Within this context the loops run compiled (True: a server that has loaded them once
+    wants them for every batch), interpreted (False: no numba at all) or by batch size (None,
+    the default: batches of at most `INTERPRETED_UP_TO` samples interpreted). A context
+    variable: it holds for this thread (or task) only, and nests."""
+    token = _CHOICE.set(compiled)
+    try:
+        yield
+    finally:
+        _CHOICE.reset(token)
 
 _FLAGS = dict(cache=True, nogil=True, error_model="numpy", fastmath={"contract", "arcp", "nsz"})
 #: every loop of this module by name: (its Python function, the axis of its first argument
@@ -53,7 +71,9 @@ def _loop(samples_axis: int | None = None):
 
         @wraps(fn)
         def entry(*args):
-            if args[0].shape[samples_axis] <= INTERPRETED_UP_TO:
+            choice = _CHOICE.get()
+            small = args[0].shape[samples_axis] <= INTERPRETED_UP_TO
+            if (not choice) if choice is not None else small:
                 with np.errstate(all="ignore"):  # as the compiled loops: inf and NaN, quietly
                     return _interpreted()[fn.__name__](*args)
             return _compiled()[fn.__name__](*args)
@@ -137,12 +157,12 @@ def rrr_positions(Q0, T, iA, A, iC, C, i1, i2, diff, L1sq, tol, branch, k1, k2, 
 
 
 @_loop()
-def _rrr_position(Q0, T, iA, a0, a1, iC, c0, c1, i1, i2, diff, L1sq, tol, sign, k10, k11, k20,
-                  k21, n):
+def _rrr_position(Q0, T, iA, pa0, pa1, iC, pc0, pc1, i1, i2, diff, L1sq, tol, sign, k10, k11,
+                  k20, k21, n):
     """`rrr_positions` at sample n (branch sign `sign`): places i1 and i2; returns whether the
     dyad assembles and the hinge vectors B − A, B − C."""
-    ax, ay = _world(Q0, T, iA, a0, a1, n)
-    cx, cy = _world(Q0, T, iC, c0, c1, n)
+    ax, ay = _world(Q0, T, iA, pa0, pa1, n)
+    cx, cy = _world(Q0, T, iC, pc0, pc1, n)
     dx, dy = cx - ax, cy - ay
     D2 = dx * dx + dy * dy
     inv = 1.0 / math.sqrt(D2)
@@ -158,8 +178,8 @@ def _rrr_position(Q0, T, iA, a0, a1, iC, c0, c1, i1, i2, diff, L1sq, tol, sign, 
     n2 = 1.0 / math.sqrt(r2x * r2x + r2y * r2y)
     c1, s1 = (r1x * k10 + r1y * k11) * n1, (r1y * k10 - r1x * k11) * n1
     c2, s2 = (r2x * k20 + r2y * k21) * n2, (r2y * k20 - r2x * k21) * n2
-    _place(Q0, T, i1, c1, s1, a0, a1, ax, ay, n)
-    _place(Q0, T, i2, c2, s2, c0, c1, cx, cy, n)
+    _place(Q0, T, i1, c1, s1, pa0, pa1, ax, ay, n)
+    _place(Q0, T, i2, c2, s2, pc0, pc1, cx, cy, n)
     return good, r1x, r1y, r2x, r2y
 
 
@@ -596,13 +616,13 @@ def fused_rates(cond, ops, fl, Q, T, U, per, L, eps, m0, unreliable, plain, weig
     through the solution order as in `fused_positions`, with the condition numbers (cond[n]
     raised to the groups'), the forward error bounds of `precision.ErrorBudget` (work arrays
     m, E of the block's size; m0: the drawing's coordinates over L) and their relative values
-    (`relative_errors` with the weights `plain` into err, `weighted` into serr); E0[n]: the
-    positions' bound."""
+    (`relative_errors` with the weights `plain` into err, `weighted` into serr); E0[n − lo]:
+    the positions' bound."""
     for n in range(lo, hi):
         j = n - lo
         m[0, j], m[1, j], m[2, j] = m0, 0.0, 0.0
         E[0, j], E[1, j], E[2, j] = 0.0, 0.0, 0.0
-        E0[n] = 1.0 / _rate_scale(U, per, n)  # 1/Ω here until the end
+        E0[j] = 1.0 / _rate_scale(U, per, n)  # 1/Ω here until the end
     for g in range(ops.shape[0]):
         op, i1, i2, i3, i4 = ops[g, 0], ops[g, 1], ops[g, 2], ops[g, 3], ops[g, 4]
         f0, f1, f2, f3, f4, f5 = fl[g, 0], fl[g, 1], fl[g, 2], fl[g, 3], fl[g, 4], fl[g, 5]
@@ -610,24 +630,24 @@ def fused_rates(cond, ops, fl, Q, T, U, per, L, eps, m0, unreliable, plain, weig
             fl[g, 15], fl[g, 16], fl[g, 17]
         if op == DRIVER:
             for n in range(lo, hi):
-                _driver_rate(Q, T, i1, i2, f0, f1, U[i3, 1, n], U[i3, 2, n], f3, L, E0[n], m, E,
-                             n - lo, eps, n)
+                _driver_rate(Q, T, i1, i2, f0, f1, U[i3, 1, n], U[i3, 2, n], f3, L, E0[n - lo], m,
+                             E, n - lo, eps, n)
                 if f3 > cond[n]:
                     cond[n] = f3
         elif op == RRR:
             for n in range(lo, hi):
                 k = _rrr_rate(Q, T, i1, f0, f1, i2, f2, f3, i3, i4, f12, f13, f14, f15, f16, f17,
-                              unreliable, L, E0[n], m, E, n - lo, eps, n)
+                              unreliable, L, E0[n - lo], m, E, n - lo, eps, n)
                 if k > cond[n]:
                     cond[n] = k
         else:
             for n in range(lo, hi):
                 k = _rrp_rate(Q, T, i1, f0, f1, i2, f2, f3, f4, f5, f11, f12, f13, i3, i4,
-                              unreliable, L, E0[n], m, E, n - lo, eps, n)
+                              unreliable, L, E0[n - lo], m, E, n - lo, eps, n)
                 if k > cond[n]:
                     cond[n] = k
     for n in range(lo, hi):
         j = n - lo
         err[n] = _relative_error(E, m, eps, plain, j)
         serr[n] = _relative_error(E, m, eps, weighted, j)
-        E0[n] = E[0, j]
+        E0[j] = E[0, j]

@@ -187,7 +187,7 @@ def _free_motion(mech: Mechanism, q: np.ndarray) -> str:
 def check_count(mech: Mechanism, given=None) -> int:
     """The chain's mobility at its drawn position, checked against the number of conditions
     ``given`` (default: the mechanism's own) state; `StructureError` when they differ."""
-    given = mech.given if given is None else normalized(mech, given)
+    given = mech.given if given is None else normalized(mech, given, alone=False)
     _refuse_pairs(mech)
     Jp, Jq = _jacobians(mech, given)
     return _count(mech, given, Jp, Jq)[1]
@@ -215,8 +215,8 @@ def _count(mech: Mechanism, given, Jp: np.ndarray, Jq: np.ndarray):
         raise StructureError(
             f"over-determined: {c - m} condition{'s' if c - m > 1 else ''} too many — the chain "
             f"'{mech.name}' has {m} degrees of freedom at its drawn position, the given data state "
-            f"{c}; {_names(given, extra)} fix the same motion between them (drop "
-            f"{c - m} of their conditions)")
+            f"{c}: among {_names(given, extra)}, {c - m} condition{'s' if c - m > 1 else ''} "
+            "repeat or contradict the others (drop them)")
     return Nn, m, scale
 
 
@@ -225,8 +225,9 @@ def solve_given(mech: Mechanism, given=None, *, order: int | None = None) -> Giv
     sequence of `GivenVelocity` / `GivenDirection`, values (2,) or batches (N, 2); default: the
     mechanism's own, from its file's [[given]]). ``order`` 1: velocities; 2: also accelerations
     (each condition then needs its acceleration, or its path's curvature); default: 2 where the
-    data allow it."""
-    given = mech.given if given is None else normalized(mech, given)
+    data allow it. Given explicitly, the conditions replace the mechanism's drivers (an open
+    chain on its frame driven by point velocities instead of its crank)."""
+    given = mech.given if given is None else normalized(mech, given, alone=False)
     _refuse_pairs(mech)
     has_acc = all((g.acceleration if isinstance(g, GivenVelocity) else g.curvature) is not None
                   for g in given)

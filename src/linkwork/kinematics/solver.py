@@ -16,9 +16,9 @@ from ..errors import InputError, StructureError
 from ..model import ConstantSpeed, Mechanism, Prismatic
 from ..topology import solution_order
 from .branches import branch_schedule, path_schedule
-from . import fused
+from . import fused, kernels
 from .contact import interference, rows
-from .continuation import PathEnd, continuation_guesses
+from .continuation import PathEnd, continuation_guesses, follow
 from .groups import GroupSolver, State, input_coefficients
 from .precision import POLISH_LIMIT, TOLERANCE, ErrorBudget, polish, polishable
 from .solution import Solution, Status
@@ -103,7 +103,7 @@ def _plain_numbers(mech: Mechanism, inputs, times, *rates) -> tuple:
 
 def solve(mech: Mechanism, inputs=None, *, times=None, velocities=None, accelerations=None,
           jerks=None, snaps=None, order: int = 2, resume: PathEnd | None = None,
-          previous: Mechanism | None = None) -> Solution:
+          previous: Mechanism | None = None, compiled: bool | None = None) -> Solution:
     """Solve `mech` at the given input values (shape (N,) for one driver, (N, drivers) else) or
     at `times` (each driver's law evaluated at those times).
 
@@ -127,8 +127,17 @@ def solve(mech: Mechanism, inputs=None, *, times=None, velocities=None, accelera
 
     `previous`: a mechanism of the same structure solved before, with other dimensions (the
     last frame of a drag): the Newton-solved groups' march starts from its march, checked step
-    by step (`continuation._carry`; what was taken: `continuation.carried(mech)`).
+    by step (`continuation.follow`; what was taken: `continuation.carried(mech)`).
+
+    `compiled`: run the numba-compiled loops (True), their interpreted source (False: no numba
+    import, for a few samples), or choose by the batch's size (None; see
+    `kernels.compiled_loops`, which sets the same choice for a whole block of calls).
     """
+    if compiled is not None:
+        with kernels.compiled_loops(compiled):
+            return solve(mech, inputs, times=times, velocities=velocities,
+                         accelerations=accelerations, jerks=jerks, snaps=snaps, order=order,
+                         resume=resume, previous=previous)
     if order not in (1, 2, 3, 4):
         raise InputError("order must be 1 (velocities), 2 (accelerations), 3 (jerks) or 4 "
                          "(snaps)")
@@ -153,6 +162,8 @@ def solve(mech: Mechanism, inputs=None, *, times=None, velocities=None, accelera
                 (velocities, "velocities"), (accelerations, "accelerations"), (jerks, "jerks"),
                 (snaps, "snaps")))
     N = values.shape[0]
+    if previous is not None:  # every march of mech from here on, the change points' scans too
+        follow(mech, previous)
     solvers = plan(mech)
     frame = mech.link_index[mech.frame]
     n_rows = len(rows(mech))  # the links, then the contact coordinates of higher pairs
@@ -165,7 +176,7 @@ def solve(mech: Mechanism, inputs=None, *, times=None, velocities=None, accelera
 
         def branches_in(sl: slice) -> dict:  # the signs of a block only (no N-long temporaries)
             return {g: sch.signs(values[sl, 0]) for g, sch in schedules.items()}
-        guesses = continuation_guesses(mech, solvers, values, previous=previous) if generic else {}
+        guesses = continuation_guesses(mech, solvers, values) if generic else {}
     else:  # a path through the samples
         schedules, lam, path = path_schedule(mech, solvers, values, resume)
         branches = {g: sch.signs(lam) for g, sch in schedules.items()}
@@ -174,7 +185,7 @@ def solve(mech: Mechanism, inputs=None, *, times=None, velocities=None, accelera
             return {g: b[sl] for g, b in branches.items()}
         ends: dict = {}
         guesses = continuation_guesses(mech, solvers, values, schedules, start=resume,
-                                       ends=ends, previous=previous) if generic else {}
+                                       ends=ends) if generic else {}
         if np.isfinite(values).all() and len(path.vertices) > 0:
             end = path.knots[len(path.vertices) - 1]
             prev = len(path.vertices) >= 2
@@ -237,14 +248,20 @@ def solve(mech: Mechanism, inputs=None, *, times=None, velocities=None, accelera
             Q[:, cut] = np.nan
             T[:, :, cut] = np.nan
             assembled &= ~cut
-    # in place: no N-long temporaries beyond the masks
-    status = np.full(N, Status.OK, dtype=np.int8)
+    sol = _solution(mech, values, t, Q, T, assembled, condition, errors, status_errors)
+    sol.path_end = path_end
+    return sol
+
+
+def _solution(mech: Mechanism, values, t, Q, T, assembled, condition, errors,
+              status_errors) -> Solution:
+    """The `Solution` of a solved batch: the status per sample from its error bound (in
+    place: no N-long temporaries beyond the masks), NaN where it did not assemble."""
+    status = np.full(len(assembled), Status.OK, dtype=np.int8)
     status[status_errors > TOLERANCE] = Status.SINGULAR
     unassembled = ~assembled
     status[unassembled] = Status.UNREACHABLE
     condition[unassembled] = np.nan
     errors[unassembled] = np.nan
-    sol = Solution(mech, values, t, Q, status, condition, trig=(T[:, 0].T, T[:, 1].T),
-                   errors=errors)
-    sol.path_end = path_end
-    return sol
+    return Solution(mech, values, t, Q, status, condition, trig=(T[:, 0].T, T[:, 1].T),
+                    errors=errors)

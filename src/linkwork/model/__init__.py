@@ -5,7 +5,7 @@ Nothing here computes motion; `linkwork.kinematics` solves a `Mechanism` into a 
 
 from .higher_pairs import CamContact, DesignContact, HigherPair, RollingContact, design_contact
 from .disc_cams import DiscCam
-from .given import Given, GivenDirection, GivenVelocity
+from .given import Given, GivenDirection, GivenVelocity, hinge_chain
 from .intermittent import (GenevaPair, IndexingSchedule, IntermittentPair, StarWheelPair,
                            indexing_schedule, is_intermittent)
 from .laws import ConstantSpeed, MotionLaw, PolynomialLaw, TabulatedLaw
@@ -25,7 +25,7 @@ from .mechanism import (
 __all__ = [
     "CamContact", "CamDesignError", "CircularSlot", "ConstantSpeed", "DesignContact", "DiscCam",
     "HigherPair", "MotionProgram", "RollingContact", "Segment",
-    "design_contact", "Driver", "Gear", "Given", "GivenDirection", "GivenVelocity", "Joint", "Link", "Mechanism", "MotionLaw",
+    "design_contact", "Driver", "Gear", "Given", "GivenDirection", "GivenVelocity", "hinge_chain", "Joint", "Link", "Mechanism", "MotionLaw",
     "PolynomialLaw", "Prismatic", "Revolute", "Slot", "TabulatedLaw",
     "GenevaPair", "IndexingSchedule", "IntermittentPair", "StarWheelPair", "indexing_schedule",
     "is_intermittent",

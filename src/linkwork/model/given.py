@@ -77,10 +77,11 @@ class GivenDirection:
 Given = Union[GivenVelocity, GivenDirection]
 
 
-def normalized(mech: "Mechanism", given) -> tuple[Given, ...]:
+def normalized(mech: "Mechanism", given, *, alone: bool = True) -> tuple[Given, ...]:
     """The conditions with their arrays read-only and each condition's link filled in, checked
     against ``mech``: known points and links, a point given once, finite numbers, a direction
-    that is no zero vector, batches of one length, and no drivers beside them."""
+    that is no zero vector, batches of one length, and (``alone``: the mechanism's own inputs)
+    no drivers beside them."""
     out: list[Given] = []
     seen: dict[str, str] = {}
     sizes: set[int] = set()
@@ -124,7 +125,7 @@ def normalized(mech: "Mechanism", given) -> tuple[Given, ...]:
     if len(sizes) > 1:
         raise ModelError(f"the given conditions come in batches of different lengths {sorted(sizes)}; "
                          "give one value or N values for each")
-    if out and mech.drivers:
+    if out and alone and mech.drivers:
         raise ModelError(f"mechanism '{mech.name}' has drivers ({', '.join(d.joint for d in mech.drivers)}) "
                          "and given point velocities: a chain is driven by one or the other")
     return tuple(out)
@@ -146,3 +147,24 @@ def batch_size(given) -> int:
 def condition_count(given) -> int:
     """The number of scalar conditions the given data state (2 per velocity, 1 per direction)."""
     return sum(g.count for g in given)
+
+
+def hinge_chain(name: str, points, links, given=(), *, frame: str = "frame",
+                length_unit: str = "mm", description: str = "") -> "Mechanism":
+    """A hinge chain written as its links only (``{"CDG": ["C", "D", "G"], "AC": ["A", "C"]}``):
+    every point two links share is a hinge between them, as the papers draw their chains. The
+    ``frame`` is the link of that name if listed (an open chain on its frame), else an empty
+    one (a free chain); ``given``: its given point velocities or directions."""
+    from .mechanism import Mechanism, Revolute
+
+    pts = {k: list(v) for k, v in links.items()}
+    pts.setdefault(frame, [])
+    names = list(pts)
+    joints = []
+    for i, a in enumerate(names):
+        for b in names[i + 1:]:
+            for p in pts[a]:
+                if p in pts[b]:
+                    joints.append(Revolute(p if p not in {j.name for j in joints} else f"{p}_{b}", p, (a, b)))
+    return Mechanism.build(name=name, points=points, links=pts, joints=joints, drivers=[], frame=frame,
+                           length_unit=length_unit, description=description, given=given)

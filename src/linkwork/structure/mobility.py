@@ -416,7 +416,8 @@ def mobility(mech: Mechanism, *, check_finite: bool = True) -> Mobility:
     surplus_rows = _greedy_dependent(J.scaled, J.scaled, list(range(len(J.rows))), RANK_TOL)
     surplus = tuple(J.rows[i][0] for i in surplus_rows if i >= n_pair_rows)
     spins = _free_spins(mech, J)
-    needed = max(0, 3 * k - all_rank - len(spins))
+    # given point velocities (a chain without drivers) are inputs too, one per scalar condition
+    needed = max(0, 3 * k - all_rank - len(spins) - sum(g.count for g in mech.given))
     finite, off = (None, None)
     if check_finite and real > 0 and (dep or real > len(mech.drivers)):
         finite, off = _finite_step(mech, real)

@@ -92,7 +92,7 @@ def apply(mech: Mechanism, params: list[Parameter], values) -> Mechanism:
     return Mechanism.build(name=mech.name, points=pts, links={l.name: list(l.points) for l in mech.links},
                            joints=list(mech.joints), drivers=list(mech.drivers), frame=mech.frame,
                            length_unit=mech.length_unit, description=mech.description,
-                           profiles=dict(mech.profiles))
+                           profiles=dict(mech.profiles), given=mech.given)
 
 
 def _numbers(text: str, what: str) -> list[float]:

@@ -5,6 +5,8 @@
   circle, and the mechanism file of the designed cam.
 - `positions`: finite positions of a moving plane: poles, rotation angles, the pole triangle,
   image poles, Pöschl's image point, circle point ↔ centre point (two and three positions).
+- `reflections`: Hamilton's construction (Pöschl §57) of the poles, the pole triangle and
+  homologous points by reflections, step by step (`constructions` model, checked).
 - `burmester`: the centre-point and circle-point cubics of four positions, the Burmester points
   of five (polynomial roots), dyads.
 - `linkages`: four-bars and slider-cranks from two dyads, their mechanism files and checks
@@ -13,6 +15,8 @@
   precision points, Chebyshev spacing, least squares, the structural error.
 - `path`: path generation: a four-bar's coupler point through target points (least squares
   from several starts, with or without prescribed timing).
+- `six_bar_path`: path generation with Watt I and Stephenson III six-bars (least squares
+  from several starts, each a random six-bar fitted onto the targets by a similarity).
 - `second_order`: Alt's dwell linkage and Pröll's substitution, from curvature theory.
 - `cognates`: the Roberts–Chebyshev cognates of a four-bar's coupler point.
 - `straight_line`: straight-line guidance: the straightness of any path (over a stroke), a
@@ -28,6 +32,7 @@ from .cams import (CamReport, analyse, corners, cusps, follower_diagrams, mechan
 from .function import FunctionGenerator, FunctionTask, chebyshev_spacing, freudenstein, function_generator
 from .linkages import Linkage, LinkageCheck, linkages
 from .path import PathGenerator, path_generator
+from .six_bar_path import SixBarPath, six_bar_path_generator
 from .second_order import DwellLinkage, Substitution, alt_dwell, proell_substitution
 from .straight_line import (Straightness, StraightLineLinkage, ball_point_linkage, chebyshev_linkage,
                             evans_linkage, hart_straight_line, path_straightness, straightness,
@@ -44,4 +49,4 @@ __all__ = ["BurmesterPoints", "CamReport", "Cognates", "cognates", "Cubic", "Dwe
            "pole_triangle", "pressure_angle", "radius_of_curvature", "smallest_base_radius",
            "with_base_radius", "Straightness", "StraightLineLinkage", "ball_point_linkage",
            "chebyshev_linkage", "evans_linkage", "hart_straight_line", "path_straightness", "straightness",
-           "watt_linkage"]
+           "watt_linkage", "SixBarPath", "six_bar_path_generator"]

@@ -316,7 +316,8 @@ def burmester_points(pos: Positions, ref: int = 0, *, tol: float = 1e-9) -> Burm
     """The Burmester points of five positions: every centre point whose circle point's five
     homologous points lie on one circle, with that circle point (drawn in position `ref`).
     Real points only among `dyads`; `complex_count` says how many of the four are complex.
-    A pair of points at infinity (a slider) is not looked for: five general positions have
+    A centre point at infinity (a slider whose pin's five homologous points lie on a line) is
+    among them when the positions have one (`_common_slider`); five general positions have
     none."""
     if len(pos) != 5:
         raise InputError(f"Burmester points belong to five positions, got {len(pos)}")
@@ -366,7 +367,7 @@ def burmester_points(pos: Positions, ref: int = 0, *, tol: float = 1e-9) -> Burm
         den = A1 * B2 - A2 * B1
         num = A2 * B0 - A0 * B2
         if abs(den) <= 1e-14 * max(abs(num), 1e-300):
-            continue  # a common point at infinity: not sought (see the docstring)
+            continue  # a common point at infinity: `_common_slider` below
         M = P + (num / den) * (e1 + sr * e2)
         rows = B @ np.r_[M, 1.0]
         _, _, vt = np.linalg.svd(rows / np.linalg.norm(rows, axis=1, keepdims=True))
@@ -378,8 +379,36 @@ def burmester_points(pos: Positions, ref: int = 0, *, tol: float = 1e-9) -> Burm
             continue  # a near-real pair that does not refine to a real point
         dyads.append(Dyad(_from_homogeneous(np.r_[M2, 1.0], c, s), _from_homogeneous(np.r_[Z2, 1.0], c, s),
                           pos, ref, res))
+    slider = _common_slider(pos, K1, K2, ref)
+    if slider is not None:
+        # the quartic meets the point at infinity as a root t → ∞, which rounding leaves as
+        # far finite points (a crank of hundreds of sizes) approximating the slider: drop them
+        middle = pos.origin.mean(axis=0)
+        dyads = [d for d in dyads if np.hypot(*(d.centre.xy - middle)) <= 100 * pos.size]
+        dyads.append(slider)
     dyads = _distinct(dyads, pos.size)
-    return BurmesterPoints(tuple(dyads), 4 - len(dyads), roots, rem)
+    complex_count = int(np.sum(np.abs(roots.imag) > 1e-6 * (1 + np.abs(roots))))
+    return BurmesterPoints(tuple(dyads), complex_count, roots, rem)
+
+
+def _common_slider(pos: Positions, K1: np.ndarray, K2: np.ndarray, ref: int) -> Dyad | None:
+    """The Burmester point at infinity, when the five positions have one: both centre-point
+    cubics' real points at infinity (where the linear factor αx + βy of their cubic parts
+    |M|²(αx + βy) vanishes) coincide, and that direction's circle point (a slider's pin) has
+    five homologous points on a line (checked by `mate` against all five positions)."""
+    n1, n2 = np.array([K1[3, 0], K1[0, 3]]), np.array([K2[3, 0], K2[0, 3]])
+    if np.hypot(*n1) == 0 or np.hypot(*n2) == 0:
+        return None
+    if abs(n1[0] * n2[1] - n1[1] * n2[0]) > 1e-9 * np.hypot(*n1) * np.hypot(*n2):
+        return None  # five general positions: no common point at infinity
+    d = np.array([-n1[1], n1[0]]) / np.hypot(*n1)
+    try:
+        found = dyad(pos, Point.at_infinity(d), ref=ref)
+    except SynthesisError:
+        return None
+    if found.circle.is_infinite:
+        return None
+    return found
 
 
 def _distinct(dyads: list[Dyad], size: float) -> list[Dyad]:

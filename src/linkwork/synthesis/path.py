@@ -34,22 +34,52 @@ MARGIN = 1e-4  # h² the chain must keep at every target (in the targets' size s
 PENALTY = 1e3  # weight of the assembly constraint's residual
 
 
+def _meet(c1: np.ndarray, r1: float, c2: np.ndarray, r2: float, sigma: float):
+    """The pin of a dyad: the meet of the circles about c1 (radius r1) and c2 (radius r2), each
+    (N, 2), on the side sigma = ±1 of c1→c2, and the squared half-chord h² (< 0: no meet; the
+    pin is then the foot of the chord, for the penalty to pull from)."""
+    v = c2 - c1
+    d2 = np.sum(v * v, axis=1)
+    d = np.sqrt(d2)
+    along = (r1 * r1 - r2 * r2 + d2) / (2 * d)
+    h2 = r1 * r1 - along**2
+    u = v / d[:, None]
+    n = np.column_stack([-u[:, 1], u[:, 0]])
+    return c1 + along[:, None] * u + sigma * np.sqrt(np.maximum(h2, 0.0))[:, None] * n, h2
+
+
 def _coupler_points(x: np.ndarray, theta: np.ndarray, sigma: float):
     """Pins and coupler points at crank angles theta for the parameters x (see the module)."""
     A0, B0 = x[0:2], x[2:4]
     a, b, c, p, q = x[4:9]
     A = A0 + a * np.column_stack([np.cos(theta), np.sin(theta)])
-    v = B0 - A
-    d2 = np.sum(v * v, axis=1)
-    d = np.sqrt(d2)
-    along = (b * b - c * c + d2) / (2 * d)
-    h2 = b * b - along**2
-    u = v / d[:, None]
-    n = np.column_stack([-u[:, 1], u[:, 0]])
-    B = A + along[:, None] * u + sigma * np.sqrt(np.maximum(h2, 0.0))[:, None] * n
+    B, h2 = _meet(A, b, np.broadcast_to(B0, A.shape), c, sigma)
     e = (B - A) / b
     C = A + p * e + q * np.column_stack([-e[:, 1], e[:, 0]])
     return A, B, C, h2
+
+
+def _targets(targets, timing):
+    """The targets (N, 2), the timing relative to the first (None: free), their size and
+    middle, and the targets on the unit scale (the search works there); errors name the
+    mistake."""
+    T = np.asarray(targets, dtype=float)
+    if T.ndim != 2 or T.shape[1] != 2 or T.shape[0] < 3:
+        raise InputError(f"give at least three target points as an (N, 2) array, got shape {T.shape}")
+    if not np.isfinite(T).all():
+        raise InputError("the target points must be finite")
+    N = T.shape[0]
+    dt = None
+    if timing is not None:
+        dt = np.asarray(timing, dtype=float).ravel()
+        if dt.shape != (N,) or not np.isfinite(dt).all():
+            raise InputError(f"timing: give {N} crank angles (radians), one per target")
+        dt = dt - dt[0]
+    size = float(np.ptp(T, axis=0).max())
+    if size <= 0:
+        raise SynthesisError("the target points coincide")
+    centre = T.mean(axis=0)
+    return T, dt, size, centre, (T - centre) / size
 
 
 @dataclass(frozen=True)
@@ -72,22 +102,8 @@ def path_generator(targets, *, timing=None, starts: int = 24, seed: int = 0,
     0) to prescribe the timing, else the angles are free."""
     from scipy.optimize import least_squares
 
-    T = np.asarray(targets, dtype=float)
-    if T.ndim != 2 or T.shape[1] != 2 or T.shape[0] < 3:
-        raise InputError(f"give at least three target points as an (N, 2) array, got shape {T.shape}")
-    if not np.isfinite(T).all():
-        raise InputError("the target points must be finite")
+    T, dt, size, centre, Tn = _targets(targets, timing)
     N = T.shape[0]
-    if timing is not None:
-        dt = np.asarray(timing, dtype=float).ravel()
-        if dt.shape != (N,) or not np.isfinite(dt).all():
-            raise InputError(f"timing: give {N} crank angles (radians), one per target")
-        dt = dt - dt[0]
-    size = float(np.ptp(T, axis=0).max())
-    if size <= 0:
-        raise SynthesisError("the target points coincide")
-    centre = T.mean(axis=0)
-    Tn = (T - centre) / size  # work on the unit scale
 
     def angles(z):
         return z[9] + dt if timing is not None else z[9:]

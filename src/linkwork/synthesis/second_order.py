@@ -17,6 +17,16 @@ to second order. On the ray from the pole P through C₃ (unit e, |PC₃| = c, d
 inflection pole) Euler–Savary C = P − (d·r)/(|r|² − d·r)·r solved for r = t·e gives
 t = c (d·e)/(c + d·e).
 
+**To the third order** (`order=3`): the new crank's constraint |A₃ − C₃| = const then holds
+for the old motion to the third order only if A₃'s path has four-point contact with its
+osculating circle, i.e. A₃ is a circling point (on the cubic of stationary curvature,
+`instant.third_order`) and C₃ its centre of curvature (on the centre-point curve). On each ray
+from the pole the cubic has one point besides the pole, ρ = −3(b·e)(Jb·e)/(L·e) (b the
+acceleration of the pole point, L = ω j_P − 3ω̇ b − 3ω² Jb), so the chosen pivot fixes the ray
+and is moved along it onto the centre-point curve: c = t (d·e)/((d·e) − t) with t = ρ. Both
+cranks then keep the old coupler motion, and with the same input motion its position,
+velocity, acceleration and jerk agree.
+
 Both write a mechanism file drawn at the chosen input (its design position).
 """
 
@@ -118,6 +128,7 @@ class Substitution:
     pole: np.ndarray
     inflection_pole: np.ndarray
     input: float
+    order: int = 2
 
     def mechanism(self):
         from ..io import load_text
@@ -126,17 +137,21 @@ class Substitution:
 
 
 def proell_substitution(mech: Mechanism, at: float, pivot, *, replace: str = "input",
-                        name: str | None = None) -> Substitution:
+                        order: int = 2, name: str | None = None) -> Substitution:
     """Replace the input crank (or with `replace="output"` the rocker) of the four-bar `mech`
     at input `at` (radians) by a crank from the new fixed pivot `pivot` (x, y) to its conjugate
     point on the coupler: same pole, same inflection circle, the coupler's motion the same to
-    second order. The new file is drawn at `at`, driven at the new crank (input) or as before;
-    the old fixed pivot stays drawn as a point of the frame."""
+    second order. With `order=3` the pivot is moved along its ray from the pole onto the
+    centre-point curve (module docstring): the motion is the same to the third order. The new
+    file is drawn at `at`, driven at the new crank (input) or as before; the old fixed pivot
+    stays drawn as a point of the frame."""
     from ..instant.curvature import instant
 
     if replace not in ("input", "output"):
         raise InputError(f"replace the 'input' crank or the 'output' rocker, not '{replace}'")
-    fb = _four_bar_at(mech, at, 2)
+    if order not in (2, 3):
+        raise InputError(f"order {order}: Pröll's substitution keeps the motion to order 2 or 3")
+    fb = _four_bar_at(mech, at, order)
     ins = instant(fb.solution, fb.coupler)
     if ins.translating[0]:
         raise SynthesisError("the coupler translates at this input: its pole is at infinity")
@@ -151,6 +166,9 @@ def proell_substitution(mech: Mechanism, at: float, pivot, *, replace: str = "in
         raise SynthesisError("the new pivot is the pole: its conjugate is not defined")
     e = v / c
     de = float(np.dot(W - P, e))
+    if order == 3:
+        c = _centre_point_on_ray(fb, e, de, scale)
+        C3 = P + c * e
     if abs(c + de) <= 1e-12 * scale:
         raise SynthesisError("the new pivot lies on the return circle: its conjugate is at infinity "
                              "(a slider, not built)")
@@ -177,10 +195,36 @@ def proell_substitution(mech: Mechanism, at: float, pivot, *, replace: str = "in
         del joints[n["B"]], joints[n["B0"]]
         joints[a3] = ("revolute", (fb.coupler, fb.rocker), "")
         joints[c3] = ("revolute", (fb.rocker, fb.frame), "")
+    kept = ("same pole and inflection circle" if order == 2 else
+            "a circling point and its centre of curvature: the coupler motion kept to the third order")
     desc = (f"Pröll's substitution (Rosenauer §29) of the {replace} link of '{mech.name}' at input "
-            f"{math.degrees(at):.6g}°: new pivot {c3}, its conjugate {a3} on the coupler (same pole and "
-            "inflection circle). Written by linkwork's synthesis.")
+            f"{math.degrees(at):.6g}°: new pivot {c3}, its conjugate {a3} on the coupler ({kept}). "
+            "Written by linkwork's synthesis.")
     text = mechanism_file(name=name or f"{mech.name}, Pröll substitution", description=desc,
                           length_unit=fb.unit, points=pts, links=links, joints=joints, driver=driver,
                           speed=_speed(mech))
-    return Substitution(text, C3, A3, P, W, float(at))
+    return Substitution(text, C3, A3, P, W, float(at), order)
+
+
+def _centre_point_on_ray(fb, e: np.ndarray, de: float, scale: float) -> float:
+    """The signed distance c from the pole along the world direction e of the centre of
+    curvature of the circling point on that ray (module docstring)."""
+    from ..instant.third_order import stationary_curvature
+
+    cubic = stationary_curvature(fb.solution, fb.coupler)
+    t3, rm = cubic.third, cubic.motion
+    el = rm.to_local(rm.to_world(t3.P) + e[None, :]) - t3.P  # e in the coupler-relative frame
+    b, L = t3.b[0], t3.L[0]
+    Jb = np.array([-b[1], b[0]])
+    den = float(L @ el[0])
+    if abs(den) <= 1e-12 * np.hypot(*L):
+        raise SynthesisError("the cubic of stationary curvature meets this ray only at infinity (its "
+                             "asymptote's direction): choose a pivot in another direction")
+    t = -3 * float(b @ el[0]) * float(Jb @ el[0]) / den
+    if abs(t) <= 1e-9 * scale:
+        raise SynthesisError("the circling point on this ray is the pole (the ray is the pole tangent or "
+                             "normal): choose a pivot in another direction")
+    if abs(de - t) <= 1e-12 * scale:
+        raise SynthesisError("the circling point on this ray lies on the inflection circle (the Ball "
+                             "point): its centre of curvature is at infinity, a slider, not built")
+    return t * de / (de - t)

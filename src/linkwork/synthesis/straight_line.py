@@ -308,20 +308,32 @@ def _watt_t() -> float:
 
 
 def watt_linkage(stroke: float, *, deviation: float | None = None, arm: float | None = None,
-                 coupler: float | None = None, unit: str = "mm",
+                 coupler: float | None = None, frame: float | None = None, unit: str = "mm",
                  name: str = "Watt's straight-line linkage") -> StraightLineLinkage:
     """Watt's linkage for a straight `stroke` of the coupler's midpoint: give two of `arm`,
-    `coupler` and `deviation` (the largest deviation allowed over the stroke); the third is
-    found (the deviation falls as either length grows) with the engine's path."""
+    `coupler`, `deviation` (the largest deviation allowed over the stroke) and `frame` (the
+    overall size: the distance of the fixed pivots, frame² = 4·arm² + coupler², Pöschl eq. 103;
+    not with deviation); the rest is found, the deviation's partner (it falls as either length
+    grows) with the engine's path."""
     from scipy.optimize import brentq
 
     s = _positive(stroke, "stroke")
-    given = [k for k, v in (("arm", arm), ("coupler", coupler), ("deviation", deviation)) if v is not None]
-    if len(given) != 2:
-        raise InputError("Watt's linkage: give two of arm, coupler and deviation "
-                         f"(got {', '.join(given) or 'none'})")
+    given = [k for k, v in (("arm", arm), ("coupler", coupler), ("deviation", deviation), ("frame", frame))
+             if v is not None]
+    if len(given) != 2 or set(given) == {"deviation", "frame"}:
+        raise InputError("Watt's linkage: give two of arm, coupler, deviation and frame, not deviation "
+                         f"with frame (got {', '.join(given) or 'none'})")
     r = None if arm is None else _positive(arm, "arm")
     c = None if coupler is None else _positive(coupler, "coupler")
+    if frame is not None:
+        f = _positive(frame, "frame")
+        if (r is not None and 2 * r >= f) or (c is not None and c >= f):
+            raise InputError(f"frame {f:g}: the fixed pivots must be farther apart than 2·arm and the "
+                             "coupler (frame² = 4·arm² + coupler²)")
+        if r is None:
+            r = math.sqrt(f * f - c * c) / 2
+        else:
+            c = math.sqrt(f * f - 4 * r * r)
     if deviation is not None:
         dev = _positive(deviation, "deviation")
 
@@ -332,7 +344,7 @@ def watt_linkage(stroke: float, *, deviation: float | None = None, arm: float | 
             try:
                 return path_straightness(load_text(text, source="Watt"), "Q", stroke=s).deviation
             except SynthesisError:
-                return math.inf  # too short to run the stroke
+                return 1e300  # too short to run the stroke: worse than any requirement
 
         # the leading term solved for the unknown: a start inside the bracket
         if r is None:
@@ -359,15 +371,24 @@ def watt_linkage(stroke: float, *, deviation: float | None = None, arm: float | 
                    pts, s)
 
 
-def chebyshev_linkage(stroke: float, *, unit: str = "mm",
+def chebyshev_linkage(stroke: float | None = None, *, deviation: float | None = None, unit: str = "mm",
                       name: str = "Chebyshev's straight-line linkage") -> StraightLineLinkage:
-    """Chebyshev's straight-line linkage for a straight `stroke` of the coupler's midpoint M.
+    """Chebyshev's straight-line linkage for a straight `stroke` of the coupler's midpoint M (or,
+    with `deviation`, the longest stroke that keeps within it).
     Frame d = stroke (M's ends lie above the fixed pivots); the rockers c and coupler b follow
     from Chebyshev's two conditions: (i) at a stroke end a rocker stands at right angles to the
     frame with the coupler in line with it, d² + (c − b)² = c²; (ii) M is there at the height it
     has in the symmetric middle position, c − b/2 = √(c² − ((d + b)/2)²)."""
     from scipy.optimize import fsolve
 
+    if (stroke is None) == (deviation is None):
+        raise InputError("Chebyshev's linkage: give the stroke or the deviation allowed over it (its "
+                         "proportions are fixed, so its deviation grows with its size)")
+    if deviation is not None:
+        # the deviation per stroke of the proportions, measured by the engine on one of unit size
+        per = chebyshev_linkage(1.0, unit=unit).straightness.relative
+        d = _positive(deviation, "deviation") / per
+        return chebyshev_linkage(d, unit=unit, name=name)
     d = _positive(stroke, "stroke")
 
     def conditions(z):
@@ -391,15 +412,40 @@ def chebyshev_linkage(stroke: float, *, unit: str = "mm",
 
 
 def evans_linkage(stroke: float, *, angle: float = math.radians(45.0), fraction: float = 0.7,
-                  lever: float | None = None, unit: str = "mm",
+                  lever: float | None = None, deviation: float | None = None, unit: str = "mm",
                   name: str = "Evans straight-line linkage") -> StraightLineLinkage:
     """Evans's linkage (Rosenauer §§32–34) for a straight `stroke` of B along the vertical
     through O: the ellipsograph bar AB = stroke / (2 sin angle) swinging ±`angle` (≤ 45° as the
     seed advises, at most 80° here) about the horizontal, C = A + fraction·(B − A) (between A and
     B: first form; beyond B, > 1: second; beyond A, < 0: third), D on line AO equidistant from C
     at the start and C′ in the middle, E on the perpendicular bisector of A's two places at
-    `lever` (default 4·AB) below line AO. Drawn in the middle position (B at O), driven at D."""
+    `lever` (default 4·AB) below line AO. Drawn in the middle position (B at O), driven at D.
+    With `deviation` instead of `lever`: the shortest lever that keeps the deviation over the
+    stroke within it (the deviation falls as the lever grows, towards the floor of the circle
+    arc standing in for the ellipse; a deviation below that floor is refused)."""
     s = _positive(stroke, "stroke")
+    if deviation is not None:
+        if lever is not None:
+            raise InputError("Evans's linkage: give the lever or the deviation allowed, not both")
+        from scipy.optimize import brentq
+
+        dev = _positive(deviation, "deviation")
+        L = s / (2 * math.sin(float(angle)))
+
+        def excess(x):  # log of the measured deviation over the allowed one, lever = L·e^x
+            got = evans_linkage(s, angle=angle, fraction=fraction, lever=L * math.exp(x), unit=unit)
+            return math.log(got.straightness.deviation / dev)
+
+        lo, hi = math.log(0.25), math.log(1e4)
+        if excess(hi) > 0:
+            raise SynthesisError(f"deviation {dev:g}: even a lever of 10⁴·AB leaves more (the circle arc "
+                                 "about D stands in for the ellipse); allow more, or change the fraction or "
+                                 "the swing")
+        if excess(lo) <= 0:
+            return evans_linkage(s, angle=angle, fraction=fraction, lever=L * math.exp(lo), unit=unit, name=name)
+        x = brentq(excess, lo, hi, xtol=1e-10)
+        return evans_linkage(s, angle=angle, fraction=fraction, lever=L * math.exp(x) * (1 + 1e-9), unit=unit,
+                             name=name)
     a = float(angle)
     if not (0 < a <= math.radians(80)):
         raise InputError(f"angle {math.degrees(a):g}°: give the bar's swing in (0°, 80°]")
@@ -425,7 +471,7 @@ def evans_linkage(stroke: float, *, angle: float = math.radians(45.0), fraction:
     text = _four_bar_text(name, desc, unit, pts, ("E", "D"), ("E", "A"), ("A", "C", "B"), ("D", "C"),
                           "D", "10 rpm")
     lengths = {"bar": L, "fraction": k, "arm": float(np.hypot(*(A_mid - E))),
-               "rocker": float(abs(C_mid[0] - xD) if C_mid[1] == 0 else np.hypot(*(C_mid - [xD, 0.0])))}
+               "rocker": float(np.hypot(*(C_mid - [xD, 0.0])))}
     return _finish(f"Evans linkage ({form} form)", text, "B", lengths, pts, s * (1 - 1e-9))
 
 
@@ -456,7 +502,9 @@ def hart_straight_line(mech: Mechanism, at: float | None = None, *,
     Q, and Q's straightness over the whole motion (engine)."""
     from .second_order import _speed
 
-    u0 = mech.driver_input_at_design(mech.drivers[0]) if at is None and mech.drivers else at
+    if len(mech.drivers) != 1:
+        raise InputError(f"mechanism '{mech.name}': give a four-bar of revolute pairs with one driver")
+    u0 = mech.driver_input_at_design(mech.drivers[0]) if at is None else float(at)
     fb = _four_bar_at(mech, u0, 1)
     O1, A, B, O2 = fb.A0, fb.A, fb.B, fb.B0
     scale = max(np.hypot(*(O2 - O1)), np.hypot(*(B - A)))

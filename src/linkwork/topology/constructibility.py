@@ -153,7 +153,9 @@ class Chain:
         return cls(pts, tuple(hinges), known=known, drivers=drivers, given=given, directions=directions)
 
     @classmethod
-    def from_mechanism(cls, mech: Mechanism) -> "Chain":
+    def from_mechanism(cls, mech: Mechanism, given=None) -> "Chain":
+        """The chain of ``mech`` with its drivers, or its given point velocities (``given``:
+        other given data instead of the mechanism's own; they replace its drivers)."""
         links = {ln.name: tuple(ln.points) for ln in mech.links}
         hinges, slides, slots, meshes, unsupported, contacts, rolls, arcs = [], [], [], [], [], [], [], []
         on_normals = []
@@ -203,8 +205,11 @@ class Chain:
             else:
                 unsupported.append(f"driver {d.joint} ({j.kind})")
         # given point velocities and directions (a chain without drivers, Rosenauer 1937 paper 2)
-        given = tuple(g.point for g in mech.given if g.kind == "velocity")
-        directions = tuple(g.point for g in mech.given if g.kind == "direction")
+        data = mech.given if given is None else tuple(given)
+        given = tuple(g.point for g in data if g.kind == "velocity")
+        directions = tuple(g.point for g in data if g.kind == "direction")
+        if data:
+            drivers = []
         return cls(links, tuple(hinges), tuple(slides), tuple(slots), tuple(meshes),
                    known=(mech.frame,), drivers=tuple(drivers), given=given, directions=directions,
                    collinear=collinear, unsupported=tuple(unsupported),
@@ -333,6 +338,9 @@ class VelocityScript:
     #: link there) left out of the trial chain; the trial rate is found where the trial images
     #: of K and M again satisfy km ⟂ KM (the check, affine in the trial rate: two trials)
     check: tuple[str, str, str, str, str] | None = None
+    #: steps whose two lines are (nearly) parallel at a position of the drawing although the
+    #: planner chose the widest crossing the rules allow (only with the drawing's geometry)
+    coincidences: tuple[str, ...] = ()
 
     @property
     def direct(self) -> bool:
@@ -477,9 +485,17 @@ class _Lines:
         return a.kind == b.kind == "normal" and a.pair == b.pair
 
 
+#: lines crossing at less than this sine (at some position) count as a coincidence of the drawing
+NEAR_PARALLEL = 1e-3
+#: the rules' first choice of lines is kept while they cross at least at this sine (about 6°)
+COMFORTABLE = 0.1
+
+
 class _Planner:
-    def __init__(self, chain: Chain) -> None:
+    def __init__(self, chain: Chain, geometry: Mapping | None = None) -> None:
         self.c = chain
+        self.geo = dict(geometry) if geometry is not None else None
+        self.coincidences: list[str] = []
         # a gear pair's pitch point is the wheels' relative pole: for velocities, a hinge
         self.hinges = chain.hinges + tuple((t, g1, g2) for _, g1, g2, t, _, _ in chain.meshes) + \
             tuple((k, a, b) for _, a, b, k in chain.rolls)
@@ -508,6 +524,47 @@ class _Planner:
         self.kpoints: dict[str, list[str]] = {ln: [] for ln in chain.links}
         self.conds: dict[str, list[PlanLine]] = {ln: [] for ln in chain.links}
 
+    # ---------------------------------------------------------------- the drawing's geometry
+    def _through(self, line: MechLine):
+        """(point, direction) of a mechanism line in the drawing, or None where unknown."""
+        g = self.geo
+        if g is None:
+            return None
+        if line.kind == "join":
+            p, q = (g.get(x) for x in line.points)
+            return None if p is None or q is None else (p, q - p)
+        d = g.get((line.kind, line.pair))
+        p = g.get(line.points[0])
+        return None if d is None or p is None else (p, d)
+
+    def sine(self, a: MechLine, b: MechLine) -> float:
+        """The smallest |sin| of the angle between two mechanism lines over the positions (1.0
+        without geometry, so that the first choice stands)."""
+        la, lb = self._through(a), self._through(b)
+        if la is None or lb is None:
+            return 1.0
+        u, v = np.atleast_2d(la[1]), np.atleast_2d(lb[1])
+        with np.errstate(invalid="ignore", divide="ignore"):
+            s = np.abs(u[:, 0] * v[:, 1] - u[:, 1] * v[:, 0]) / (np.hypot(*u.T) * np.hypot(*v.T))
+        s = s[~np.isnan(s)]  # positions where the mechanism is not assembled tell nothing
+        return float(np.min(s)) if s.size else 1.0
+
+    def place_aux(self, name: str, a: MechLine, b: MechLine) -> None:
+        """Where the auxiliary point lies in the drawing (for the lines through it later)."""
+        la, lb = self._through(a), self._through(b)
+        if la is None or lb is None:
+            return
+        (p, u), (q, v) = (np.atleast_2d(x) for x in la), (np.atleast_2d(x) for x in lb)
+        with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+            den = u[:, 0] * v[:, 1] - u[:, 1] * v[:, 0]
+            t = ((q - p)[:, 0] * v[:, 1] - (q - p)[:, 1] * v[:, 0]) / den
+            self.geo[name] = p + t[:, None] * u
+
+    def note(self, sine: float, text: str) -> None:
+        if self.geo is not None and sine < NEAR_PARALLEL:
+            self.coincidences.append(f"{text}: the two lines are (nearly) parallel at a position of "
+                                     "the drawing, and the rules allow no other lines here")
+
     # ---------------------------------------------------------------- bookkeeping
     def _find(self, k):
         while self.parent.get(k, k) != k:
@@ -523,6 +580,10 @@ class _Planner:
         while self.rot[ln] != ln:
             ln = self.rot[ln]
         return ln
+
+    def translates(self, ln: str) -> bool:
+        """ln turns with the frame (slides on it, directly or through blocks)."""
+        return self.c.frame is not None and self._rfind(ln) == self._rfind(self.c.frame)
 
     def omega_known(self, ln: str) -> bool:
         r = self._rfind(ln)
@@ -598,13 +659,23 @@ class _Planner:
             self.mark(ln, p)
             return
         if len(kp) >= 2:
-            for i, x in enumerate(kp):
-                for y in kp[i + 1:]:
-                    if not self.collinear(x, y, p):
-                        self.emit_meet(ln, p, PlanLine((ln, x), self.lines.join(x, p)),
-                                       PlanLine((ln, y), self.lines.join(y, p)))
-                        return
-            x, y = kp[:2]
+            pairs = [(x, y) for i, x in enumerate(kp) for y in kp[i + 1:] if not self.collinear(x, y, p)]
+            choice = self.pick(pairs, lambda xy: self.sine(self.lines.join(xy[0], p), self.lines.join(xy[1], p)))
+            best = None
+            if choice is not None:
+                x, y = choice
+                lx, ly = self.lines.join(x, p), self.lines.join(y, p)
+                best = (self.sine(lx, ly), x, y, lx, ly)
+            line_pair = next(((x, y) for i, x in enumerate(kp) for y in kp[i + 1:]
+                              if self.collinear(x, y, p)), None)
+            if best is not None and (best[0] >= NEAR_PARALLEL or line_pair is None):
+                sn, x, y, lx, ly = best
+                self.emit_meet(ln, p, PlanLine((ln, x), lx), PlanLine((ln, y), ly))
+                self.note(sn, self.steps[-1].text)
+                return
+            # p on the line of two known points: divide their images (also where the two lines
+            # of a meet would be parallel at this drawing)
+            x, y = line_pair or kp[:2]
             self.steps.append(Step("divide", ln, p, f"{self.label(ln, p)} on {self.label(ln, x)}"
                                    f"{self.label(ln, y)}, dividing it as {upper(p)} divides "
                                    f"{upper(x)}{upper(y)}", base=(x, y)))
@@ -668,9 +739,11 @@ class _Planner:
                 if y is None:
                     if len(self.points[ln]) < 2:
                         return len(self.steps) > start
-                    y = self.new_aux(ln, c.line, self.lines.join(x, self.other_point(ln, x)))
+                    y = self.new_aux(ln, c.line, self.lines.join(x, self.other_point(ln, x, c.line)))
                     aux = self.aux[-1]
                 self.emit_meet(ln, y, PlanLine((ln, x), self.lines.join(x, y)), c, aux)
+                self.note(self.sine(self.lines.join(x, y), c.line) if aux is None else
+                          self.sine(*aux.lines), self.steps[-1].text)
                 continue
             pair = self.meeting_pair(conds)
             if pair is None or level < 2:
@@ -682,20 +755,40 @@ class _Planner:
             else:
                 q = self.new_aux(ln, a.line, b.line)
                 self.emit_meet(ln, q, a, b, self.aux[-1])
+            self.note(self.sine(a.line, b.line), self.steps[-1].text)
             level = 1
 
     def meeting_pair(self, conds: list[PlanLine]):
-        for i, a in enumerate(conds):
-            for b in conds[i + 1:]:
-                if not self.lines.parallel_family(a.line, b.line):
-                    return a, b
-        return None
+        """Two line conditions that meet, in the order found; with the drawing's geometry the
+        first pair that crosses at a comfortable angle, else the widest crossing."""
+        cands = [(a, b) for i, a in enumerate(conds) for b in conds[i + 1:]
+                 if not self.lines.parallel_family(a.line, b.line)]
+        return self.pick(cands, lambda ab: self.sine(ab[0].line, ab[1].line))
 
-    def other_point(self, ln: str, x: str) -> str:
-        return next(q for q in self.points[ln] if q != x)
+    def pick(self, cands, sine):
+        """The first candidate unless the drawing makes its lines cross at a small angle; then
+        the first that crosses at COMFORTABLE or more, or else the widest."""
+        if not cands:
+            return None
+        if self.geo is None:
+            return cands[0]
+        scored = [(sine(c), c) for c in cands]
+        for sn, c in scored:
+            if sn >= COMFORTABLE:
+                return c
+        return max(scored, key=lambda sc: sc[0])[1]
+
+    def other_point(self, ln: str, x: str, line: MechLine | None = None) -> str:
+        """A second point of ln for the line through x that meets ``line`` (the widest crossing
+        in the drawing; the auxiliary point is not put at infinity by a coincidence)."""
+        cands = [q for q in self.points[ln] if q != x]
+        if line is None:
+            return cands[0]
+        return self.pick(cands, lambda q: self.sine(MechLine("join", (x, q)), line))
 
     def new_aux(self, ln: str, a: MechLine, b: MechLine) -> str:
         name = self.free_names.pop(0)
+        self.place_aux(name, a, b)
         self.lines.members(a).add(name)
         self.lines.members(b).add(name)
         self.add_point(ln, name)
@@ -722,6 +815,12 @@ class _Planner:
                 for cond in list(self.conds[L]):
                     if self.on(p, cond.line):  # Rosenauer's extension: a line through the joint
                         new |= self.add_cond(T, PlanLine(cond.anchor, cond.line, cond.via + ((L, T, p),)))
+                    elif cond.line.kind == "normal" and cond.anchor[0] == c.frame and self.translates(L):
+                        # a link translating along a guide of the frame: the normal to the guide at
+                        # any of its points carries its velocity's end (Rosenauer 1937 paper 8: the
+                        # pole of the rolling lever on the normal to the slide at B)
+                        line = self.lines.special("normal", p, cond.line.pair)
+                        new |= self.add_cond(T, PlanLine((c.frame, p), line, cond.via + ((L, T, p),)))
         for pair, G, S, X in c.slides + c.slots:
             slide = (pair, G, S, X) in c.slides
             for L, T in ((G, S), (S, G)):
@@ -778,6 +877,11 @@ class _Planner:
                     self.conds[ln].append(PlanLine((POLE, p), self.lines.special("direction", p, None)))
         while True:
             changed = self.transfer()
+            # with the drawing's geometry every line condition is carried as far as it goes before
+            # a link is completed, so that the choice of an auxiliary point's lines sees them all
+            # (without it the order of the papers' scripts is kept)
+            while changed and self.geo is not None and self.transfer():
+                pass
             done = False
             for level in (0, 1, 2):
                 for ln in c.links:
@@ -801,22 +905,30 @@ class _Planner:
                 groups.setdefault(self._find((ln, p)), []).append((ln, p))
         shared = {k: tuple(x for x in g if x != k) for g in groups.values() for k in g}
         return VelocityScript(tuple(self.steps), tuple(self.aux), tuple(self.order), unreached,
-                              c.unsupported, labels, shared)
+                              c.unsupported, labels, shared, coincidences=tuple(self.coincidences))
 
 
-def plan_velocities(chain: Chain | Mechanism) -> VelocityScript:
+def plan_velocities(chain: Chain | Mechanism, geometry: Mapping | None = None) -> VelocityScript:
     """The direct velocity construction of ``chain`` (a `Chain`, or a `Mechanism` with its
-    frame and drivers as given data): Rosenauer's rule as a propagation on the chain's graph."""
+    frame and drivers as given data): Rosenauer's rule as a propagation on the chain's graph.
+
+    ``geometry`` (optional): the drawing's positions, as point name → (N, 2) coordinates, and
+    ("normal", pair) / ("contact", pair) → (N, 2) directions of the normals of guides and cam
+    contacts. Where the rules leave a choice (which two lines meet in an auxiliary point, which
+    two known points give a further image) the planner then takes the lines that cross at the
+    widest angle at every position, so that coincidences of the drawing (lines that are parallel
+    or the same only there) are avoided; where no other lines are allowed it names them in
+    `VelocityScript.coincidences`."""
     if isinstance(chain, Mechanism):
         chain = Chain.from_mechanism(chain)
-    script = _Planner(chain).run()
+    script = _Planner(chain, geometry).run()
     if script.direct or script.unsupported or len(chain.drivers) != 1 or chain.given \
             or chain.directions or chain.drivers[0][2] is None or chain.frame is None:
         return script
-    return _false_position(chain) or _two_trials(chain) or script
+    return _false_position(chain, geometry) or _two_trials(chain, geometry) or script
 
 
-def _false_position(chain: Chain) -> VelocityScript | None:
+def _false_position(chain: Chain, geometry=None) -> VelocityScript | None:
     """Where one crank drives a chain that Rosenauer's rule does not reach: the velocities are
     proportional to the driver's rate, so another link on a frame pivot may be given a trial
     rate; if the plan is direct from it, the true plan is the trial plan scaled about o in the
@@ -833,7 +945,7 @@ def _false_position(chain: Chain) -> VelocityScript | None:
         ref = next((q for q in chain.links[link] if q != p), None)
         if ref is None:
             continue
-        trial = _Planner(replace(chain, drivers=((link, p, ref),))).run()
+        trial = _Planner(replace(chain, drivers=((link, p, ref),)), geometry).run()
         if trial.direct:
             d, dp, dr = driver
             first = replace(trial.steps[0], text=(
@@ -850,7 +962,7 @@ def _false_position(chain: Chain) -> VelocityScript | None:
     return None
 
 
-def _two_trials(chain: Chain) -> VelocityScript | None:
+def _two_trials(chain: Chain, geometry=None) -> VelocityScript | None:
     """False position with two trials (*ähnliche Punktreihen* in their general form): where no
     second crank's trial rate alone makes the plan direct, leave out a binary link KM and give
     a second crank a trial rate besides the true driver. The images are then affine in the trial
@@ -881,7 +993,7 @@ def _two_trials(chain: Chain) -> VelocityScript | None:
         for link, p, ref in cranks:
             if link == cut:
                 continue
-            trial = _Planner(replace(rest, drivers=(driver, (link, p, ref)))).run()
+            trial = _Planner(replace(rest, drivers=(driver, (link, p, ref))), geometry).run()
             if not trial.direct:
                 continue
             steps = list(trial.steps)

@@ -9,6 +9,7 @@ becomes a 4xx answer with its message, anything else a 500 answer without a trac
 
 from __future__ import annotations
 
+import threading
 import tomllib
 import warnings
 from contextlib import asynccontextmanager, contextmanager
@@ -24,7 +25,7 @@ from fastapi.responses import FileResponse, JSONResponse, Response
 from fastapi.staticfiles import StaticFiles
 
 from ..errors import LinkworkError, LinkworkWarning, InputError, UnknownMechanismError
-from ..kinematics import Solution, Status, solve, whole_motion
+from ..kinematics import Solution, Status, compiled_loops, solve, whole_motion
 from ..kinematics.export import to_document
 from ..model import Mechanism, Prismatic
 from . import models as m
@@ -86,9 +87,11 @@ def _validation_message(exc: RequestValidationError) -> str:
 
 @contextmanager
 def _warnings() -> Iterator[list[str]]:
-    """Collect the LinkworkWarnings raised inside (as the command line prints them)."""
+    """Collect the LinkworkWarnings raised inside (as the command line prints them); the
+    kinematics' loops run compiled inside once the server has them (`compile_kernels`)."""
     out: list[str] = []
-    with warnings.catch_warnings(record=True) as caught:
+    with warnings.catch_warnings(record=True) as caught, \
+            compiled_loops(True if KERNELS_READY.is_set() else None):
         warnings.simplefilter("always", LinkworkWarning)
         yield out
         out.extend(dict.fromkeys(str(w.message) for w in caught
@@ -109,6 +112,12 @@ def solve_at(mech: Mechanism, req: m.At, order: int = 2, previous: Mechanism | N
     """Solve where the request says: its inputs, its times, or the design position.
     `previous`: the mechanism of the drag's previous frame (`Loaded.previous`), whose march
     the Newton-solved groups carry over (`solve(..., previous=)`)."""
+    if mech.given:  # driven by given point velocities: its drawn position only
+        if req.times is not None or req.at is not None:
+            raise InputError(f"mechanism '{mech.name}' is driven by given point velocities: it is "
+                             "solved at its drawn position only (no at, no times)")
+        from ..kinematics.point_inputs import solve_given
+        return solve_given(mech)
     if req.times is not None:
         return solve(mech, times=np.asarray(req.times, float), order=order, previous=previous)
     if req.at is None:
@@ -206,22 +215,27 @@ def drawing(mech: Mechanism, req: m.DrawingRequest, previous: Mechanism | None =
 
 
 def compile_kernels() -> None:
-    """Run the kinematics' compiled loops for every batch size from now on.
+    """Run the kinematics' compiled loops for every batch of the requests from now on.
 
     A command line solve of a few samples runs them interpreted, because loading numba costs a
     second or more per process; a server pays that once, and a drag frame of a four-bar (a
     branch scan of 2 049 inputs and the solve) then takes a few milliseconds instead of a
-    hundred. The loops are compiled (or loaded from numba's cache) first by batches large
-    enough to take the compiled path anyway, so no request waits for the compiler; only then
-    is the threshold lowered."""
+    hundred. The loops are compiled (or loaded from numba's cache) first, so no request waits
+    for the compiler: the fused pass (the four-bar, the slider-crank) and the per-group loops
+    (a chain with a Newton group); only then do the requests take them (`_warnings` enters
+    `kinematics.compiled_loops`)."""
     from ..io import load
     from ..io.library import LIBRARY_PREFIX
-    from ..kinematics import kernels
-    inputs = np.linspace(0.0, 2 * np.pi, kernels.INTERPRETED_UP_TO + 1)[:, None]
-    for name in ("crank-rocker", "slider-crank-centric"):  # the RRR and RRP dyads, the driver
-        solve(load(LIBRARY_PREFIX + name), inputs, order=2)
-    kernels.INTERPRETED_UP_TO = 0
+    with compiled_loops(True):
+        for name in ("crank-rocker", "slider-crank-centric", "alt-ten-link",
+                     "crank-driven-wedge"):
+            mech = load(LIBRARY_PREFIX + name)
+            solve(mech, np.full((8, 1), mech.driver_input_at_design(mech.drivers[0])), order=2)
+    KERNELS_READY.set()
 
+
+#: set once `compile_kernels` has loaded the compiled loops (a server's, for the process)
+KERNELS_READY = threading.Event()
 
 
 def create_app(workdir: str | Path | None = None, *, compiled: bool = False) -> FastAPI:
@@ -233,7 +247,6 @@ def create_app(workdir: str | Path | None = None, *, compiled: bool = False) -> 
     @asynccontextmanager
     async def lifespan(app):
         if compiled:  # when the server starts (not when the application is merely made)
-            import threading
             threading.Thread(target=compile_kernels, name="compile-kernels", daemon=True).start()
         yield
 

@@ -89,7 +89,7 @@ def moved(mech: Mechanism, points: dict[str, tuple[float, float]]) -> Mechanism:
                            links={ln.name: list(ln.points) for ln in mech.links},
                            joints=list(mech.joints), drivers=list(mech.drivers), frame=mech.frame,
                            length_unit=mech.length_unit, description=mech.description,
-                           profiles=mech.profiles)
+                           profiles=mech.profiles, given=mech.given)
 
 
 class Sources:
