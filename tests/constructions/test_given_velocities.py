@@ -359,3 +359,12 @@ def test_analyze_command_at_the_drawn_position():
     assert res.exit_code == 0 and "given point velocities" in res.output
     res = CliRunner().invoke(app, ["analyze", "library:rosenauer-free-watt-chain", "--at", "3"])
     assert res.exit_code != 0 and "do not apply" in res.output
+
+
+@pytest.mark.parametrize("command", [["forces"], ["animate", "-o", "x.html"]])
+def test_commands_of_a_whole_motion_or_a_driver_refuse_with_the_reason(command, tmp_path):
+    args = [command[0], "library:rosenauer-free-triad"] + [str(tmp_path / a) if a.endswith(".html") else a
+                                                          for a in command[1:]]
+    res = CliRunner().invoke(app, args)
+    assert res.exit_code != 0 and "given point velocities" in res.output
+    assert "Traceback" not in res.output

@@ -97,13 +97,12 @@ def test_svg_contains_the_labelled_construction_objects():
 
 @pytest.mark.parametrize("name", list(CONSTRUCTIONS))
 def test_each_construction_draws(name):
-    # the constructions for one kind of mechanism on one of that kind
-    own = {"klein": "slider-crank-offset", "slide-pairs": "oscillating-crank-slotted-lever",
-           "rolling-lever": "rolling-lever-valve-gear"}
-    mech = linkwork.load(f"library:{own.get(name, 'crank-rocker')}")
-    x = np.radians([230.0]) if name in ("klein",) or name not in own else \
-        [mech.driver_input_at_design(mech.drivers[0]) + 0.3]
-    sol = linkwork.solve(mech, x)
+    # each construction on a mechanism it applies to (slide pairs need a slide between moving
+    # links, the rolling lever its valve gear)
+    lib = {"klein": "slider-crank-offset", "slide-pairs": "rotating-crank-slotted-lever",
+           "rolling-lever": "rolling-lever-valve-gear"}.get(name, "crank-rocker")
+    mech = linkwork.load(f"library:{lib}")
+    sol = linkwork.solve(mech, np.radians([230.0]))
     con = construct(name, mech, sol)
     con.check()
     fig = scene_figure(linkwork.drawing.Scene(mech, sol), ["mechanism"], construction=con)

@@ -214,6 +214,20 @@ def march_limit(mech: Mechanism, solvers, sense: int, span: float) -> float | No
     return float(design[0] + sense * end / gen.weights[0])
 
 
+@_serialized
+def march_period(mech: Mechanism, solvers) -> float | None:
+    """The period of the design branch's motion in a revolute input (`_period`: the marches
+    upwards and downwards meet after 1 … `PERIOD_TURNS` turns), or None when a march stops at a
+    limit position first (or they do not meet). One driver. Its marches to ±half a period are
+    kept, and the samples of a whole motion need them (`continuation_guesses` reduces samples
+    beyond half a period into one), so deciding whether the input turns fully costs no march
+    that the solve would not make anyway."""
+    gen = _Generic(mech, solvers)
+    design = np.array([mech.driver_input_at_design(d) for d in mech.drivers])
+    found = _period(mech, solvers, gen, _one_driver_lanes(mech, solvers, gen, design))
+    return None if found is None else found[0]
+
+
 def _period(mech: Mechanism, solvers, gen: "_Generic", lanes: dict) -> tuple | None:
     """The period of the Newton-solved groups' motion in a revolute input: the first of 1 …
     `PERIOD_TURNS` turns P for which the marches upwards and downwards meet, the poses at
@@ -385,13 +399,42 @@ def _carry(mech: Mechanism, solvers, gen: "_Generic", lanes: list) -> Carried:
     Newton steps, within the step bound, smooth both ways (`_smooth`). A step onto another
     assembly branch fails them as it fails a march, and the lane then goes on from the last
     point taken as a march does after a rejected step. The design position (λ = 0, every pose
-    zero) is each lane's first point, so a carried lane is a march of `mech`'s own branch."""
+    zero) is each lane's first point, so a carried lane is a march of `mech`'s own branch.
+    Points the map leaves (beyond what the samples need) stay pending: a march that later
+    needs them carries them first (`_carry_ahead`)."""
+    offered = []
+    for old, new, to_new in lanes:
+        lam = to_new(np.asarray(old.lam, dtype=float))
+        offered.append((old, new, lam, old.P[:lam.size], lam.size))
+    return _carry_points(mech, solvers, gen, offered)
+
+
+def _carry_ahead(mech: Mechanism, solvers, gen: "_Generic", lanes: list, reach: dict) -> None:
+    """Before a march goes on: lanes with points of an earlier march still pending (`_carry`)
+    take them first, as far as `reach` needs."""
+    todo = []
+    for ln in lanes:
+        if ln.pending is None or ln.stopped or ln.reached(reach[ln.sense]):
+            continue
+        old, start = ln.pending
+        lam = np.asarray(old.lam[start:], dtype=float)
+        past = np.flatnonzero(lam >= reach[ln.sense])
+        m = int(past[0]) + 1 if past.size else lam.size
+        todo.append((old, ln, lam[:m], old.P[start:start + m], start + m))
+    if todo:
+        more = _carry_points(mech, solvers, gen, todo)
+        with _lock:
+            was = _carried.get(mech)
+        if was is not None and was.reason is None:
+            _note(mech, Carried(was.carried + more.carried, was.points + more.points,
+                                more.failed_at, more.reason))
+
+
+def _carry_points(mech: Mechanism, solvers, gen: "_Generic", lanes: list) -> Carried:
+    """`_carry` of (old lane, new lane, new λ, old poses, index in the old lane after them)."""
     from .branches import branch_schedule  # imports the solver, which imports this module
 
-    rows = []
-    for n, (old, new, to_new) in enumerate(lanes):
-        lam = to_new(np.asarray(old.lam, dtype=float))
-        rows += [(n, float(x), P) for x, P in zip(lam, old.P)]
+    rows = [(n, float(x), P) for n, (_, _, lam, Ps, _) in enumerate(lanes) for x, P in zip(lam, Ps)]
     if not rows:
         return Carried(0, 0, None, "the previous mechanism's march has no points to offer")
     schedule = gen.schedule
@@ -407,25 +450,32 @@ def _carry(mech: Mechanism, solvers, gen: "_Generic", lanes: list) -> Carried:
                                                    arrive, leave, pred)
     lane_of = np.array([r[0] for r in rows])
     taken, failed = 0, None
-    for n, (old, new, _) in enumerate(lanes):
+    for n, (old, new, _, _, after) in enumerate(lanes):
         idx = np.flatnonzero(lane_of == n)
+        new.pending = None
         if idx.size == 0:
             continue
         # every step's tests at once (each needs its two ends only): converged, not longer than
-        # the bound the march keeps to, smooth both ways
-        why = np.full(idx.size, None, dtype=object)
-        i, j = idx[1:], idx[:-1]
-        h = lams[i] - lams[j]
-        tn = gen.norm(t_leave[j])
+        # the bound the march keeps to, smooth both ways; a lane marched already steps from its
+        # last point
+        head = bool(new.lam)
+        L = np.concatenate([new.lam[-1:], lams[idx]])
+        Q = np.concatenate([np.array(new.P[-1:]).reshape(-1, gen.size, 3), q[idx]])
+        TL = np.concatenate([np.array(new.T[-1:]).reshape(-1, gen.size, 3), t_leave[idx]])
+        h = L[1:] - L[:-1]
+        tn = gen.norm(TL[:-1])
         known = np.isfinite(tn) & (tn > 0)
         bound = np.where(known, np.maximum(MAX_POSE_CHANGE * gen.L / np.where(known, tn, 1.0),
                                            MIN_STEP * CONTINUATION_STEP), np.inf)
-        tangent = np.isfinite(t_leave[j]).all(axis=(1, 2))[:, None, None]
-        pred = np.where(tangent, q[j] + h[:, None, None] * t_leave[j], q[j])
-        why[1:][~_smooth(gen, q[j], pred, q[i], h, t_arrive[i])] = (
+        tangent = np.isfinite(TL[:-1]).all(axis=(1, 2))[:, None, None]
+        pred = np.where(tangent, Q[:-1] + h[:, None, None] * TL[:-1], Q[:-1])
+        arriving = t_arrive[idx] if head else t_arrive[idx[1:]]
+        why = np.full(idx.size, None, dtype=object)
+        stepped = why[0 if head else 1:]  # the rows a step arrives at (a view)
+        stepped[~_smooth(gen, Q[:-1], pred, Q[1:], h, arriving)] = (
             "the poses do not follow on smoothly there (another assembly branch, or a fast swing)")
-        why[1:][h > CARRY_STEP_SLACK * bound] = "the poses move faster there than the previous step allows"
-        if lams[idx[0]] != new.knots[0]:
+        stepped[h > CARRY_STEP_SLACK * bound] = "the poses move faster there than the previous step allows"
+        if not head and lams[idx[0]] != new.knots[0]:
             why[0] = "the previous march does not start at the design position"
         why[~ok[idx]] = "the previous poses do not converge there (no assembly near them)"
         bad = np.flatnonzero(why != None)  # noqa: E711 (an object array, compared elementwise)
@@ -445,6 +495,11 @@ def _carry(mech: Mechanism, solvers, gen: "_Generic", lanes: list) -> Carried:
             new.h = (lams[idx[k]] - new.lam[-1]) / 2
             new.halved = True
             new.stopped = new.h < MIN_STEP * CONTINUATION_STEP
+        elif after < len(old.lam):  # more to take when a march needs them
+            new.pending = (old, after)
+            new.h = min(new.lam[-1] - new.lam[-2], CONTINUATION_STEP) if len(new.lam) > 1 \
+                else CONTINUATION_STEP
+            new.halved = False
         elif old.stopped:  # the old march ended at its limit position; this one may go on
             new.h = min(new.lam[-1] - new.lam[-2], CONTINUATION_STEP) if len(new.lam) > 1 \
                 else CONTINUATION_STEP
@@ -567,6 +622,7 @@ class _Lane(InputPath):
         self.T: list[np.ndarray] = []
         self._arrays = None
         self.last = None  # (arriving direction, {group: Jacobian}) of the last accepted point
+        self.pending = None  # (an earlier march, the index of its next point to carry over)
 
     # ------------------------------------------------------------------ going on
     def tail(self) -> LaneTail | None:
@@ -712,6 +768,7 @@ def _march(mech: Mechanism, solvers: tuple, gen: _Generic, lanes: list[_Lane], r
     unit input rate along the lane: the tangent for the next prediction."""
     from .branches import branch_schedule  # imports the solver, which imports this module
 
+    _carry_ahead(mech, solvers, gen, lanes, reach)
     # (a path through many samples: a few more attempts for each)
     allowed = {id(ln): MAX_ATTEMPTS + 4 * max(0, len(ln.knots) - 2) for ln in lanes}
     budget = dict(allowed)

@@ -375,10 +375,10 @@ class VelocityScript:
                     "reached from known velocities only across more than two joints; the plan "
                     "needs similar point rows (false position)")
         n = len(self.aux)
-        return ("directly constructible (Rosenauer's rule holds)" +
-                (f", with {n} auxiliary point{'s' if n > 1 else ''} " +
-                 ", ".join(f"{a.name} = {a.lines[0].text()} \u2229 {a.lines[1].text()} (in {a.link})"
-                           for a in self.aux) if n else ", without auxiliary points"))
+        return prose("directly constructible (Rosenauer's rule holds)" +
+                     (f", with {n} auxiliary point{'s' if n > 1 else ''} " +
+                      ", ".join(f"{a.name} = {a.lines[0].text()} \u2229 {a.lines[1].text()} (in {a.link})"
+                                for a in self.aux) if n else ", without auxiliary points"))
 
     def as_dict(self) -> dict:
         return {"direct": self.direct, "verdict": self.verdict(),
@@ -388,13 +388,13 @@ class VelocityScript:
                  "trials": 1 if self.check is None else 2,
                  "check_link": None if self.check is None else self.check[0]},
                 "auxiliary_points": [{"name": a.name, "link": a.link,
-                                      "lines": [ln.text() for ln in a.lines]} for a in self.aux],
+                                      "lines": [prose(ln.text()) for ln in a.lines]} for a in self.aux],
                 "order": list(self.order), "unreached": list(self.unreached),
-                "unsupported": list(self.unsupported), "script": [s.text for s in self.steps]}
+                "unsupported": list(self.unsupported), "script": [prose(s.text) for s in self.steps]}
 
     def script(self) -> list[str]:
-        """The numbered construction script."""
-        return [f"{k:2d}. {s.text}" for k, s in enumerate(self.steps, 1)]
+        """The numbered construction script (the names in it as written, :func:`prose`)."""
+        return [f"{k:2d}. {prose(s.text)}" for k, s in enumerate(self.steps, 1)]
 
 
 @dataclass(frozen=True)
