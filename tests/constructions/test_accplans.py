@@ -357,3 +357,21 @@ def test_rolling_lever_says_why_at_its_drawing_position():
     con = rolling_lever(mech, sol)
     assert con.degenerate[0]
     assert any("rod's line AD" in m or "BD is perpendicular to the slide" in m for m in con.messages(0))
+
+
+def test_free_dreispann_with_va_vb_by_two_trials():
+    """Paper 2, Ex. IV: the free Dreispann with v_A and v_B given is not directly constructible
+    (CDE lies more than two joints from the given velocities: the rule's verdict stays named).
+    The classical false position: a trial rate of AGH about A, the binary link AC left out, two
+    trials, the check ac ⟂ AC. Every velocity against the engine (the linear solve of the given
+    conditions)."""
+    mech = load("free-dreispann-ab")
+    s = plan_velocities(mech)
+    assert not s.direct and "CDE" in s.unreached
+    assert s.check is not None and s.scale_by is None
+    assert "two trials" in s.verdict() and "given velocities" in s.verdict()
+    for build in (velocity_plan, rotated_velocities):
+        con = build(mech, None)
+        con.check()
+        assert con.max_error() <= 1e-9 and not con.degenerate.any()
+        assert any(st.text.startswith("second trial") for st in con.steps)

@@ -291,7 +291,7 @@ def test_plan_command_explains_and_checks_a_free_chain():
     assert doc["rosenauer"]["direct"] and doc["construction"]["max_relative_error"] <= 1e-9
 
 
-def test_plan_command_refuses_at_and_reports_a_chain_it_cannot_draw(tmp_path):
+def test_plan_command_refuses_at_and_draws_a_chain_by_two_trials(tmp_path):
     res = CliRunner().invoke(app, ["plan", "library:rosenauer-free-triad", "--at", "30"])
     assert res.exit_code != 0 and "--at does not apply" in res.output
     text = linkwork.io.files.resolve("library:rosenauer-free-dreispann")[1]
@@ -299,7 +299,11 @@ def test_plan_command_refuses_at_and_reports_a_chain_it_cannot_draw(tmp_path):
     f.write_text(text.replace('point = "F"\nvelocity = [-10, 40]', 'point = "B"\nvelocity = [-10, 40]'))
     res = CliRunner().invoke(app, ["plan", str(f), "--explain"])
     assert res.exit_code == 0, res.output
-    assert "not directly constructible" in res.output and "not drawn" in res.output
+    # Rosenauer's rule does not reach it (v_A, v_B); similar point rows (two trials) do, and
+    # the drawn velocities are checked against the engine
+    assert "not directly constructible" in res.output and "second trial" in res.output
+    err = float(res.output.rsplit("largest relative error against the engine:", 1)[1].split()[0])
+    assert err <= 1e-9
 
 
 def test_plan_command_names_a_missing_condition(tmp_path):
@@ -359,3 +363,12 @@ def test_analyze_command_at_the_drawn_position():
     assert res.exit_code == 0 and "given point velocities" in res.output
     res = CliRunner().invoke(app, ["analyze", "library:rosenauer-free-watt-chain", "--at", "3"])
     assert res.exit_code != 0 and "do not apply" in res.output
+
+
+@pytest.mark.parametrize("command", [["forces"], ["animate", "-o", "x.html"]])
+def test_commands_of_a_whole_motion_or_a_driver_refuse_with_the_reason(command, tmp_path):
+    args = [command[0], "library:rosenauer-free-triad"] + [str(tmp_path / a) if a.endswith(".html") else a
+                                                          for a in command[1:]]
+    res = CliRunner().invoke(app, args)
+    assert res.exit_code != 0 and "given point velocities" in res.output
+    assert "Traceback" not in res.output

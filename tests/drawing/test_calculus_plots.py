@@ -119,3 +119,20 @@ def test_cli_plans_and_steps(tmp_path):
     assert sorted(p.name for p in tmp_path.glob("s-*.png")) == [f"s-0{k}.png" for k in range(1, 6)]
     r = runner.invoke(app, ["plot", "library:slider-crank-centric", "--point", "B", "--steps", "-o", str(out)])
     assert r.exit_code != 0 and "--vs" in r.output
+    out = tmp_path / "d.png"
+    r = runner.invoke(app, ["plot", "library:slider-crank-centric", "--point", "B", "--diagrams", "--steps",
+                            "-o", str(out)])
+    assert r.exit_code == 0, r.output
+    assert sorted(p.name for p in tmp_path.glob("d-*.png")) == [f"d-0{k}.png" for k in range(1, 6)]
+
+
+def test_graphical_differentiation_steps_read_the_engine_velocity():
+    # the chord's slope is the mean velocity over the chord: at the chord's middle it differs
+    # from the engine's v by O(h²) (12 chords over a stroke: under 1 % of the largest speed)
+    from linkwork.drawing.calculus_plots import differentiation_steps
+    mech = linkwork.load("library:slider-crank-offset")
+    figs, texts, (v, exact) = differentiation_steps(mech, "B", chords=12)
+    assert len(figs) == 5 and len({tuple(f.get_size_inches()) for f in figs}) == 1
+    assert np.max(np.abs(v - exact)) < 0.01 * np.max(np.abs(exact))
+    figs, _, (v, exact) = differentiation_steps(mech, "B", chords=48)
+    assert np.max(np.abs(v - exact)) < 0.001 * np.max(np.abs(exact))  # finer chords, O(h²)

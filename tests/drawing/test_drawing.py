@@ -97,7 +97,11 @@ def test_svg_contains_the_labelled_construction_objects():
 
 @pytest.mark.parametrize("name", list(CONSTRUCTIONS))
 def test_each_construction_draws(name):
-    mech = linkwork.load("library:slider-crank-offset" if name == "klein" else "library:crank-rocker")
+    # each construction on a mechanism it applies to (slide pairs need a slide between moving
+    # links, the rolling lever its valve gear)
+    lib = {"klein": "slider-crank-offset", "slide-pairs": "rotating-crank-slotted-lever",
+           "rolling-lever": "rolling-lever-valve-gear"}.get(name, "crank-rocker")
+    mech = linkwork.load(f"library:{lib}")
     sol = linkwork.solve(mech, np.radians([230.0]))
     con = construct(name, mech, sol)
     con.check()

@@ -48,7 +48,8 @@ def test_analyze_table_json_csv_and_whole_motion(which, tmp_path):
     at = "120,130" if which == "ellipses" else "10,75,200"
     assert "ω" in run("analyze", path, "--at", at)
     csv = run("analyze", path, "--at", at, "--format", "csv").splitlines()
-    assert f"{pair}.pressure_angle" in csv[0].split(",") and len(csv) == 1 + len(at.split(","))
+    # headers carry their units, `name [unit]`
+    assert f"{pair}.pressure_angle [rad]" in csv[0].split(",") and len(csv) == 1 + len(at.split(","))
     for s in contact(path, at):
         assert s["status"] == "ok" and set(s["joints"][pair]) >= {"point", "normal", "sliding_velocity"}
     whole = json.loads(run("analyze", path, "--format", "json"))

@@ -80,12 +80,13 @@ def test_fused_pass_gives_the_per_group_solution(name, monkeypatch):
     _assert_same(a, b, mech)
     if name in ("double-rocker", "slider-crank-offset"):
         assert (a.status == Status.UNREACHABLE).any() or name == "slider-crank-offset"
-    # blocks of the fused pass cut the batch anywhere: the same solution
-    monkeypatch.setattr(fused, "BLOCK", 997)
-    c = linkwork.solve(mech, u)
-    np.testing.assert_array_equal(c._C, a._C)
-    np.testing.assert_array_equal(c.status, a.status)
-    np.testing.assert_array_equal(c.errors, a.errors)
+    # blocks cut the batch anywhere, in either path: the same solution
+    monkeypatch.setattr(solver, "KERNEL_BLOCK", 997)
+    c, d = _both(mech, u, monkeypatch)
+    for x, whole in ((c, a), (d, b)):
+        np.testing.assert_array_equal(x._C, whole._C)
+        np.testing.assert_array_equal(x.status, whole.status)
+        np.testing.assert_array_equal(x.errors, whole.errors)
 
 
 @pytest.mark.parametrize("name", FIVE)

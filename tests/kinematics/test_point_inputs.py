@@ -51,8 +51,10 @@ def reference(mech: Mechanism, given) -> tuple[dict, dict]:
     return ({p: x[c:c + 2] for p, c in col.items()}, {ln: x[c] for ln, c in wcol.items()})
 
 
-def reference_system(mech: Mechanism, given):
-    """The matrix and right-hand side of `reference`, and the columns of points and links."""
+def reference_system(mech: Mechanism, given, omega=None):
+    """The matrix and right-hand side of `reference`, and the columns of points and links. With
+    ``omega`` (ω per link) the same for accelerations: a_P − a_F = α·J(P − F) − ω²·(P − F), the
+    given points' accelerations (columns: a_P and α)."""
     pts = sorted(mech.points)
     links = [ln for ln in mech.links if ln.name != mech.frame]
     col = {p: 2 * i for i, p in enumerate(pts)}
@@ -67,14 +69,14 @@ def reference_system(mech: Mechanism, given):
                 r = np.zeros(n)
                 r[col[P] + axis], r[col[F] + axis], r[wcol[ln.name]] = 1, -1, -jd
                 rows.append(r)
-                rhs.append(0.0)
+                rhs.append(0.0 if omega is None else -omega[ln.name] ** 2 * d[axis])
     for g in given:
         if isinstance(g, GivenVelocity):
             for axis in (0, 1):
                 r = np.zeros(n)
                 r[col[g.point] + axis] = 1
                 rows.append(r)
-                rhs.append(g.velocity[axis])
+                rhs.append((g.velocity if omega is None else g.acceleration)[axis])
         else:
             d = np.asarray(g.direction, float)
             r = np.zeros(n)
@@ -240,8 +242,18 @@ def test_too_few_conditions_say_how_many_more():
 
 def test_too_many_conditions_name_the_points():
     given = [GivenVelocity("A", [1.0, 2.0]), GivenVelocity("B", [0.0, 1.0]), GivenDirection("D", [1.0, 0.0])]
-    with pytest.raises(StructureError, match=r"over-determined: 1 condition too many.*the direction of v_D"):
+    with pytest.raises(StructureError, match=r"over-determined: 1 condition too many.*the direction of v_D.*(drop 1 condition)"):
         solve_given(free_chain(WATT, WATT_POS, given))
+
+
+@pytest.mark.parametrize("vb,word", [([1.0, 5.0], "say 1 time what the others fix already"),
+                                     ([0.0, 1.0], "contradict each other")])
+def test_two_velocities_of_one_free_bar_repeat_or_contradict(vb, word):
+    """A free bar AB (3 degrees of freedom) with v_A and v_B given: four conditions, one too many;
+    consistent when the components along AB agree (projection theorem), else contradictory."""
+    bar = hinge_chain("bar", {"A": [0.0, 0.0], "B": [50.0, 0.0]}, {"AB": ["A", "B"]})
+    with pytest.raises(StructureError, match=rf"over-determined: 1 condition too many.*{word}"):
+        solve_given(bar, [GivenVelocity("A", [1.0, 0.0]), GivenVelocity("B", vb)])
 
 
 def test_triad_with_concurrent_binary_links_is_singular_and_says_about_which_point():
@@ -411,34 +423,14 @@ def test_library_triad_accelerations_from_a_second_solve():
     with ω from the second velocity solve, and the given accelerations."""
     mech = linkwork.load("library:rosenauer-free-triad")
     sol = solve_given(mech)
-    v, w = reference(mech, mech.given)
-    pts = sorted(mech.points)
-    links = [ln for ln in mech.links if ln.name != mech.frame]
-    col = {p: 2 * i for i, p in enumerate(pts)}
-    acol = {ln.name: 2 * len(pts) + i for i, ln in enumerate(links)}
-    n = 2 * len(pts) + len(links)
-    rows, rhs = [], []
-    for ln in links:
-        F = ln.points[0]
-        for P in ln.points[1:]:
-            d = mech.points[P] - mech.points[F]
-            for axis, jd in ((0, -d[1]), (1, d[0])):
-                r = np.zeros(n)
-                r[col[P] + axis], r[col[F] + axis], r[acol[ln.name]] = 1, -1, -jd
-                rows.append(r)
-                rhs.append(-w[ln.name] ** 2 * d[axis])
-    for g in mech.given:
-        for axis in (0, 1):
-            r = np.zeros(n)
-            r[col[g.point] + axis] = 1
-            rows.append(r)
-            rhs.append(g.acceleration[axis])
-    x = np.linalg.solve(np.array(rows), np.array(rhs))
-    scale = max(np.abs(x[:2 * len(pts)]).max(), 1.0)
-    for p in pts:
-        assert np.allclose(sol.point(p).acceleration[0], x[col[p]:col[p] + 2], atol=1e-10 * scale), p
-    for ln in links:
-        assert sol.link(ln.name).alpha[0] == pytest.approx(x[acol[ln.name]], abs=1e-10 * scale / mech.length_scale)
+    _, w = reference(mech, mech.given)
+    A, b, col, acol = reference_system(mech, mech.given, omega=w)
+    x = np.linalg.solve(A, b)
+    scale = max(np.abs(x[:2 * len(col)]).max(), 1.0)
+    for p, c in col.items():
+        assert np.allclose(sol.point(p).acceleration[0], x[c:c + 2], atol=1e-10 * scale), p
+    for ln, c in acol.items():
+        assert sol.link(ln).alpha[0] == pytest.approx(x[c], abs=1e-10 * scale / mech.length_scale)
 
 
 def test_five_bar_from_its_coupler_point_velocity_inverts_the_driven_solve():

@@ -29,6 +29,7 @@ SEED_MACHINES = {
     "alt-ten-link": "six-bars and multi-loop linkages", "galloway-kite": "four-bars",
     "roberval-balance": "over-closed chains", "pantograph": "over-closed chains",
     "five-bar": "several drivers", "crank-slider": "several drivers",
+    "roemer-mechanism": "gears", "rosenauer-eight-link-chain": "six-bars and multi-loop linkages",
 }
 
 

@@ -257,3 +257,23 @@ def test_direction_parameters_turn_a_point_about_another():
         L = sorted([40.0, 10.0, b, math.hypot(10, 30)])
         assert r["grashof"].startswith("Grashof" if L[0] + L[3] < L[1] + L[2] else "non-Grashof")
         assert r["A.y:max"] == pytest.approx(0.0, abs=1e-12)
+
+
+def test_a_sweep_on_the_compiled_loops_gives_the_same_rows(monkeypatch):
+    """A sweep with enough designs per process runs the compiled loops (loaded once): its rows
+    are those of the interpreted loops to rounding (numba fuses multiply-adds), and the
+    threshold of the solves around it is as it was."""
+    from linkwork.kinematics import kernels
+    from linkwork.sweeps import run as R
+
+    p = sweeps.plan("library:crank-rocker", ["O4.x=38:42:2", "O2-A=9:11:2"],
+                    ["transmission-min:B", "max-speed:C", "time-ratio:B"])
+    threshold = kernels.INTERPRETED_UP_TO
+    monkeypatch.setattr(R, "COMPILED_FROM", 10 ** 9)
+    plain = sweeps.execute(p, workers=1)
+    monkeypatch.setattr(R, "COMPILED_FROM", 1)
+    fast = sweeps.execute(p, workers=1)
+    assert kernels.INTERPRETED_UP_TO == threshold
+    assert [r[-1] for r in fast] == [r[-1] for r in plain]
+    np.testing.assert_allclose(np.array([r[:-1] for r in fast], float),
+                               np.array([r[:-1] for r in plain], float), rtol=1e-9)

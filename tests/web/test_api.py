@@ -453,12 +453,13 @@ def test_the_server_solves_with_the_compiled_loops(monkeypatch):
     from linkwork.kinematics import kernels
     from linkwork.web import app as web_app
     from linkwork.web.app import compile_kernels
-    monkeypatch.setattr(web_app, "KERNELS_READY", web_app.threading.Event())
+    from linkwork.kinematics import warmup
+    monkeypatch.setattr(warmup, "READY", warmup.threading.Event())
     body = dict(source={"library": "crank-rocker", "points": {"C": [16.0, 24.0]}}, at=[2.0],
                 layers=["mechanism"], motion=False)
     before = TestClient(create_app(None)).post("/api/drawing", json=body).json()
     compile_kernels()
-    assert web_app.KERNELS_READY.is_set()
+    assert warmup.READY.is_set()
     ran = []  # the requests' loops are the compiled ones, a drawing's single sample too
     real = kernels._compiled
     monkeypatch.setattr(kernels, "_compiled", lambda: ran.append(1) or real())

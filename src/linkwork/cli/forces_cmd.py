@@ -158,6 +158,9 @@ def register(app: typer.Typer) -> None:
         with user_errors():
             dyn = load_dynamics(mechanism)
             mech = dyn.mechanism
+            if mech.given:
+                raise InputError(f"mechanism '{mech.name}' is driven by given point velocities: it has "
+                                 "no driver whose effort the kinetostatics could balance the loads with")
             chosen = Format(output_format(fmt and fmt.value, output, ("table", "json", "csv"), "table"))
             w = input_speeds(mech, speed)
             asked = input_values(mech, at, sweep)

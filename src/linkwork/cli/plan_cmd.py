@@ -58,11 +58,11 @@ def _plan_command(mechanism: str, at: Optional[list[str]], explain: bool, mode: 
         if mech.given:  # no input: the construction at the drawn position, from the given data
             from ..kinematics.point_inputs import solve_given
             values = solve_given(mech)  # too few or too many conditions are reported here
-            if script.direct:
-                at = []
+            if script.direct or (script.check is not None and not script.unsupported):
+                at = []  # by the rule, or by similar point rows (two trials; `draw_given`)
             else:
-                lines.append("The plan of this chain from its given data needs similar point rows "
-                             "(two trials); it is not drawn.")
+                lines.append("The plan of this chain from its given data is not drawn: "
+                             f"{script.verdict()}.")
         elif at is not None:
             samples = input_values(mech, at, None)
             if samples is None or samples[0] != "input":

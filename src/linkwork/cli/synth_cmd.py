@@ -188,7 +188,7 @@ def _range(text: str, what: str, degrees: bool) -> tuple[float, float]:
 
 
 def register(app: typer.Typer) -> None:
-    synth = typer.Typer(no_args_is_help=True, help="Synthesis: linkages designed from positions or a function.")
+    synth = typer.Typer(no_args_is_help=True, help="Synthesis: linkages designed from positions, a function, a path or a straight line.")
     app.add_typer(synth, name="synth")
     register_curvature_designs(synth)
     register_straight_lines(synth)

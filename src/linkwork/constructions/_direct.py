@@ -292,16 +292,21 @@ class TrialDrawer(ScriptDrawer):
                 self._one(st)
 
     def _trial_driver(self, st, sign: float) -> None:
-        """The trial crank's pin: as fast as the given driver's (a readable drawing), times
-        ``sign`` (the second trial turns the other way)."""
+        """The trial crank's pin: as fast as the given driver's (a readable drawing), or as the
+        given point it turns about, times ``sign`` (the second trial turns the other way)."""
         vc = self.vc
         t_link, t_pivot, t_ref = self.s.trial
-        d_link, d_pivot, d_ref = self.s.scale_by
         O, R = self.where(t_pivot), self.where(t_ref)
-        speed = np.linalg.norm(vc.velocity(self.where(d_ref), vc.image(d_link, d_ref)), axis=-1)
+        pivot = self.img((t_link, t_pivot))  # a frame pivot: o; a given point: its image
+        if self.s.scale_by is not None:
+            d_link, d_pivot, d_ref = self.s.scale_by
+            speed = np.linalg.norm(vc.velocity(self.where(d_ref), vc.image(d_link, d_ref)), axis=-1)
+        else:
+            speed = np.linalg.norm(vc.velocity(O, pivot), axis=-1)
+        speed = np.where(speed > 0, speed, 1.0)
         w = sign * speed / np.linalg.norm(R - O, axis=-1)
-        image = vc.base(R) + vc.kv * vc.M(w[:, None] * perp(R - O))
-        self.keep(t_link, t_pivot, vc.base(O))
+        image = pivot + (vc.base(R) - vc.base(O)) + vc.kv * vc.M(w[:, None] * perp(R - O))
+        self.keep(t_link, t_pivot, pivot)
         self.keep(t_link, t_ref, image)
         self.show(f"{self.prefix}.{t_link}.{t_ref}", st, image, self.s.labels.get((t_link, t_ref), t_ref))
 
@@ -476,13 +481,16 @@ def draw_group(vc, links: tuple[str, ...], joints: tuple[str, ...], solved: set[
 def draw_given(vc) -> VelocityScript:
     """The velocity construction of a chain driven by given point velocities and directions (a
     free or open chain, Rosenauer 1937 paper 2): the whole chain from its given data by
-    Rosenauer's rule; `InputError` where the rule does not reach every link (two trials of false
-    position would be needed, which is not drawn)."""
+    Rosenauer's rule, or by false position with two trials where the rule does not reach every
+    link (`TrialDrawer`)."""
     script = plan_velocities(Chain.from_mechanism(vc.mech, getattr(vc.sol, "given", None) or None))
+    if script.check is not None and not script.unsupported:
+        # Rosenauer's rule fails (the Dreispann with v_A, v_B): similar point rows, two trials
+        TrialDrawer(vc, script, {vc.mech.frame}).run(set(vc.mech.moving_links))
+        return script
     if not script.direct:
         raise InputError(f"the velocity construction of '{vc.mech.name}' from its given point "
-                         f"velocities: {script.verdict()}; the plan of such a chain by similar point "
-                         "rows (two trials) is not drawn")
+                         f"velocities: {script.verdict()}")
     ScriptDrawer(vc, script, {vc.mech.frame}).run(set(vc.mech.moving_links))
     return script
 

@@ -1,6 +1,7 @@
 """Pöschl's graphical calculus of point motion drawn as the books draw it (ch. II–III).
 
-Owns :func:`plans_figure` (the r-, v- and b-plan of a point with the poles O, P, Q, the associated
+Owns :func:`differentiation_steps` (the s–t line differentiated with a pole, step by step, §7),
+:func:`plans_figure` (the r-, v- and b-plan of a point with the poles O, P, Q, the associated
 points A, V, B and the tangents: the v-plan's tangent at V is the direction of the acceleration,
 the b-plan's at B that of the jerk, §13) and :func:`vs_steps` (step-by-step constructions on the
 v–s line: the subnormal construction of the acceleration and the time by integrating 1/v, §9–10).
@@ -15,7 +16,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..constructions.motion_calculus import (integrate_reciprocal, plan, plan_scale,
+from ..constructions.motion_calculus import (differentiate, integrate_reciprocal, plan, plan_scale,
                                              reciprocal_scale, subnormal)
 from ..constructions.scales import nice_ceil
 from ..errors import InputError
@@ -346,25 +347,78 @@ def vs_steps(mech: Mechanism, point: str, construction: str, *, at: float | None
     return figs, texts, (d.y, exact)
 
 
-def _positive_H(H: float) -> None:
-    if not (np.isfinite(H) and H > 0):
-        raise InputError(f"the pole distance H must be positive, got {H!r}")
+def differentiation_steps(mech: Mechanism, point: str, *, chords: int = 12, H: float = 2.0,
+                          solution: Solution | None = None):
+    """Pöschl's graphical differentiation (§7, Abb. 1) of the s–t line of ``point`` over one
+    stroke, step by step: the chords of the s–t line; the pole P at H cm left of the origin and
+    through it the rays parallel to the chords, cutting the ordinate axis at V = H·ΔS/ΔT; each
+    V carried over to its chord's middle gives the v–t line at l_v = l_s/(H l_t) (eq. 3).
+    Returns (figures, step texts, (v read at the chords' middles, the engine's v there))."""
+    if chords < 2:
+        raise InputError(f"graphical differentiation needs two chords at least, not {chords}")
+    _positive_H(H)
+    s, v, t, a_t, l_s, l_v0, straight = _stroke(mech, point, solution)
+    t = t - t[0]
+    l_t = nice_ceil(float(t[-1]) / 10.0)  # the stroke's time at most 10 cm long
+    idx = np.unique(np.linspace(0, len(t) - 1, chords + 1).round().astype(int))
+    T, S = t[idx], s[idx]
+    d = differentiate(T, S, l_t=l_t, l_x=l_s, H=H)
+    exact = np.interp(d.x, t, v)
+    u = mech.length_unit
+    texts = [f"the s–t line of {point} over one stroke: t at l_t = {_num(l_t)} s/cm, s at l_s = {_num(l_s)} {u}/cm",
+             f"{len(idx) - 1} chords of the s–t line",
+             f"the pole P at H = {H:g} cm left of the origin; through it the rays parallel to the chords "
+             "cut the ordinate axis at V = H·ΔS/ΔT",
+             "each V carried over to the middle of its chord: the points of the v–t line (below)",
+             f"v = l_v·V, l_v = l_s/(H l_t) = {_num(d.l_y)} {u}/s per cm (eq. 3); largest difference from "
+             f"the engine's v at the chords' middles {np.max(np.abs(d.y - exact)):.3g} {u}/s "
+             f"(the chord's slope is the mean velocity over it)"]
+    plt = _plt()
+    TT, SS = t / l_t, s / l_s
+    Vmax = float(np.max(np.abs(d.Y)))
+    xlim = (-H - 0.8, TT.max() + 1.0)
+    ylim = (-Vmax - 1.0 - 0.5, max(SS.max(), Vmax) + 1.0)
+    figs = []
+    # the v–t diagram below the s–t diagram, on the same t axis (the book's Abb. 1): its own t
+    # axis at `off`, the pole P on it H cm left of its origin
+    off = -Vmax - 0.5
+    P = np.array([-H, off])
+    for step in range(len(texts)):
+        fig, ax = _sheet(plt, xlim, ylim, texts, step)
+        ax.axhline(off, color=INK, lw=0.4)
+        ax.plot(TT, SS, color=INK, lw=1.2)
+        ax.annotate("s", (0, ylim[1]), xytext=(4, -10), textcoords="offset points", fontsize=9)
+        ax.annotate("t", (xlim[1], 0), xytext=(-8, 4), textcoords="offset points", fontsize=9)
+        Tc, Sc = T / l_t, S / l_s
+        if step >= 1:
+            ax.plot(Tc, Sc, "-", color=RES, lw=0.8, marker=".", ms=4)
+        if step >= 2:
+            _pole(ax, P, "P")
+            for V in d.Y:
+                ax.plot([P[0], 0.0], [off, off + V], color=AUX, lw=0.5)
+        if step >= 3:
+            for X, V in zip(d.X, d.Y):
+                ax.plot([0.0, X], [off + V, off + V], ":", color=AUX, lw=0.5)
+            ax.plot(d.X, d.Y + off, "o", color=RES, ms=3)
+            ax.annotate("v–t line", (d.X[-1], d.Y[-1] + off), xytext=(4, 0), textcoords="offset points",
+                        fontsize=8, color=RES)
+        if step >= 4:
+            ax.plot(TT, v / d.l_y + off, color=INK, lw=0.6, label="engine: v(t)")
+            ax.legend(fontsize=7, loc="lower right")
+        figs.append(fig)
+    return figs, texts, (d.y, exact)
 
 
-def _vs_sheet(plt, S, V, xlim, ylim, texts, step, point):
-    """One sheet of a v–s construction, the same size for every step (the drawing does not jump
-    when paging): the line, the axes, and the step's sentence under it."""
+def _sheet(plt, xlim, ylim, texts, step):
+    """One sheet of a step-by-step construction in cm of drawing (equal scales), the same size for
+    every step so that the drawing does not jump when paging; the step's sentence above it."""
     import textwrap
-    # the sheet's size from the drawing's (equal scales on both axes), the same for every step
     w_cm, h_cm = xlim[1] - xlim[0], ylim[1] - ylim[0]
     width = 8.0
     height = min(11.0, max(3.0, width * 0.85 * h_cm / w_cm) + 1.4)
     fig, ax = plt.subplots(figsize=(width, height))
-    ax.plot(S, V, color=INK, lw=1.2)
     ax.axhline(0, color=INK, lw=0.6)
     ax.axvline(0, color=INK, lw=0.6)
-    ax.annotate("s", (xlim[1], 0), xytext=(-8, 4), textcoords="offset points", fontsize=9)
-    ax.annotate(subscripted("v", point), (0, ylim[1]), xytext=(4, -10), textcoords="offset points", fontsize=9)
     ax.set_xlim(*xlim)
     ax.set_ylim(*ylim)
     ax.set_aspect("equal")
@@ -374,4 +428,18 @@ def _vs_sheet(plt, S, V, xlim, ylim, texts, step, point):
     ax.set_title(textwrap.fill(f"step {step + 1} of {len(texts)}: {texts[step]}", 100), fontsize=8,
                  loc="left")
     fig.subplots_adjust(left=0.06, right=0.97, bottom=0.1 * 6 / height, top=1 - 0.75 / height)
+    return fig, ax
+
+
+def _positive_H(H: float) -> None:
+    if not (np.isfinite(H) and H > 0):
+        raise InputError(f"the pole distance H must be positive, got {H!r}")
+
+
+def _vs_sheet(plt, S, V, xlim, ylim, texts, step, point):
+    """A sheet (:func:`_sheet`) with the v–s line and its axes' names."""
+    fig, ax = _sheet(plt, xlim, ylim, texts, step)
+    ax.plot(S, V, color=INK, lw=1.2)
+    ax.annotate("s", (xlim[1], 0), xytext=(-8, 4), textcoords="offset points", fontsize=9)
+    ax.annotate(subscripted("v", point), (0, ylim[1]), xytext=(4, -10), textcoords="offset points", fontsize=9)
     return fig, ax

@@ -6,6 +6,14 @@ thing, so that a CAD user can switch them on and off:
 
 * ``LINKS`` — each moving link as a polyline: a bar from end to end, a plate as its closed
   convex outline (as the ``mechanism`` drawing layer draws them);
+* ``SLIDERS`` — each sliding block (*Gleitstein*, *Kreuzkopf*) as a closed rectangle about its
+  pin, its long side along the guide;
+* ``GUIDES`` — the guides: a guide on the frame as a line beside the block over the block's
+  whole travel, a guide on a moving link as a line along its axis through the block, a slot
+  (*Kulisse*) as its closed outline with round ends;
+* ``FRAME`` — each fixed pivot's bearing block (*Gestelllager*) and ground line;
+* ``HATCHING`` — the frame's hatching (HATCH entities, pattern ANSI31) under the ground lines
+  and beyond the guides on the frame;
 * ``PROFILES`` — the profiles of higher pairs (cam, roller, flat face, rolling curves) at the
   drawn position, as the ``mechanism`` drawing layer draws them;
 * ``JOINTS`` — a circle at every hinge (revolute pair, pin of a slot);
@@ -13,6 +21,10 @@ thing, so that a CAD user can switch them on and off:
 * ``PATHS`` — the path of every moving point over the whole motion as a polyline through the
   solver's positions (one polyline per reachable stretch: unreachable samples are gaps, not
   joined over).
+
+The symbols are the drawing's (`layers.draw_mechanism`, read from its primitives, so that the
+DXF shows what the SVG shows), at the size the drawing gives them on paper with the joint
+circle's radius, 2 % of the mechanism's size, as the symbol millimetre.
 """
 
 from __future__ import annotations
@@ -23,7 +35,8 @@ from typing import Iterable
 import numpy as np
 
 from ..errors import InputError
-from .layers import Scene, _hull
+from . import symbols as sym
+from .layers import Scene
 
 #: the drawing layers a DXF holds
 DXF_LAYERS = ("mechanism", "paths")
@@ -32,7 +45,10 @@ _INSUNITS = {"in": 1, "inch": 1, "ft": 2, "foot": 2, "mm": 4, "millimeter": 4, "
              "centimeter": 5, "m": 6, "meter": 6, "km": 7, "um": 13, "µm": 13, "micrometer": 13,
              "dm": 14}
 #: colour (AutoCAD colour index) of each DXF layer
-_COLOURS = {"LINKS": 7, "PROFILES": 7, "JOINTS": 1, "POINTS": 7, "LABELS": 8, "PATHS": 5}
+_COLOURS = {"LINKS": 7, "SLIDERS": 7, "GUIDES": 7, "FRAME": 7, "HATCHING": 8, "PROFILES": 7,
+            "JOINTS": 1, "POINTS": 7, "LABELS": 8, "PATHS": 5}
+#: the line spacing of the ANSI31 hatch pattern at scale 1, in drawing units (1/8 in)
+_ANSI31_SPACING = 3.175
 
 
 def finite_runs(xy: np.ndarray) -> list[np.ndarray]:
@@ -60,22 +76,14 @@ def scene_dxf(sc: Scene, show: Iterable[str] = ("mechanism",)):
     msp = doc.modelspace()
     if "mechanism" in show:
         P = {p: sc.pos(p) for p in mech.points}
-        for link in mech.links:
-            if link.name == mech.frame:
-                continue
-            xy = np.array([P[p] for p in dict.fromkeys(link.points)])
-            if len(xy) < 2 or not np.isfinite(xy).all():
-                continue
-            hull = _hull(xy)
-            msp.add_lwpolyline([tuple(map(float, xy[k])) for k in hull], close=len(hull) >= 3,
-                               dxfattribs={"layer": "LINKS"})
+        r = 0.02 * mech.length_scale
+        _symbols(msp, sc, r / sym.JOINT_R)
         if any(j.kind in ("cam", "rolling") for j in mech.joints):
             from .higher_layers import outlines
             for _, xy, closed in outlines(sc):
                 for run in finite_runs(np.asarray(xy, float)):
                     msp.add_lwpolyline([tuple(map(float, v)) for v in run], close=closed,
                                        dxfattribs={"layer": "PROFILES"})
-        r = 0.02 * mech.length_scale
         for p in dict.fromkeys(j.point for j in mech.joints if getattr(j, "point", None)):
             if np.isfinite(P[p]).all():
                 msp.add_circle(tuple(map(float, P[p])), r, dxfattribs={"layer": "JOINTS"})
@@ -93,6 +101,66 @@ def scene_dxf(sc: Scene, show: Iterable[str] = ("mechanism",)):
                                    dxfattribs={"layer": "PATHS"}).set_xdata(
                     "LINKWORK", [(1000, f"path {p}")])
     return doc
+
+
+def _xy(v) -> tuple[float, float]:
+    return float(v[0]), float(v[1])
+
+
+def _hatched(msp, corners: np.ndarray, unit: float) -> None:
+    """A HATCH (ANSI31, 45°, about the drawing's hatch spacing) filling the strip `corners`."""
+    h = msp.add_hatch(dxfattribs={"layer": "HATCHING"})
+    h.set_pattern_fill("ANSI31", scale=sym.HATCH_STEP * unit / _ANSI31_SPACING)
+    h.paths.add_polyline_path([_xy(v) for v in corners], is_closed=True)
+
+
+def _symbols(msp, sc: Scene, unit: float) -> None:
+    """Links, blocks, guides, slots and the frame's bearings as the mechanism drawing places
+    them (its primitives, in world coordinates), `unit` world length per symbol millimetre."""
+    from .layers import draw_mechanism
+    from .svg import Figure
+
+    fig = Figure(sc.scales or sc.auto_scales())
+    draw_mechanism(fig, sc, labels=False)
+    for prim in fig.prims:
+        d = prim.data
+        if prim.kind == "line":  # a guide on a moving link, along its axis through the block
+            u = d["direction"] / np.linalg.norm(d["direction"])
+            t = [float((q - d["point"]) @ u) for q in d["span"]]
+            msp.add_line(_xy(d["point"] + min(t) * u), _xy(d["point"] + max(t) * u),
+                         dxfattribs={"layer": "GUIDES"})
+            continue
+        if prim.kind != "symbol":
+            continue
+        name, a = d["name"], d["args"]
+        if name == "bar":
+            msp.add_lwpolyline([_xy(a["at"]), _xy(a["to"])], dxfattribs={"layer": "LINKS"})
+        elif name == "plate":
+            msp.add_lwpolyline([_xy(v) for v in a["points"]], close=True,
+                               dxfattribs={"layer": "LINKS"})
+        elif name == "block":
+            msp.add_lwpolyline([_xy(v) for v in sym.block_corners(a["at"], a["axis"], unit)],
+                               close=True, dxfattribs={"layer": "SLIDERS"})
+        elif name == "guide":  # on the frame: a line beside the block, hatched beyond it
+            side = np.asarray(a["side"], float)
+            p, q = a["start"] + side * sym.GUIDE_OFFSET * unit, a["end"] + side * sym.GUIDE_OFFSET * unit
+            msp.add_line(_xy(p), _xy(q), dxfattribs={"layer": "GUIDES"})
+            deep = side * sym.GUIDE_DEPTH * unit
+            _hatched(msp, np.array([p, q, q + deep, p + deep]), unit)
+        elif name == "slot":  # two sides joined by half circles (bulge 1)
+            p, q = np.asarray(a["start"], float), np.asarray(a["end"], float)
+            u = (q - p) / (np.linalg.norm(q - p) or 1.0)
+            n = np.array([-u[1], u[0]]) * sym.SLOT_W * unit / 2
+            msp.add_lwpolyline([(*_xy(p - n), 0.0), (*_xy(q - n), 1.0), (*_xy(q + n), 0.0),
+                                (*_xy(p + n), 1.0)], format="xyb", close=True,
+                               dxfattribs={"layer": "GUIDES"})
+        elif name == "fixed-pivot":
+            down = np.asarray(a.get("down", (0.0, -1.0)), float)
+            tri, g0, g1 = sym.bearing(a["at"], down, unit)
+            msp.add_lwpolyline([_xy(v) for v in tri], close=True, dxfattribs={"layer": "FRAME"})
+            msp.add_line(_xy(g0), _xy(g1), dxfattribs={"layer": "FRAME"})
+            deep = down / np.linalg.norm(down) * sym.GROUND_DEPTH * unit
+            _hatched(msp, np.array([g0, g1, g1 + deep, g0 + deep]), unit)
 
 
 def write_dxf(sc: Scene, path: Path, show: Iterable[str] = ("mechanism",)) -> None:

@@ -21,6 +21,15 @@ LINK_W = 0.7  # line weight of links [mm]
 THIN = 0.25
 HATCH_STEP = 1.2
 INK = "#000"
+#: the bearing block of a fixed pivot: height and half-width of its foot, and how far the
+#: ground line runs past the foot on either side [mm]
+BEARING_H, BEARING_W, GROUND_OVERHANG = 3.6, 2.6, 1.4
+#: depth of the hatching under a ground line and beyond a guide [mm]
+GROUND_DEPTH, GUIDE_DEPTH = 2.0, 1.6
+#: a sliding block's length and height, and a guide's offset from the block's axis [mm]
+BLOCK_L, BLOCK_H, GUIDE_OFFSET = 7.0, 4.0, 2.0
+#: a slot's width [mm]
+SLOT_W = 2.6
 
 
 def _f(v: float) -> str:
@@ -42,7 +51,7 @@ def _samples(p, q, step=0.6) -> list[np.ndarray]:
     return list(p + np.linspace(0, 1, n)[:, None] * (q - p))
 
 
-def hatch(p: np.ndarray, q: np.ndarray, side: np.ndarray, depth: float = 2.0,
+def hatch(p: np.ndarray, q: np.ndarray, side: np.ndarray, depth: float = GROUND_DEPTH,
           colour: str = INK) -> str:
     """45° hatching along the ground line p–q on the side ``side`` (a unit vector)."""
     p, q, side = (np.asarray(v, float) for v in (p, q, side))
@@ -71,6 +80,21 @@ def revolute(c: np.ndarray, colour: str = INK) -> tuple[str, list]:
     return svg, [c] + list(c + JOINT_R * np.stack([np.cos(t), np.sin(t)], -1))
 
 
+def bearing(c: np.ndarray, down: np.ndarray, unit: float = 1.0) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The outline of a fixed pivot's bearing block (a quadrilateral narrowing to the joint
+    circle, (4, 2)) and the ends of its ground line, with `unit` length per symbol millimetre
+    (1 on paper; the DXF draws symbols in the mechanism's coordinates)."""
+    c, down = np.asarray(c, float), np.asarray(down, float)
+    down = down / np.linalg.norm(down)
+    side = np.array([-down[1], down[0]])
+    h, w, r = BEARING_H * unit, BEARING_W * unit, JOINT_R * unit
+    base = c + down * h
+    tri = np.array([c + down * r * 0.6 + side * r * 0.9, base + side * w,
+                    base - side * w, c + down * r * 0.6 - side * r * 0.9])
+    over = (BEARING_W + GROUND_OVERHANG) * unit
+    return tri, base + side * over, base - side * over
+
+
 def fixed_pivot(c: np.ndarray, down: np.ndarray = (0.0, 1.0), colour: str = INK) -> tuple[str, list]:
     """A frame bearing: joint circle on a triangular block standing on hatched ground.
 
@@ -78,14 +102,10 @@ def fixed_pivot(c: np.ndarray, down: np.ndarray = (0.0, 1.0), colour: str = INK)
     """
     c, down = np.asarray(c, float), np.asarray(down, float)
     down = down / np.linalg.norm(down)
-    side = np.array([-down[1], down[0]])
-    h, w = 3.6, 2.6
-    base = c + down * h
-    tri = np.array([c + down * JOINT_R * 0.6 + side * JOINT_R * 0.9, base + side * w,
-                    base - side * w, c + down * JOINT_R * 0.6 - side * JOINT_R * 0.9])
+    tri, g0, g1 = bearing(c, down)
+    base = c + down * BEARING_H
     svg = (f'<polygon points="{_pts(tri)}" fill="#fff" stroke="{colour}" stroke-width="0.35" '
            f'stroke-linejoin="round"/>')
-    g0, g1 = base + side * (w + 1.4), base - side * (w + 1.4)
     svg += hatch(g1, g0, down, colour=colour)
     s, pts = revolute(c, colour)
     return svg + s, pts + _samples(c, base) + _samples(g0, g1)
@@ -112,14 +132,18 @@ def plate(vertices: np.ndarray, colour: str = INK, fill: str = "#ececec") -> tup
     return svg, pts
 
 
-def block(c: np.ndarray, axis: np.ndarray, colour: str = INK, length: float = 7.0,
-          height: float = 4.0) -> tuple[str, list]:
-    """A sliding block (crosshead, *Kreuzkopf*) centred at c, long side along ``axis``."""
+def block_corners(c: np.ndarray, axis: np.ndarray, unit: float = 1.0) -> np.ndarray:
+    """The corners (4, 2) of a sliding block centred at c, its long side along ``axis``."""
     c, axis = np.asarray(c, float), np.asarray(axis, float)
     u = axis / np.linalg.norm(axis)
     n = np.array([-u[1], u[0]])
-    r = np.array([c + u * length / 2 + n * height / 2, c - u * length / 2 + n * height / 2,
-                  c - u * length / 2 - n * height / 2, c + u * length / 2 - n * height / 2])
+    a, b = u * BLOCK_L * unit / 2, n * BLOCK_H * unit / 2
+    return np.array([c + a + b, c - a + b, c - a - b, c + a - b])
+
+
+def block(c: np.ndarray, axis: np.ndarray, colour: str = INK) -> tuple[str, list]:
+    """A sliding block (crosshead, *Kreuzkopf*) centred at c, long side along ``axis``."""
+    r = block_corners(c, axis)
     svg = (f'<polygon points="{_pts(r)}" fill="#fff" stroke="{colour}" stroke-width="0.5" '
            f'stroke-linejoin="round"/>')
     pts = []
@@ -128,14 +152,14 @@ def block(c: np.ndarray, axis: np.ndarray, colour: str = INK, length: float = 7.
     return svg, pts
 
 
-def guide(p: np.ndarray, q: np.ndarray, side: np.ndarray, offset: float = 2.0,
+def guide(p: np.ndarray, q: np.ndarray, side: np.ndarray, offset: float = GUIDE_OFFSET,
           colour: str = INK) -> tuple[str, list]:
     """The frame's guide for a block: a line p–q (offset from the block axis) hatched outside."""
     p, q, side = (np.asarray(v, float) for v in (p, q, side))
-    return hatch(p + side * offset, q + side * offset, side, depth=1.6, colour=colour), _samples(p, q)
+    return hatch(p + side * offset, q + side * offset, side, depth=GUIDE_DEPTH, colour=colour), _samples(p, q)
 
 
-def slot(p: np.ndarray, q: np.ndarray, colour: str = INK, width: float = 2.6) -> tuple[str, list]:
+def slot(p: np.ndarray, q: np.ndarray, colour: str = INK, width: float = SLOT_W) -> tuple[str, list]:
     """A straight slot (pin guide, *Kulisse*) from p to q: two parallel lines, rounded ends."""
     p, q = np.asarray(p, float), np.asarray(q, float)
     d = q - p

@@ -173,6 +173,35 @@ def branch_schedule(mech: Mechanism) -> dict:
     return found
 
 
+def chain_period(mech: Mechanism) -> float | None:
+    """The input period after which the whole chain of a one-driver mechanism repeats: one turn
+    (2π), or more where a group changes its assembly an odd number of times per period of its
+    schedule (the Galloway kite: one fold per turn, the other sense of the kite on the second
+    turn), so that it comes back to its design sign only after twice that; None for a prismatic
+    input."""
+    if len(mech.drivers) != 1 or mech.joint(mech.drivers[0].joint).kind != "revolute":
+        return None
+    period = 2 * np.pi
+    for s in branch_schedule(mech).values():
+        if s.period is not None:
+            period = max(period, s.period * (2 if len(s.change_points) % 2 else 1))
+    return period
+
+
+def near_change_point(mech: Mechanism, u: np.ndarray, tol: float) -> np.ndarray:
+    """Whether each input u (one driver) lies within `tol` of a change point of a group's
+    schedule (where the chain goes on, though at a fold its pose is not defined by the pairs
+    alone)."""
+    near = np.zeros(u.shape, dtype=bool)
+    for s in branch_schedule(mech).values():
+        for c in s.change_points:
+            d = u - c
+            if s.period is not None:
+                d = (d + s.period / 2) % s.period - s.period / 2
+            near |= np.abs(d) <= tol
+    return near
+
+
 def _touches(fn, grid: np.ndarray, first: int, points: list, merge: float) -> None:
     """Append to `points` where `fn` (a discriminant or pivot gap along a parameter) touches
     zero: each local minimum of its values on `grid` (at index `first` or later) below

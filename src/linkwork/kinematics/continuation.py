@@ -214,6 +214,20 @@ def march_limit(mech: Mechanism, solvers, sense: int, span: float) -> float | No
     return float(design[0] + sense * end / gen.weights[0])
 
 
+@_serialized
+def march_period(mech: Mechanism, solvers) -> float | None:
+    """The period of the design branch's motion in a revolute input (`_period`: the marches
+    upwards and downwards meet after 1 … `PERIOD_TURNS` turns), or None when a march stops at a
+    limit position first (or they do not meet). One driver. Its marches to ±half a period are
+    kept, and the samples of a whole motion need them (`continuation_guesses` reduces samples
+    beyond half a period into one), so deciding whether the input turns fully costs no march
+    that the solve would not make anyway."""
+    gen = _Generic(mech, solvers)
+    design = np.array([mech.driver_input_at_design(d) for d in mech.drivers])
+    found = _period(mech, solvers, gen, _one_driver_lanes(mech, solvers, gen, design))
+    return None if found is None else found[0]
+
+
 def _period(mech: Mechanism, solvers, gen: "_Generic", lanes: dict) -> tuple | None:
     """The period of the Newton-solved groups' motion in a revolute input: the first of 1 …
     `PERIOD_TURNS` turns P for which the marches upwards and downwards meet, the poses at

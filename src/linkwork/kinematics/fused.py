@@ -32,12 +32,6 @@ from .groups import UNRELIABLE_CONDITION, GroupSolver
 from .precision import (_PLAIN, _STATUS_WEIGHTS, EPS, POLISH_LIMIT, TOLERANCE, coordinate_size,
                         polish)
 
-#: samples per block: the hinge vectors, assembly signs and error-bound work arrays are
-#: block-sized, not batch-sized (as `solver.KERNEL_BLOCK`; smaller blocks that stay in the CPU's
-#: cache between the two passes measured no faster)
-BLOCK = 1 << 17
-
-
 @dataclass(frozen=True)
 class Tables:
     """A mechanism's solution order for the fused loops (see `kernels.fused_positions`)."""
@@ -92,11 +86,15 @@ def tables(mech: Mechanism, solvers: tuple[GroupSolver, ...]) -> Tables | None:
 def solve_blocks(mech: Mechanism, tab: Tables, solvers, Q: np.ndarray, T: np.ndarray,
                  inputs: dict, branches_in, assembled: np.ndarray, condition: np.ndarray,
                  errors: np.ndarray, status_errors: np.ndarray, can_polish: bool,
-                 U: np.ndarray | None = None, start: int = 0, stop: int | None = None) -> None:
+                 U: np.ndarray | None = None, start: int = 0, stop: int | None = None,
+                 block: int = 1 << 17) -> None:
     """Fill Q (Q[k, n, link, (x, y, θ)], order 2), T, and per sample `assembled`, `condition`,
     `errors`, `status_errors` as the per-group loop of `solver.solve` does, block by block:
     the samples start … stop − 1 (all by default) of these arrays (`solve_designs`: one
-    design's part of a batch of designs; U the stacked inputs, if at hand)."""
+    design's part of a batch of designs; U the stacked inputs, if at hand), `block` samples at
+    a time (`solver.KERNEL_BLOCK`: the hinge vectors, assembly signs and error-bound work arrays
+    are block-sized, not batch-sized; smaller blocks, which stay in the CPU's cache between the
+    two passes, measured no faster)."""
     N = Q.shape[1] if stop is None else stop
     Qm = Q.transpose(0, 2, 3, 1)  # Qm[k, link, (x, y, θ), n]: the memory's order
     Q0 = Qm[0]
@@ -104,7 +102,7 @@ def solve_blocks(mech: Mechanism, tab: Tables, solvers, Q: np.ndarray, T: np.nda
         U = np.stack([inputs[d.joint] for d in mech.drivers])  # (drivers, 3, N)
     per = np.array([mech.length_scale if mech.joint(d.joint).kind == "prismatic" else 1.0
                     for d in mech.drivers])
-    B = max(1, min(N - start, BLOCK))
+    B = max(1, min(N - start, block))
     R = np.empty((max(tab.vectors, 1), B))
     signs = np.empty((max(len(tab.signs), 1), B))
     E0 = np.empty(B)
@@ -158,7 +156,7 @@ def solve_designs(mechs, inputs, *, velocities=None, accelerations=None,
     from .branches import branch_schedule
     from .groups import input_coefficients
     from .precision import polishable
-    from .solver import _as_2d, _plain_numbers, _pose_array, _solution, plan, solve
+    from .solver import KERNEL_BLOCK, _as_2d, _plain_numbers, _pose_array, _solution, plan, solve
 
     mechs = list(mechs)
     if not mechs:
@@ -193,7 +191,11 @@ def solve_designs(mechs, inputs, *, velocities=None, accelerations=None,
     assembled = np.ones(D * N, dtype=bool)
     condition, errors, status_errors = np.ones(D * N), np.zeros(D * N), np.zeros(D * N)
     out = []
-    with kernels.compiled_loops(compiled):  # by default by the size of the whole batch
+    if compiled is None and D * N > kernels.INTERPRETED_UP_TO:
+        # a batch that loads the compiled loops anyway: every design's branch scan (2 049
+        # inputs, interpreted on its own) takes them too, some 100 ms less per design
+        compiled = True
+    with kernels.compiled_loops(compiled):
         for d, (m, tab, solvers) in enumerate(zip(mechs, tabs, plans)):
             lo = d * N
             schedules = branch_schedule(m)
@@ -202,7 +204,8 @@ def solve_designs(mechs, inputs, *, velocities=None, accelerations=None,
                 return {g: sch.signs(values[sl.start - lo:sl.stop - lo, 0])
                         for g, sch in schedules.items()}
             solve_blocks(m, tab, solvers, Q, T, inputs_all, branches_in, assembled, condition,
-                         errors, status_errors, polishable(m), U=coef, start=lo, stop=lo + N)
+                         errors, status_errors, polishable(m), U=coef, start=lo, stop=lo + N,
+                         block=KERNEL_BLOCK)
     for d, m in enumerate(mechs):
         sl = slice(d * N, (d + 1) * N)
         out.append(_solution(m, values, None, Q[:, sl], T[:, :, sl], assembled[sl],

@@ -1,6 +1,12 @@
 """The whole motion of a one-input mechanism, as the real mechanism runs through it.
 
-An input that can turn fully is sampled over one turn. An input that cannot (a rocker, a slider)
+An input that can turn fully is sampled over one period of the chain: one turn, or two where a
+group changes its assembly an odd number of times per turn (the Galloway kite, whose crank
+passes the fold where its pin meets the rocker's pivot once per turn and runs the other sense of
+the kite on the second turn), since only then does the chain come back to its design position.
+A change point is no limit: the chain runs through it (at a fold the sample exactly on it is
+marked unreachable by `solve`, its pose not being defined by the pairs). An input that cannot
+(a rocker, a slider)
 is driven from the design position to its limit position, back to the other limit and forward
 to the design position again, on the assembly branch of the design, with the input speed
 reversed on the way back (as in the Stephenson III reference sweeps). Limit positions are found
@@ -16,9 +22,9 @@ import numpy as np
 
 from ..errors import InputError
 from ..model import ConstantSpeed, Mechanism
-from .branches import branch_schedule, placed
+from .branches import branch_schedule, chain_period, near_change_point, placed
 from .contact import interference, rows
-from .continuation import march_limit
+from .continuation import march_limit, march_period
 from .solution import Solution
 from .solver import plan, solve
 
@@ -28,16 +34,23 @@ BISECTIONS = 60
 # (7 samples) per call are cheapest
 DEPTH = 3
 FIRST_CHUNK = 64  # samples of the limit scan solved first; each further chunk twice as many
+# inputs this close to a change point (radians, or length scales) count as assembling: a fold
+# fails to assemble only within rounding of it, and the chain goes on beyond it
+CHANGE_POINT_TOL = 1e-9
 
 
 def _assembles(mech: Mechanism, solvers, u: np.ndarray) -> np.ndarray:
     """Where the mechanism assembles at inputs u (one driver, closed-form groups): positions
     only, with the assembly branches and the contact check of `solve`, whose status is
     unreachable exactly where this is False (its rates and error bounds do not decide it)."""
-    state, ok = placed(mech, solvers, u, branch_schedule(mech))
+    schedule = branch_schedule(mech)
+    state, ok = placed(mech, solvers, u, schedule)
     if len(rows(mech)) > len(mech.link_names):  # higher pairs: a contact cut into is no contact
         state.Q[0, ~ok] = np.nan
         ok &= ~interference(mech, state.Q[0])
+    if schedule and not ok.all():  # a change point is passed, not a limit
+        scale = 1.0 if mech.joint(mech.drivers[0].joint).kind == "revolute" else mech.length_scale
+        ok |= near_change_point(mech, u, CHANGE_POINT_TOL * scale)
     return ok
 
 
@@ -121,8 +134,12 @@ def _march_limits(mech: Mechanism, solvers, u0: float, span: float,
     Newton's residual tolerance blurs the turning point), which is where bisection on `solve`
     ends too, since solve's Newton starts from that march and finds nothing beyond it; but the
     bisection would take sixty solves next to the turning point, where Newton's method converges
-    slowly."""
+    slowly. A revolute input turns fully where the marches upwards and downwards meet at half a
+    turn (or a few turns) each way: those are the marches the whole motion's samples beyond
+    half a turn are solved from, so the limit search marches nothing the solve does not."""
     d = mech.drivers[0]
+    if not prismatic and march_period(mech, solvers) is not None:
+        return None  # the marches to ±half a turn meet: a crank (and the solve needs them)
     upper = march_limit(mech, solvers, +1, span)
     if upper is None and not prismatic:
         return None
@@ -155,8 +172,9 @@ def whole_motion(mech: Mechanism, *, step: float | None = None, speed: float | N
     limits = input_limits(mech)
     if limits is None:
         h = step or np.radians(1.0)
-        n = int(round(2 * np.pi / h))
-        u = u0 + np.sign(speed or 1.0) * np.linspace(0.0, 2 * np.pi, n + 1)
+        turn = chain_period(mech)
+        n = int(round(turn / h))
+        u = u0 + np.sign(speed or 1.0) * np.linspace(0.0, turn, n + 1)
         return solve(mech, u, velocities=np.full(u.shape, speed), order=order)
     lo, hi = limits
     h = step or (np.radians(1.0) if mech.joint(d.joint).kind == "revolute" else (hi - lo) / 200)

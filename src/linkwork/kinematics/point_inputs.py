@@ -209,14 +209,22 @@ def _count(mech: Mechanism, given, Jp: np.ndarray, Jq: np.ndarray):
             f"({_names(given, range(len(given)))}) state {c}; give further point velocities or "
             "directions")
     if c > m:
-        rows, owner = _condition_rows(_broadcast(given, 1), Jq, 1)
+        one = _broadcast(given, 1)
+        rows, owner = _condition_rows(one, Jq, 1)
         M = (rows[0] * scale) @ Nn
         extra = [owner[i][0] for i in _dependent(M)] or list(range(len(given)))
+        # consistent (one motion satisfies them all, at the first sample) or contradictory
+        b = _right_hand_sides(one, 1)[0]
+        z = np.linalg.lstsq(M, b, rcond=None)[0] if m else np.zeros(0)
+        off = float(np.linalg.norm(M @ z - b)) if m else float(np.linalg.norm(b))
+        how = ("contradict each other: no motion of the chain has them all (two points of one link, "
+               "for one, must have equal velocity components along the line joining them)"
+               if off > 1e-9 * max(float(np.linalg.norm(b)), 1e-300) else
+               f"say {c - m} time{'s' if c - m > 1 else ''} what the others fix already")
         raise StructureError(
             f"over-determined: {c - m} condition{'s' if c - m > 1 else ''} too many — the chain "
             f"'{mech.name}' has {m} degrees of freedom at its drawn position, the given data state "
-            f"{c}: among {_names(given, extra)}, {c - m} condition{'s' if c - m > 1 else ''} "
-            "repeat or contradict the others (drop them)")
+            f"{c}: {_names(given, extra)} {how} (drop {c - m} condition{'s' if c - m > 1 else ''})")
     return Nn, m, scale
 
 

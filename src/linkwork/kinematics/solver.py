@@ -210,7 +210,7 @@ def solve(mech: Mechanism, inputs=None, *, times=None, velocities=None, accelera
         n_rows == len(mech.link_names) else None
     if tab is not None:  # one compiled pass through the solution order per sample
         fused.solve_blocks(mech, tab, solvers, Q, T, inputs, branches_in, assembled, condition,
-                           errors, status_errors, can_polish)
+                           errors, status_errors, can_polish, block=KERNEL_BLOCK)
     else:
         for lo in range(0, N, block):
             sl = slice(lo, lo + block)

@@ -12,6 +12,7 @@ from __future__ import annotations
 import json
 import math
 import os
+from contextlib import nullcontext
 from concurrent.futures import ProcessPoolExecutor, as_completed
 from dataclasses import dataclass, field
 from functools import lru_cache
@@ -24,9 +25,15 @@ from ..errors import InputError, LinkworkError
 from ..io.files import load, load_text, resolve
 from ..kinematics import solve, whole_motion
 from ..kinematics.export import with_unit
+from ..kinematics.warmup import compiled_loops
 from ..model import Mechanism
 from . import designs as D
 from .metrics import Metric, evaluate, parse_metric
+
+
+#: designs per process from which a sweep loads the kinematics' compiled loops first: about a
+#: second (CPU) of loading against some 60 ms a four-bar design saves (2 ms instead of 60)
+COMPILED_FROM = 40
 
 
 @dataclass
@@ -91,9 +98,17 @@ def _load(spec: str, text: str, base_dir: str | None) -> Mechanism:
 
 
 def run_designs(spec: str, params: list[D.Parameter], rows: np.ndarray, metrics: list[Metric],
-                inputs: np.ndarray | None, text: str = "", base_dir: str | None = None) -> list[list]:
+                inputs: np.ndarray | None, text: str = "", base_dir: str | None = None,
+                compiled: bool = False) -> list[list]:
     """Rows of [metric values…, ok fraction, status] for the designs `rows` (one process) of
-    the mechanism `text` (read from `spec` if empty)."""
+    the mechanism `text` (read from `spec` if empty); `compiled`: this process solves enough
+    designs to load the compiled loops first (`warmup.compile_kernels`, once per process)."""
+    with compiled_loops() if compiled else nullcontext():
+        return _rows(spec, params, rows, metrics, inputs, text, base_dir)
+
+
+def _rows(spec, params, rows, metrics, inputs, text, base_dir) -> list[list]:
+    """`run_designs`, with the loops as they are set."""
     import warnings
     base = _load(spec, text, base_dir) if text else load(spec)
     out = []
@@ -160,18 +175,26 @@ def execute(p: SweepPlan, *, workers: int | None = None, chunk: int | None = Non
         if progress:
             progress(finished, n)
 
+    # enough designs per process to pay for loading the compiled loops? (on a cluster: per
+    # chunk, each worker loading them once; local processes are forked from this one after it
+    # loaded them, where processes start by fork, so they load them once here)
+    processes = 1 if workers == 1 or len(todo) <= 1 else min(workers, len(todo))
+    compiled = chunk >= COMPILED_FROM if scheduler is not None else \
+        (n - finished) / processes >= COMPILED_FROM
     args = lambda i: (p.spec, p.params, p.designs[parts[i].start:parts[i].stop], p.metrics, p.inputs,
-                      p.text, p.base_dir)
+                      p.text, p.base_dir, compiled)
     if scheduler is not None:
         _on_cluster(scheduler, todo, args, record)
-    elif workers == 1 or len(todo) <= 1:
-        for i in todo:
-            record(i, run_designs(*args(i)))
     else:
-        with ProcessPoolExecutor(max_workers=min(workers, len(todo))) as pool:
-            futures = {pool.submit(run_designs, *args(i)): i for i in todo}
-            for f in as_completed(futures):
-                record(futures[f], f.result())
+        with compiled_loops() if compiled else nullcontext():
+            if processes == 1:
+                for i in todo:
+                    record(i, run_designs(*args(i)))
+            else:
+                with ProcessPoolExecutor(max_workers=processes) as pool:
+                    futures = {pool.submit(run_designs, *args(i)): i for i in todo}
+                    for f in as_completed(futures):
+                        record(futures[f], f.result())
     rows = []
     for i, r in enumerate(parts):
         for k, vals in zip(r, done[i]):

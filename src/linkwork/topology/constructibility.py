@@ -355,9 +355,10 @@ class VelocityScript:
     def verdict(self) -> str:
         if self.check is not None:
             t, d, c = self.trial, self.scale_by, self.check
-            return (f"not directly constructible from the driver {d[0]} (Rosenauer's rule fails, and "
+            src = f"the driver {d[0]}" if d is not None else "its given velocities"
+            return (f"not directly constructible from {src} (Rosenauer's rule fails, and "
                     f"no second crank's trial rate makes it direct); by false position with two trials: "
-                    f"without the binary link {c[0]} the chain is direct from {d[0]} and a trial rate of "
+                    f"without the binary link {c[0]} the chain is direct from {src} and a trial rate of "
                     f"{t[0]} about {upper(t[1])}; two trial rates give two rows of images, and the check "
                     f"{lower(c[1])}{lower(c[3])} ⟂ {upper(c[1])}{upper(c[3])} fixes the point of each "
                     "row (similar point rows)")
@@ -374,25 +375,26 @@ class VelocityScript:
                     "reached from known velocities only across more than two joints; the plan "
                     "needs similar point rows (false position)")
         n = len(self.aux)
-        return ("directly constructible (Rosenauer's rule holds)" +
-                (f", with {n} auxiliary point{'s' if n > 1 else ''} " +
-                 ", ".join(f"{a.name} = {a.lines[0].text()} \u2229 {a.lines[1].text()} (in {a.link})"
-                           for a in self.aux) if n else ", without auxiliary points"))
+        return prose("directly constructible (Rosenauer's rule holds)" +
+                     (f", with {n} auxiliary point{'s' if n > 1 else ''} " +
+                      ", ".join(f"{a.name} = {a.lines[0].text()} \u2229 {a.lines[1].text()} (in {a.link})"
+                                for a in self.aux) if n else ", without auxiliary points"))
 
     def as_dict(self) -> dict:
         return {"direct": self.direct, "verdict": self.verdict(),
                 "false_position": None if self.trial is None else
-                {"trial_driver": self.trial[0], "pivot": self.trial[1], "scaled_to": self.scale_by[0],
+                {"trial_driver": self.trial[0], "pivot": self.trial[1],
+                 "scaled_to": None if self.scale_by is None else self.scale_by[0],
                  "trials": 1 if self.check is None else 2,
                  "check_link": None if self.check is None else self.check[0]},
                 "auxiliary_points": [{"name": a.name, "link": a.link,
-                                      "lines": [ln.text() for ln in a.lines]} for a in self.aux],
+                                      "lines": [prose(ln.text()) for ln in a.lines]} for a in self.aux],
                 "order": list(self.order), "unreached": list(self.unreached),
-                "unsupported": list(self.unsupported), "script": [s.text for s in self.steps]}
+                "unsupported": list(self.unsupported), "script": [prose(s.text) for s in self.steps]}
 
     def script(self) -> list[str]:
-        """The numbered construction script."""
-        return [f"{k:2d}. {s.text}" for k, s in enumerate(self.steps, 1)]
+        """The numbered construction script (the names in it as written, :func:`prose`)."""
+        return [f"{k:2d}. {prose(s.text)}" for k, s in enumerate(self.steps, 1)]
 
 
 @dataclass(frozen=True)
@@ -922,8 +924,16 @@ def plan_velocities(chain: Chain | Mechanism, geometry: Mapping | None = None) -
     if isinstance(chain, Mechanism):
         chain = Chain.from_mechanism(chain)
     script = _Planner(chain, geometry).run()
-    if script.direct or script.unsupported or len(chain.drivers) != 1 or chain.given \
-            or chain.directions or chain.drivers[0][2] is None or chain.frame is None:
+    if script.direct or script.unsupported:
+        return script
+    if chain.given and not chain.drivers:
+        # a chain driven by given point velocities (paper 2): two trials about a given point; the
+        # links the rule itself does not reach stay named (`unreached`)
+        from dataclasses import replace
+        trials = _two_trials(chain, geometry)
+        return script if trials is None else replace(trials, unreached=script.unreached)
+    if len(chain.drivers) != 1 or chain.given or chain.directions or chain.drivers[0][2] is None \
+            or chain.frame is None:
         return script
     return _false_position(chain, geometry) or _two_trials(chain, geometry) or script
 
@@ -970,15 +980,23 @@ def _two_trials(chain: Chain, geometry=None) -> VelocityScript | None:
     each row, and the left-out link's check km ⟂ KM picks the point of every row."""
     from dataclasses import replace
 
-    driver = chain.drivers[0]
+    driver = chain.drivers[0] if chain.drivers else None
+    true = () if driver is None else (driver,)
     binary = [ln for ln, pts in chain.links.items() if len(set(pts)) == 2 and ln != chain.frame
-              and ln != driver[0]]
+              and (driver is None or ln != driver[0])]
     cranks = []
     for p, a, b in chain.hinges:
         if chain.frame in (a, b):
             link = b if a == chain.frame else a
             ref = next((q for q in chain.links[link] if q != p), None)
-            if link != driver[0] and ref is not None:
+            if (driver is None or link != driver[0]) and ref is not None:
+                cranks.append((link, p, ref))
+    # a chain driven by given point velocities: a trial rate of a link about one of its given
+    # points (Rosenauer's free chains, paper 2, where the rule fails)
+    for p in chain.given:
+        for link, pts in chain.links.items():
+            ref = next((q for q in pts if q != p), None)
+            if p in pts and link != chain.frame and ref is not None:
                 cranks.append((link, p, ref))
     for cut in binary:
         K, M = dict.fromkeys(chain.links[cut])
@@ -993,13 +1011,18 @@ def _two_trials(chain: Chain, geometry=None) -> VelocityScript | None:
         for link, p, ref in cranks:
             if link == cut:
                 continue
-            trial = _Planner(replace(rest, drivers=(driver, (link, p, ref))), geometry).run()
+            trial = _Planner(replace(rest, drivers=true + ((link, p, ref),)), geometry).run()
             if not trial.direct:
                 continue
             steps = list(trial.steps)
+            if p in chain.given:
+                # the trial turns about a given point: drawn after the given velocities
+                k = next(i for i, s in enumerate(steps) if s.kind == "driver" and s.link == link)
+                last = max(i for i, s in enumerate(steps) if s.kind == "given")
+                steps.insert(last, steps.pop(k))
             k = next(i for i, s in enumerate(steps) if s.kind == "driver" and s.link == link)
             steps[k] = replace(steps[k], text=(
-                f"trial: {lower(ref)}* = o + ω*·{upper(p)}{upper(ref)} turned 90° (two "
+                f"trial: {lower(ref)}* = {lower(p) if p in chain.given else 'o'} + ω*·{upper(p)}{upper(ref)} turned 90° (two "
                 f"arbitrary rates ω* of {link} about {upper(p)}, drawn one after the other; the "
                 f"images that follow are trial images x*, x**; the binary link {cut} is left out)"))
             check = Step("check", cut, M, (

@@ -27,6 +27,8 @@ from fastapi.staticfiles import StaticFiles
 from ..errors import LinkworkError, LinkworkWarning, InputError, UnknownMechanismError
 from ..kinematics import Solution, Status, compiled_loops, solve, whole_motion
 from ..kinematics.export import to_document
+from ..kinematics import warmup
+from ..kinematics.warmup import compile_kernels
 from ..model import Mechanism, Prismatic
 from . import models as m
 from .sources import Sources
@@ -91,7 +93,7 @@ def _warnings() -> Iterator[list[str]]:
     kinematics' loops run compiled inside once the server has them (`compile_kernels`)."""
     out: list[str] = []
     with warnings.catch_warnings(record=True) as caught, \
-            compiled_loops(True if KERNELS_READY.is_set() else None):
+            compiled_loops(True if warmup.READY.is_set() else None):
         warnings.simplefilter("always", LinkworkWarning)
         yield out
         out.extend(dict.fromkeys(str(w.message) for w in caught
@@ -212,30 +214,6 @@ def drawing(mech: Mechanism, req: m.DrawingRequest, previous: Mechanism | None =
                       for ln in mech.link_names for q in [sol.pose_derivatives(ln)[0, 0]]},
             "transforms": fig.transforms(), "steps": steps,
             "march": None if carried(mech) is None else str(carried(mech))}
-
-
-def compile_kernels() -> None:
-    """Run the kinematics' compiled loops for every batch of the requests from now on.
-
-    A command line solve of a few samples runs them interpreted, because loading numba costs a
-    second or more per process; a server pays that once, and a drag frame of a four-bar (a
-    branch scan of 2 049 inputs and the solve) then takes a few milliseconds instead of a
-    hundred. The loops are compiled (or loaded from numba's cache) first, so no request waits
-    for the compiler: the fused pass (the four-bar, the slider-crank) and the per-group loops
-    (a chain with a Newton group); only then do the requests take them (`_warnings` enters
-    `kinematics.compiled_loops`)."""
-    from ..io import load
-    from ..io.library import LIBRARY_PREFIX
-    with compiled_loops(True):
-        for name in ("crank-rocker", "slider-crank-centric", "alt-ten-link",
-                     "crank-driven-wedge"):
-            mech = load(LIBRARY_PREFIX + name)
-            solve(mech, np.full((8, 1), mech.driver_input_at_design(mech.drivers[0])), order=2)
-    KERNELS_READY.set()
-
-
-#: set once `compile_kernels` has loaded the compiled loops (a server's, for the process)
-KERNELS_READY = threading.Event()
 
 
 def create_app(workdir: str | Path | None = None, *, compiled: bool = False) -> FastAPI:
