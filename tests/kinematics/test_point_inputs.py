@@ -18,7 +18,7 @@ import numpy as np
 import pytest
 
 import linkwork
-from linkwork.errors import LinkworkError, MechanismFileError, ModelError, StructureError
+from linkwork.errors import InputError, LinkworkError, MechanismFileError, ModelError, StructureError
 from linkwork.kinematics import Status
 from linkwork.kinematics.point_inputs import check_count, solve_given
 from linkwork.model import GivenDirection, GivenVelocity, Mechanism, Revolute, hinge_chain
@@ -444,3 +444,11 @@ def test_five_bar_from_its_coupler_point_velocity_inverts_the_driven_solve():
     for ln in mech.moving_links:
         assert sol.link(ln).omega[0] == pytest.approx(driven.link(ln).omega[0], rel=1e-10, abs=1e-12)
         assert sol.link(ln).alpha[0] == pytest.approx(driven.link(ln).alpha[0], rel=1e-9, abs=1e-9)
+
+
+def test_solve_of_a_chain_driven_by_given_velocities_says_which_solver_to_use():
+    """`solve` takes driver inputs; a free chain has none and is sent to `solve_given` by name
+    (not told that its links are "under-constrained")."""
+    mech = linkwork.load("library:rosenauer-free-triad")
+    with pytest.raises(InputError, match=r"given point velocities.*solve_given"):
+        linkwork.solve(mech)

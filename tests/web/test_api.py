@@ -450,10 +450,8 @@ def test_the_server_solves_with_the_compiled_loops(monkeypatch):
     """`linkwork serve` makes its application with compiled=True: when it starts, the
     kinematics' compiled loops are made ready and then used for every batch; the drawing is
     the one of the interpreted loops (to the last bits numba's fused multiply-adds change)."""
-    from linkwork.kinematics import kernels
-    from linkwork.web import app as web_app
+    from linkwork.kinematics import kernels, warmup
     from linkwork.web.app import compile_kernels
-    from linkwork.kinematics import warmup
     monkeypatch.setattr(warmup, "READY", warmup.threading.Event())
     body = dict(source={"library": "crank-rocker", "points": {"C": [16.0, 24.0]}}, at=[2.0],
                 layers=["mechanism"], motion=False)
@@ -463,7 +461,11 @@ def test_the_server_solves_with_the_compiled_loops(monkeypatch):
     ran = []  # the requests' loops are the compiled ones, a drawing's single sample too
     real = kernels._compiled
     monkeypatch.setattr(kernels, "_compiled", lambda: ran.append(1) or real())
-    after = TestClient(create_app(None)).post("/api/drawing", json=body).json()
+    # an application not made for serving keeps the loops chosen by batch size, even in a
+    # process where another part (a sweep) has loaded the compiled ones
+    TestClient(create_app(None)).post("/api/drawing", json=body).json()
+    assert not ran
+    after = TestClient(create_app(None, compiled=True)).post("/api/drawing", json=body).json()
     assert ran
     for p, xy in before["points"].items():
         assert after["points"][p] == pytest.approx(xy, abs=1e-12)

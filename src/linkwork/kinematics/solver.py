@@ -141,6 +141,11 @@ def solve(mech: Mechanism, inputs=None, *, times=None, velocities=None, accelera
     if order not in (1, 2, 3, 4):
         raise InputError("order must be 1 (velocities), 2 (accelerations), 3 (jerks) or 4 "
                          "(snaps)")
+    if mech.given and not mech.drivers:
+        # a free or open chain moves by its given point velocities at its drawn position only
+        raise InputError(f"mechanism '{mech.name}' is driven by given point velocities "
+                         "([[given]]), not by drivers: it has no inputs to solve at; use "
+                         "kinematics.point_inputs.solve_given (as `linkwork analyze` does)")
     nd = len(mech.drivers)
     inputs, times, velocities, accelerations, jerks, snaps = _plain_numbers(
         mech, inputs, times, velocities, accelerations, jerks, snaps)

@@ -88,12 +88,12 @@ def _validation_message(exc: RequestValidationError) -> str:
 
 
 @contextmanager
-def _warnings() -> Iterator[list[str]]:
+def _warnings(compiled: bool = False) -> Iterator[list[str]]:
     """Collect the LinkworkWarnings raised inside (as the command line prints them); the
     kinematics' loops run compiled inside once the server has them (`compile_kernels`)."""
     out: list[str] = []
     with warnings.catch_warnings(record=True) as caught, \
-            compiled_loops(True if warmup.READY.is_set() else None):
+            compiled_loops(True if compiled and warmup.READY.is_set() else None):
         warnings.simplefilter("always", LinkworkWarning)
         yield out
         out.extend(dict.fromkeys(str(w.message) for w in caught
@@ -288,14 +288,14 @@ def create_app(workdir: str | Path | None = None, *, compiled: bool = False) -> 
     @app.post("/api/mechanism", response_model=m.MechanismInfo, responses=errors)
     def mechanism(req: m.MechanismRequest):
         """Load and validate a mechanism: its points, links, pairs and drivers."""
-        with _warnings() as warned:
+        with _warnings(compiled) as warned:
             loaded = load(req.source)
         return mechanism_info(loaded, warned)
 
     @app.post("/api/solve", response_model=m.SolutionDocument, responses=errors)
     def solve_(req: m.SolveRequest):
         """`linkwork.solve` at the given inputs or times (`analyze --at … --format json`)."""
-        with _warnings() as warned:
+        with _warnings(compiled) as warned:
             loaded = load(req.source)
             sol = solve_at(loaded.mechanism, req, req.order, loaded.previous)
             doc = to_document(sol)
@@ -304,7 +304,7 @@ def create_app(workdir: str | Path | None = None, *, compiled: bool = False) -> 
     @app.post("/api/motion", response_model=m.SolutionDocument, responses=errors)
     def motion(req: m.MotionRequest):
         """`linkwork.whole_motion` (`analyze --format json` without --at)."""
-        with _warnings() as warned:
+        with _warnings(compiled) as warned:
             sol = whole_motion(load(req.source).mechanism)
             if req.detail == "status":
                 mech = sol.mechanism
@@ -323,7 +323,7 @@ def create_app(workdir: str | Path | None = None, *, compiled: bool = False) -> 
     def poles_(req: m.PolesRequest):
         """All relative poles (`linkwork poles --format json`)."""
         from ..instant.export import poles_document
-        with _warnings() as warned:
+        with _warnings(compiled) as warned:
             doc = poles_document(solve_at(load(req.source).mechanism, req, 1), req.schedule)
         return respond({**doc, "warnings": warned})
 
@@ -332,7 +332,7 @@ def create_app(workdir: str | Path | None = None, *, compiled: bool = False) -> 
         """Curvature theory of a link (`linkwork curvature --format json`); `points` are point
         names or design coordinates [x, y]."""
         from ..instant.export import curvature_document
-        with _warnings() as warned:
+        with _warnings(compiled) as warned:
             mech = load(req.source).mechanism
             asked = []
             for p in req.points:
@@ -350,7 +350,7 @@ def create_app(workdir: str | Path | None = None, *, compiled: bool = False) -> 
     def structure_(req: m.MechanismRequest):
         """Mobility, Assur groups, Grashof type (`linkwork structure --format json`)."""
         from ..structure import structure_report
-        with _warnings() as warned:
+        with _warnings(compiled) as warned:
             doc = structure_report(load(req.source).mechanism).as_dict()
         return respond({**doc, "warnings": warned})
 
@@ -359,7 +359,7 @@ def create_app(workdir: str | Path | None = None, *, compiled: bool = False) -> 
         """A classical construction at one position, checked against the exact values, with
         its steps in words (`linkwork draw --construction NAME`)."""
         from ..constructions import construct
-        with _warnings() as warned:
+        with _warnings(compiled) as warned:
             mech = load(req.source).mechanism
             sol = solve_at(mech, req, 2)
             if len(sol) != 1:
@@ -375,7 +375,7 @@ def create_app(workdir: str | Path | None = None, *, compiled: bool = False) -> 
     def drawing_(req: m.DrawingRequest):
         """The SVG of `linkwork draw` at one position, with the layers and construction asked,
         the point positions drawn and how the drawing maps world to SVG coordinates."""
-        with _warnings() as warned:
+        with _warnings(compiled) as warned:
             loaded = load(req.source)
             doc = drawing(loaded.mechanism, req, loaded.previous)
         return respond({**doc, "warnings": warned})
@@ -388,7 +388,7 @@ def create_app(workdir: str | Path | None = None, *, compiled: bool = False) -> 
         import tempfile
 
         from ..drawing.svg import convert
-        with _warnings():
+        with _warnings(compiled):
             svg = drawing(load(req.source).mechanism, req)["svg"]
         with tempfile.TemporaryDirectory() as tmp:
             out = Path(tmp) / "drawing.png"
@@ -401,7 +401,7 @@ def create_app(workdir: str | Path | None = None, *, compiled: bool = False) -> 
     def motion_csv(req: m.MechanismRequest):
         """The whole motion as the CSV of `linkwork analyze --format csv` (one row a sample)."""
         from ..kinematics.export import csv_lines
-        with _warnings():
+        with _warnings(compiled):
             sol = whole_motion(load(req.source).mechanism)
             text = "".join(csv_lines(sol))
         return Response(text, media_type="text/csv; charset=utf-8")
