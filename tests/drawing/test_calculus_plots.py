@@ -136,3 +136,28 @@ def test_graphical_differentiation_steps_read_the_engine_velocity():
     assert np.max(np.abs(v - exact)) < 0.01 * np.max(np.abs(exact))
     figs, _, (v, exact) = differentiation_steps(mech, "B", chords=48)
     assert np.max(np.abs(v - exact)) < 0.001 * np.max(np.abs(exact))  # finer chords, O(h²)
+
+
+@pytest.mark.parametrize("strips", [3, 12])
+def test_graphical_integration_steps_read_the_engine_velocity(strips):
+    """Integration by mean ordinates keeps each strip's area, so the chord polygon's corners are
+    v at the strip boundaries whatever the number of strips (unlike the chords of the
+    differentiation, which are only O(h²) close): the a–t line integrated from v₀ meets the
+    engine's own velocity there, up to the quadrature of the sampled a–t line."""
+    from linkwork.drawing.calculus_plots import integration_steps
+    mech = linkwork.load("library:slider-crank-offset")
+    figs, texts, (v, exact) = integration_steps(mech, "B", strips=strips)
+    assert len(figs) == len(texts) == 5 and len({tuple(f.get_size_inches()) for f in figs}) == 1
+    assert len(v) == strips + 1
+    assert np.max(np.abs(v - exact)) < 1e-4 * np.max(np.abs(exact))
+
+
+def test_plot_draws_the_integration_step_by_step(tmp_path):
+    out = tmp_path / "int.png"
+    res = CliRunner().invoke(app, ["plot", "library:slider-crank-offset", "--point", "B", "--diagrams",
+                                   "--construction", "integration", "--steps", "-o", str(out)])
+    assert res.exit_code == 0, res.output
+    assert "mean ordinate" in res.output and (tmp_path / "int-05.png").exists()
+    res = CliRunner().invoke(app, ["plot", "library:slider-crank-offset", "--point", "B", "--diagrams",
+                                   "--construction", "subnormal", "-o", str(out)])
+    assert res.exit_code != 0 and "differentiation or integration" in res.output

@@ -148,7 +148,7 @@ def register(app: typer.Typer) -> None:
         vs: bool = typer.Option(False, "--vs", help="the v–s diagram of the (first) point instead"),
         diagrams: bool = typer.Option(False, "--diagrams", help="Pöschl's s–t, v–t, a–t and jerk lines of the (first) point, with the graphical differentiation by chords"),
         plans: bool = typer.Option(False, "--plans", help="the r-, v- and b-plan (hodographs) of the (first) point with poles, scales and tangents (Pöschl §13)"),
-        construction: Optional[str] = typer.Option(None, "--construction", help="with --vs: subnormal (the acceleration from the v–s line) or time (t = ∫ds/v by strips)"),
+        construction: Optional[str] = typer.Option(None, "--construction", help="with --vs: subnormal (the acceleration from the v–s line) or time (t = ∫ds/v by strips); with --diagrams: differentiation (the s–t line, the default of --steps) or integration (the a–t line by mean ordinates)"),
         steps: bool = typer.Option(False, "--steps", help="with --diagrams or --vs --construction: one drawing per step (FILE-01.png, …)"),
         at: Optional[float] = typer.Option(None, "--at", help="--plans: the input (degrees, or the file's length unit); --construction subnormal: the position as a fraction 0…1 of the stroke"),
         output: str = typer.Option(..., "-o", "--output", help="FILE.png, FILE.pdf or FILE.svg"),
@@ -164,26 +164,24 @@ def register(app: typer.Typer) -> None:
                 raise InputError(f"choose one of {', '.join(chosen)}")
             if chosen and not points:
                 raise InputError(f"{chosen[0]} needs --point")
-            if construction and not vs:
-                raise InputError("--construction draws on the v–s diagram: give --vs")
+            if construction and not (vs or diagrams):
+                raise InputError("--construction draws on the v–s diagram (--vs) or on the motion "
+                                 "diagrams (--diagrams: differentiation or integration)")
             if steps and not (construction or diagrams):
-                raise InputError("--steps draws --diagrams (the graphical differentiation) or a --vs "
-                                 "--construction step by step")
-            if diagrams and steps:
-                from ..drawing.calculus_plots import differentiation_steps
-                figs, texts, _ = differentiation_steps(mech, points[0])
-                out = Path(output)
-                written = []
-                for k, (f, text) in enumerate(zip(figs, texts)):
-                    p = out.with_name(f"{out.stem}-{k + 1:02d}{out.suffix}")
-                    save(f, p)
-                    written.append(p)
-                    typer.echo(f"{k + 1}. {text}")
-                typer.echo(f"wrote {written[0]} … {written[-1]}")
-                return
-            if construction:
+                raise InputError("--steps draws --diagrams (the graphical differentiation or "
+                                 "integration) or a --vs --construction step by step")
+            if diagrams and (steps or construction):
+                from ..drawing import calculus_plots
+                which = construction or "differentiation"
+                if which not in ("differentiation", "integration"):
+                    raise InputError(f"--diagrams --construction is differentiation or integration, "
+                                     f"not '{which}'")
+                build = getattr(calculus_plots, f"{which}_steps")
+                figs, texts, _ = build(mech, points[0])
+            elif construction:
                 from ..drawing.calculus_plots import vs_steps
                 figs, texts, _ = vs_steps(mech, points[0], construction, at=at)
+            if construction or (diagrams and steps):
                 out = Path(output)
                 if not steps:  # the finished construction only
                     for f in figs[:-1]:

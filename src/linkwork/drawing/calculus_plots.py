@@ -1,6 +1,7 @@
 """Pöschl's graphical calculus of point motion drawn as the books draw it (ch. II–III).
 
 Owns :func:`differentiation_steps` (the s–t line differentiated with a pole, step by step, §7),
+:func:`integration_steps` (the a–t line integrated by strips and mean ordinates, §10a),
 :func:`plans_figure` (the r-, v- and b-plan of a point with the poles O, P, Q, the associated
 points A, V, B and the tangents: the v-plan's tangent at V is the direction of the acceleration,
 the b-plan's at B that of the jerk, §13) and :func:`vs_steps` (step-by-step constructions on the
@@ -16,8 +17,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..constructions.motion_calculus import (differentiate, integrate_reciprocal, plan, plan_scale,
-                                             reciprocal_scale, subnormal)
+from ..constructions.motion_calculus import (differentiate, integrate, integrate_reciprocal, plan,
+                                             plan_scale, reciprocal_scale, subnormal)
 from ..constructions.scales import nice_ceil
 from ..errors import InputError
 from ..kinematics import Solution, whole_motion
@@ -407,6 +408,76 @@ def differentiation_steps(mech: Mechanism, point: str, *, chords: int = 12, H: f
             ax.legend(fontsize=7, loc="lower right")
         figs.append(fig)
     return figs, texts, (d.y, exact)
+
+
+def integration_steps(mech: Mechanism, point: str, *, strips: int = 8, H: float = 2.0,
+                      solution: Solution | None = None):
+    """Pöschl's graphical integration by strips (§10a, the polygon method) of the a–t line of
+    ``point`` over one stroke (a the tangential acceleration along its path), step by step: the
+    strips and each one's mean ordinate Y_m (the rectangle of the strip's area); each Y_m carried
+    to the ordinate axis and joined to the pole P at H cm left of the origin; in the v–t diagram
+    below, strip after strip from v₀ at the stroke's start, the chord parallel to that strip's ray
+    (ΔZ = Y_m·ΔT/H, eq. 22). The chord polygon's corners are v at the strip boundaries, at
+    l_v = H l_t l_a (eq. 24). Returns (figures, step texts, (v read at the boundaries, the
+    engine's v there))."""
+    if strips < 1:
+        raise InputError(f"graphical integration needs one strip at least, not {strips}")
+    _positive_H(H)
+    s, v, t, a_t, l_s, l_v0, straight = _stroke(mech, point, solution)
+    t = t - t[0]
+    l_t = nice_ceil(float(t[-1]) / 10.0)  # the stroke's time at most 10 cm long
+    l_a = nice_ceil(float(np.max(np.abs(a_t))) / 3.0)  # the a–t line at most 3 cm high
+    b = np.linspace(0.0, float(t[-1]), strips + 1)
+    d = integrate(t, a_t, b, l_x=l_t, l_y=l_a, H=H)
+    Z = d.Y + v[0] / d.l_y  # the polygon starts at v₀ (the constant of integration)
+    read = Z * d.l_y
+    exact = np.interp(b, t, v)
+    u = mech.length_unit
+    texts = [f"the a–t line of {point} over one stroke (a along the path): t at l_t = {_num(l_t)} s/cm, "
+             f"a at l_a = {_num(l_a)} {u}/s² per cm",
+             f"{strips} strips; in each the mean ordinate Y_m, the height of the rectangle of the strip's "
+             "area",
+             f"each Y_m carried to the ordinate axis; the pole P at H = {H:g} cm left of the origin and the "
+             "rays from P to them",
+             "below, strip after strip from v₀ at the stroke's start: the chord parallel to the strip's ray "
+             "(ΔZ = Y_m·ΔT/H); its corners are the v–t line at the strip boundaries",
+             f"v = l_v·Z, l_v = H l_t l_a = {_num(d.l_y)} {u}/s per cm (eq. 24); largest difference from "
+             f"the engine's v at the boundaries {np.max(np.abs(read - exact)):.3g} {u}/s (the mean "
+             "ordinates keep each strip's area, so the corners are exact up to the drawing)"]
+    plt = _plt()
+    TT, AA = t / l_t, a_t / l_a
+    Amax = float(np.max(np.abs(AA)))
+    off = -Amax - 0.8 - float(np.max(Z))  # the v–t diagram's axis, below the a–t diagram
+    xlim = (-H - 0.8, TT.max() + 1.0)
+    ylim = (off - 0.8, Amax + 1.0)
+    B = b / l_t
+    P = np.array([-H, 0.0])
+    figs = []
+    for step in range(len(texts)):
+        fig, ax = _sheet(plt, xlim, ylim, texts, step)
+        ax.axhline(off, color=INK, lw=0.4)
+        ax.plot(TT, AA, color=INK, lw=1.2)
+        ax.annotate("a", (0, ylim[1]), xytext=(4, -10), textcoords="offset points", fontsize=9)
+        ax.annotate("t", (xlim[1], 0), xytext=(-8, 4), textcoords="offset points", fontsize=9)
+        ax.annotate("v", (0, off + float(np.max(Z))), xytext=(4, 4), textcoords="offset points",
+                    fontsize=9)
+        if step >= 1:
+            for lo, hi, Ym in zip(B[:-1], B[1:], d.means):
+                ax.plot([lo, lo, hi, hi], [0.0, Ym, Ym, 0.0], color=RES, lw=0.7)
+        if step >= 2:
+            _pole(ax, P, "P")
+            for Ym, lo in zip(d.means, B[:-1]):
+                ax.plot([lo, 0.0], [Ym, Ym], ":", color=AUX, lw=0.5)
+                ax.plot([P[0], 0.0], [0.0, Ym], color=AUX, lw=0.5)
+        if step >= 3:
+            ax.plot(B, Z + off, "-", color=RES, lw=1.0, marker="o", ms=3)
+            ax.annotate("v–t line", (B[-1], Z[-1] + off), xytext=(4, 0), textcoords="offset points",
+                        fontsize=8, color=RES)
+        if step >= 4:
+            ax.plot(TT, v / d.l_y + off, color=INK, lw=0.6, label="engine: v(t)")
+            ax.legend(fontsize=7, loc="lower right")
+        figs.append(fig)
+    return figs, texts, (read, exact)
 
 
 def _sheet(plt, xlim, ylim, texts, step):
