@@ -95,7 +95,7 @@ def test_forces_csv_by_suffix_and_parquet_refused(tmp_path):
     out = tmp_path / "f.csv"
     r = runner.invoke(app, ["forces", *TEXT_COMMANDS["forces"], "-o", str(out)])
     assert r.exit_code == 0, r.output
-    assert out.read_text().startswith("input,")
+    assert out.read_text().startswith("input [rad],")
     r = runner.invoke(app, ["forces", *TEXT_COMMANDS["forces"], "-o", str(tmp_path / "f.parquet")])
     assert r.exit_code == 2 and ".csv" in r.output
 

@@ -117,3 +117,27 @@ def test_every_column_but_the_codes_has_a_unit_pint_reads(name):
             assert q.dimensionality == ureg("m/s^2").dimensionality, col
         elif field.startswith(("angle", "omega", "alpha")):
             assert unit.startswith("rad"), col
+
+
+def test_forces_csv_carries_units_that_make_the_power_balance(tmp_path):
+    """`linkwork forces -o x.csv`: every header has a unit pint reads (or none, for codes), and
+    the units are the right ones: the driver's power is its torque times the crank's angular
+    velocity (60 rpm), in the units the headers state."""
+    out = tmp_path / "f.csv"
+    r = runner.invoke(app, ["forces", "library:crank-rocker", "--sweep", "0:360:30", "-o", str(out)])
+    assert r.exit_code == 0, r.output
+    units, values = _csv(out)
+    for name, unit in units.items():
+        if unit:
+            ureg.Unit(unit)  # raises on a unit pint does not know
+        else:
+            assert name in ("status", "solved"), name
+    mech = linkwork.load("library:crank-rocker")
+    driver = mech.drivers[0].joint
+    torque = values[f"{driver}.torque"] * ureg.Unit(units[f"{driver}.torque"])
+    omega = 2 * np.pi * ureg.Unit("rad/s")  # 60 rpm
+    power = values["driver_power"] * ureg.Unit(units["driver_power"])
+    np.testing.assert_allclose((torque * omega).to(power.units).magnitude, power.magnitude,
+                               rtol=1e-9, atol=1e-12)
+    assert ureg.Unit(units["O2.fx"]).dimensionality == ureg.Unit("N").dimensionality
+    assert units["input"] == "rad" and units["kinetic_energy"] == "J"

@@ -40,8 +40,8 @@ def test_static_csv_of_the_slider_crank(tmp_path):
     rows = list(csv.DictReader(io.StringIO(out.read_text())))
     assert len(rows) == 18
     # statics of the file's masses alone, without gravity or loads: nothing to hold
-    assert all(float(row["O.torque"]) == 0 for row in rows)
-    assert {"guide.normal", "guide.couple", "B.fx", "frame.moment"} <= set(rows[0])
+    assert all(float(row["O.torque [N*m]"]) == 0 for row in rows)
+    assert {"guide.normal [N]", "guide.couple [N*m]", "B.fx [N]", "frame.moment [N*m]"} <= set(rows[0])
 
 
 def test_table_and_plot(tmp_path):

@@ -420,10 +420,10 @@ def test_motion_as_csv(client):
     r = post(client, "/api/motion.csv", source=SRC)
     assert r.status_code == 200 and r.headers["content-type"].startswith("text/csv")
     sol = linkwork.whole_motion(MECH)
-    assert r.text == "".join(csv_lines(sol))
+    assert r.text == "".join(csv_lines(sol, units=True))
     head, *rows = r.text.splitlines()
     assert len(rows) == len(sol)
-    col = head.split(",").index("C.x")
+    col = head.split(",").index("C.x [mm]")
     assert [float(row.split(",")[col]) for row in rows] == pytest.approx(sol.point("C").position[:, 0], rel=1e-15)
 
 

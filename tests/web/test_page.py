@@ -430,7 +430,7 @@ def test_exports(page):
     with page.expect_download(timeout=60_000) as dl:
         page.click("#export-csv")
     assert dl.value.suggested_filename == "crank-rocker-motion.csv"
-    assert Path(dl.value.path()).read_text() == "".join(csv_lines(linkwork.whole_motion(MECH)))
+    assert Path(dl.value.path()).read_text() == "".join(csv_lines(linkwork.whole_motion(MECH), units=True))
 
 
 def _edit(pg, op, name, **fields):

@@ -181,16 +181,20 @@ def register(app: typer.Typer) -> None:
             if fluctuation is not None and asked is not None:
                 raise InputError("--flywheel needs the whole motion (one crank turn): drop --at and --sweep")
             fa = kinetostatics(dyn, sol, inertia=not static)
-            extra, summary = {}, {}
+            extra, extra_units, summary = {}, {}, {}
             if len(mech.drivers) == 1 and all(ln in dyn.masses for ln in mech.moving_links):
                 red = reduced_inertia(dyn, sol.inputs[:, 0])
                 extra = {"reduced_inertia": red.inertia, "reduced_inertia_derivative": red.derivative}
+                # per radian of a crank, per metre of a slide (`forces.reduced`)
+                J = "kg" if isinstance(mech.joint(mech.drivers[0].joint), Prismatic) else "kg*m^2"
+                extra_units = {"reduced_inertia": J,
+                               "reduced_inertia_derivative": J + ("/m" if J == "kg" else "")}
             if fluctuation is not None:
                 summary["flywheel"] = _flywheel(fa, fluctuation)
             if chosen is Format.json:
                 text = json.dumps(to_document(fa, extra, summary), indent=1) + "\n"
             elif chosen is Format.csv:
-                text = to_csv_text(fa, extra)
+                text = to_csv_text(fa, extra, extra_units)
             else:
                 text = _table(fa) + "".join(
                     f"flywheel for δ = {fw['fluctuation']:g} at {fw['mean_speed']:.6g} rad/s: mean torque "

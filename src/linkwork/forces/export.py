@@ -69,10 +69,46 @@ def to_document(fa: ForceAnalysis, extra: dict[str, np.ndarray] | None = None,
             "columns": {k: [_clean(float(x)) for x in v] for k, v in cols.items()}}
 
 
-def to_csv_text(fa: ForceAnalysis, extra: dict[str, np.ndarray] | None = None) -> str:
+def column_units(fa: ForceAnalysis, extra_units: dict[str, str] | None = None) -> dict[str, str]:
+    """The unit of each column of `columns` as pint reads it ("" for codes): SI for forces,
+    couples, energy and power, the file's length unit for a prismatic input; `extra_units`
+    for the caller's own columns."""
+    sol, mech = fa.solution, fa.dynamics.mechanism
+    out: dict[str, str] = {}
+    if sol.time is not None:
+        out["time"] = "s"
+    for d in mech.drivers:
+        slide = isinstance(mech.joint(d.joint), Prismatic)
+        out["input" if len(mech.drivers) == 1 else f"input.{d.joint}"] = (
+            mech.length_unit if slide else "rad")
+        kind, unit = ("force", "N") if slide else ("torque", "N*m")
+        out[f"{d.joint}.{kind}"] = out[f"{d.joint}.{kind}_virtual_work"] = unit
+    out["status"] = out["solved"] = ""
+    for name, r in fa.reactions.items():
+        out[f"{name}.fx"] = out[f"{name}.fy"] = out[f"{name}.magnitude"] = "N"
+        if isinstance(mech.joint(name), Prismatic):
+            out[f"{name}.couple"] = "N*m"
+        for comp in r.components:
+            if comp not in ("x", "y", "couple"):
+                # a hinge's friction is the moment of its friction circle; a slide's, a force
+                revolute = comp == "friction" and mech.joint(name).kind == "revolute"
+                out[f"{name}.{comp}"] = "N*m" if revolute else "N"
+    for body in ("frame", "shaking"):
+        out[f"{body}.fx"] = out[f"{body}.fy"] = "N"
+        out[f"{body}.moment"] = "N*m"
+    out.update(kinetic_energy="J", driver_power="W", power_residual_relative="1", condition="1")
+    out.update(extra_units or {})
+    return out
+
+
+def to_csv_text(fa: ForceAnalysis, extra: dict[str, np.ndarray] | None = None,
+                extra_units: dict[str, str] | None = None) -> str:
+    """The columns as CSV, each header with its unit, `name [unit]` (as `linkwork analyze`)."""
+    from ..kinematics.export import with_unit
     cols = columns(fa, extra)
+    units = column_units(fa, extra_units)
     names = list(cols)
-    lines = [",".join(names)]
+    lines = [",".join(with_unit(k, units.get(k, "")) for k in names)]
     data = np.column_stack([np.asarray(cols[k], dtype=float) for k in names])
     for row in data:
         lines.append(",".join("" if not math.isfinite(x) else repr(float(x)) for x in row))

@@ -399,11 +399,12 @@ def create_app(workdir: str | Path | None = None, *, compiled: bool = False) -> 
     @app.post("/api/motion.csv", responses={**errors, 200: {"content": {"text/csv": {}}}},
               response_class=Response)
     def motion_csv(req: m.MechanismRequest):
-        """The whole motion as the CSV of `linkwork analyze --format csv` (one row a sample)."""
+        """The whole motion as the CSV of `linkwork analyze --format csv` (one row a sample,
+        each header with its unit, `name [unit]`)."""
         from ..kinematics.export import csv_lines
         with _warnings(compiled):
             sol = whole_motion(load(req.source).mechanism)
-            text = "".join(csv_lines(sol))
+            text = "".join(csv_lines(sol, units=True))
         return Response(text, media_type="text/csv; charset=utf-8")
 
     @app.get("/", include_in_schema=False)
