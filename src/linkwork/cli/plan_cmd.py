@@ -58,7 +58,7 @@ def _plan_command(mechanism: str, at: Optional[list[str]], explain: bool, mode: 
         if mech.given:  # no input: the construction at the drawn position, from the given data
             from ..kinematics.point_inputs import solve_given
             values = solve_given(mech)  # too few or too many conditions are reported here
-            if script.direct or (script.check is not None and not script.unsupported):
+            if script.direct or script.by_two_trials:
                 at = []  # by the rule, or by similar point rows (two trials; `draw_given`)
             else:
                 lines.append("The plan of this chain from its given data is not drawn: "

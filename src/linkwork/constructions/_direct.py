@@ -484,7 +484,7 @@ def draw_given(vc) -> VelocityScript:
     Rosenauer's rule, or by false position with two trials where the rule does not reach every
     link (`TrialDrawer`)."""
     script = plan_velocities(Chain.from_mechanism(vc.mech, getattr(vc.sol, "given", None) or None))
-    if script.check is not None and not script.unsupported:
+    if script.by_two_trials:
         # Rosenauer's rule fails (the Dreispann with v_A, v_B): similar point rows, two trials
         TrialDrawer(vc, script, {vc.mech.frame}).run(set(vc.mech.moving_links))
         return script

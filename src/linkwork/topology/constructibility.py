@@ -352,6 +352,12 @@ class VelocityScript:
         """Every link reached: directly, or by false position from a trial driver."""
         return not self.unreached and not self.unsupported
 
+    @property
+    def by_two_trials(self) -> bool:
+        """Drawn by false position with two trials (similar point rows fixed by ``check``); the
+        links the rule alone does not reach stay named in ``unreached``."""
+        return self.check is not None and not self.unsupported
+
     def verdict(self) -> str:
         if self.check is not None:
             t, d, c = self.trial, self.scale_by, self.check
