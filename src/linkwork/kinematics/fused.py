@@ -16,6 +16,11 @@ The arithmetic is that of the per-group kernels (the same per-sample helpers), s
 are the same to the last bit but for numba's contractions; the statuses, condition numbers,
 error bounds and the polishing of samples near singular positions are those of the per-group
 path (tests/kinematics/test_fused.py holds the two to each other).
+
+Measured (bench/README.md), the fused pass is no faster than the per-group path: the time is
+the dyads' arithmetic and the error bounds, not the passes over memory it saves. It stays for
+`solve_designs` (a design's constants as a row of the tables); whether to keep both paths is
+open (issue 17).
 """
 
 from __future__ import annotations
