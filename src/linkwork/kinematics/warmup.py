@@ -41,7 +41,7 @@ def compile_kernels() -> None:
 
 
 @contextmanager
-def compiled_loops() -> Iterator[None]:
+def loaded_compiled_loops() -> Iterator[None]:
     """The compiled loops for every batch size within the block (loaded first, once per
     process); `kernels.compiled_loops` holds the choice for this thread only, so the solves
     around the block keep theirs."""

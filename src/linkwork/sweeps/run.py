@@ -25,7 +25,7 @@ from ..errors import InputError, LinkworkError
 from ..io.files import load, load_text, resolve
 from ..kinematics import solve, whole_motion
 from ..kinematics.export import with_unit
-from ..kinematics.warmup import compiled_loops
+from ..kinematics.warmup import loaded_compiled_loops
 from ..model import Mechanism
 from . import designs as D
 from .metrics import Metric, evaluate, parse_metric
@@ -103,7 +103,7 @@ def run_designs(spec: str, params: list[D.Parameter], rows: np.ndarray, metrics:
     """Rows of [metric values…, ok fraction, status] for the designs `rows` (one process) of
     the mechanism `text` (read from `spec` if empty); `compiled`: this process solves enough
     designs to load the compiled loops first (`warmup.compile_kernels`, once per process)."""
-    with compiled_loops() if compiled else nullcontext():
+    with loaded_compiled_loops() if compiled else nullcontext():
         return _rows(spec, params, rows, metrics, inputs, text, base_dir)
 
 
@@ -186,7 +186,7 @@ def execute(p: SweepPlan, *, workers: int | None = None, chunk: int | None = Non
     if scheduler is not None:
         _on_cluster(scheduler, todo, args, record)
     else:
-        with compiled_loops() if compiled else nullcontext():
+        with loaded_compiled_loops() if compiled else nullcontext():
             if processes == 1:
                 for i in todo:
                     record(i, run_designs(*args(i)))
