@@ -1,4 +1,4 @@
-"""`fused.solve_designs`: D designs × N inputs in one batch give, design by design, the
+"""`designs.solve_designs`: D designs × N inputs in one batch give, design by design, the
 solution `solve` gives each design on its own (statuses, poses, rates, condition numbers,
 error bounds), designs that cannot assemble at some inputs and designs past a change of their
 Grashof type included."""
@@ -10,7 +10,7 @@ import pytest
 
 import linkwork
 from linkwork.kinematics import kernels
-from linkwork.kinematics.fused import solve_designs
+from linkwork.kinematics.designs import solve_designs
 from linkwork.kinematics.solution import Status
 from linkwork.sweeps import designs as D
 

@@ -1,6 +1,6 @@
 """Kinematics: solving a `Mechanism` into a `Solution` (positions, velocities, accelerations)."""
 
-from .fused import solve_designs
+from .designs import solve_designs
 from .intermittent import engagement
 from .kernels import compiled_loops
 from .motion import whole_motion
