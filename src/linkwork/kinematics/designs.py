@@ -28,6 +28,10 @@ from .fused import Tables, solve_blocks, tables
 #: visit solved at once, as `motion._bisect` does three at a time): 31 samples per limit and
 #: batch, twelve batches for the sixty steps, each batch one pass over all designs
 TREE = 5
+#: designs per batch of `whole_motions`: a design's plan, tables and change points are cached
+#: per mechanism (`solver.plan`, `branches.branch_schedule`: 64 mechanisms each), and its
+#: whole motion needs them several times, so more designs at a time would compute them again
+WHOLE_BATCH = 32
 
 
 def _one_by_one(isolate: bool, fn, *args, **kwargs):
@@ -360,6 +364,9 @@ def whole_motions(mechs, *, compiled: bool | None = None, isolate: bool = False)
     from .motion import whole_motion
 
     mechs = list(mechs)
+    if len(mechs) > WHOLE_BATCH:
+        return [s for i in range(0, len(mechs), WHOLE_BATCH) for s in whole_motions(
+            mechs[i:i + WHOLE_BATCH], compiled=compiled, isolate=isolate)]
     out: list = [None] * len(mechs)
     inputs, velocities, times = {}, {}, {}
     search: list[_Search] = []
