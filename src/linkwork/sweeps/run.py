@@ -35,6 +35,9 @@ from .metrics import Metric, evaluate, evaluate_designs, parse_metric
 #: designs per process from which a sweep loads the kinematics' compiled loops first: about a
 #: second (CPU) of loading against some 60 ms a four-bar design saves (2 ms instead of 60)
 COMPILED_FROM = 40
+#: least designs per chunk on a Dask cluster (unless the sweep has fewer): a chunk is one batch
+#: (`run_designs`), and a task's own cost (some milliseconds) wants several designs
+DASK_CHUNK = 16
 
 
 @dataclass
@@ -187,7 +190,8 @@ def execute(p: SweepPlan, *, workers: int | None = None, chunk: int | None = Non
     n = len(p.designs)
     workers = max(1, workers or os.cpu_count() or 1)
     if scheduler is not None and chunk is None:
-        chunk = max(1, min(200, math.ceil(n / 64)))
+        # some 64 chunks (for any number of workers), but a batch of at least DASK_CHUNK
+        chunk = max(1, min(200, max(DASK_CHUNK, math.ceil(n / 64))))
     chunk = chunk or max(1, min(200, math.ceil(n / (4 * workers))))
     parts = _chunks(n, chunk)
     done: dict[int, list] = {}
@@ -221,26 +225,28 @@ def execute(p: SweepPlan, *, workers: int | None = None, chunk: int | None = Non
         if progress:
             progress(finished, n)
 
-    # enough designs per process to pay for loading the compiled loops? (on a cluster: per
-    # chunk, each worker loading them once; local processes are forked from this one after it
-    # loaded them, where processes start by fork, so they load them once here)
-    processes = 1 if workers == 1 or len(todo) <= 1 else min(workers, len(todo))
-    compiled = chunk >= COMPILED_FROM if scheduler is not None else \
-        (n - finished) / processes >= COMPILED_FROM
-    # … or inputs enough per design for the compiled loops on their own
-    compiled |= p.inputs is not None and len(p.inputs) > kernels.INTERPRETED_UP_TO
-    args = lambda i: (p.spec, p.params, p.designs[parts[i].start:parts[i].stop], p.metrics, p.inputs,
-                      p.text, p.base_dir, compiled, batch)
+    def compiled_for(processes: int) -> bool:
+        """Enough designs per process to pay for loading the compiled loops (once per process:
+        a cluster's worker keeps them for its next chunks; local processes are forked from
+        this one after it loaded them, where processes start by fork), or inputs enough per
+        design for the compiled loops on their own?"""
+        return (n - finished) / processes >= COMPILED_FROM or \
+            (p.inputs is not None and len(p.inputs) > kernels.INTERPRETED_UP_TO)
+
+    args = lambda i, compiled: (p.spec, p.params, p.designs[parts[i].start:parts[i].stop], p.metrics,
+                                p.inputs, p.text, p.base_dir, compiled, batch)
     if scheduler is not None:
-        _on_cluster(scheduler, todo, args, record)
+        _on_cluster(scheduler, todo, compiled_for, args, record)
     else:
+        processes = 1 if workers == 1 or len(todo) <= 1 else min(workers, len(todo))
+        compiled = compiled_for(processes)
         with loaded_compiled_loops() if compiled else nullcontext():
             if processes == 1:
                 for i in todo:
-                    record(i, run_designs(*args(i)))
+                    record(i, run_designs(*args(i, compiled)))
             else:
                 with ProcessPoolExecutor(max_workers=processes) as pool:
-                    futures = {pool.submit(run_designs, *args(i)): i for i in todo}
+                    futures = {pool.submit(run_designs, *args(i, compiled)): i for i in todo}
                     for f in as_completed(futures):
                         record(futures[f], f.result())
     rows = []
@@ -250,8 +256,9 @@ def execute(p: SweepPlan, *, workers: int | None = None, chunk: int | None = Non
     return rows
 
 
-def _on_cluster(scheduler, todo: list[int], args, record) -> None:
-    """Run the chunks `todo` on a Dask cluster (dask.distributed), recording each as it ends."""
+def _on_cluster(scheduler, todo: list[int], compiled_for, args, record) -> None:
+    """Run the chunks `todo` on a Dask cluster (dask.distributed), recording each as it ends;
+    the compiled loops if its workers have designs enough each (`compiled_for`)."""
     try:
         from distributed import Client, as_completed as finished
     except ImportError:  # pragma: no cover - distributed is a dependency
@@ -265,7 +272,8 @@ def _on_cluster(scheduler, todo: list[int], args, record) -> None:
     else:
         client = scheduler
     try:
-        futures = {client.submit(run_designs, *args(i), pure=False): i for i in todo}
+        compiled = compiled_for(max(1, len(client.scheduler_info().get("workers", {}))))
+        futures = {client.submit(run_designs, *args(i, compiled), pure=False): i for i in todo}
         for f in finished(list(futures), loop=client.loop):
             record(futures[f], f.result())
     finally:
