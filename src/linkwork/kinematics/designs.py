@@ -69,10 +69,11 @@ def _fused(mech: Mechanism):
     return None if tab is None else (solvers, tab)
 
 
-def _prepare(mech: Mechanism, inputs, times, velocities, accelerations) -> _Design | None:
+def _prepare(mech: Mechanism, inputs, times, velocities, accelerations,
+             schedule: dict | None = None) -> _Design | None:
     """A design's samples as `solve` takes them (plain numbers or quantities; `times`: each
     driver's law at those times), with its tables and branches; None when the fused pass
-    does not take it."""
+    does not take it; `schedule`: its change points, if known (one driver)."""
     from .branches import branch_schedule, path_schedule
     from .groups import input_coefficients
     from .solver import _as_2d, _plain_numbers
@@ -101,7 +102,7 @@ def _prepare(mech: Mechanism, inputs, times, velocities, accelerations) -> _Desi
     c = input_coefficients(mech, values, velocities, accelerations, None, 2)
     coef = np.stack([c[d.joint] for d in mech.drivers])
     if nd == 1:
-        schedules = branch_schedule(mech)
+        schedules = branch_schedule(mech) if schedule is None else schedule
 
         def signs_at(sl: slice) -> dict:
             return {g: sch.signs(values[sl, 0]) for g, sch in schedules.items()}
@@ -115,7 +116,7 @@ def _prepare(mech: Mechanism, inputs, times, velocities, accelerations) -> _Desi
 
 def solve_designs(mechs, inputs=None, *, times=None, velocities=None, accelerations=None,
                   per_design: bool = False, compiled: bool | None = None,
-                  isolate: bool = False) -> list:
+                  isolate: bool = False, schedules: list | None = None) -> list:
     """Solutions of D designs of one mechanism (e.g. `sweeps.designs.apply` of each design's
     parameter values), as `solve(mech, inputs, times=…, velocities=…, accelerations=…)` gives
     each (order 2): one batch of all designs' samples, each `Solution` a view of its part.
@@ -128,7 +129,8 @@ def solve_designs(mechs, inputs=None, *, times=None, velocities=None, accelerati
     Designs the fused pass does not take, or whose number of links, frame or drivers differ
     from the batch's, are solved one by one with `solve`, with the same result. `isolate`:
     a design that fails gets its `LinkworkError` in its place in the list, the others are
-    solved. Plain numbers or quantities as for `solve`."""
+    solved. Plain numbers or quantities as for `solve`. `schedules`: per design its
+    `branches.branch_schedule` where known already (one driver; None: found here)."""
     from .solver import KERNEL_BLOCK, _pose_array, _solution, solve
     from .precision import polishable
 
@@ -150,7 +152,8 @@ def solve_designs(mechs, inputs=None, *, times=None, velocities=None, accelerati
         args = dict(inputs=arg(inputs, d), times=arg(times, d), velocities=arg(velocities, d),
                     accelerations=arg(accelerations, d))
         prep = _one_by_one(isolate, _prepare, m, args["inputs"], args["times"],
-                           args["velocities"], args["accelerations"])
+                           args["velocities"], args["accelerations"],
+                           None if schedules is None else schedules[d])
         if isinstance(prep, LinkworkError):
             out[d] = prep
             continue
@@ -203,19 +206,19 @@ class _Search:
 
     index: int
     mech: Mechanism
+    solvers: tuple
     tab: Tables
     u0: float
     prismatic: bool
-    schedule: dict
+    schedule: dict  # `branches.branch_schedule` (empty until known)
 
 
-def _assembles(designs: list[_Search], us: list[np.ndarray]) -> list[np.ndarray]:
-    """`motion._assembles` of each design at its inputs, all in one batch: positions only
-    (the fused pass's first loop), with the design's assembly branches, an input within
-    `motion.CHANGE_POINT_TOL` of a change point counting as assembling."""
-    from .branches import near_change_point
-    from .motion import CHANGE_POINT_TOL
-
+def _placed(designs: list[_Search], us: list[np.ndarray], groups: list[int] | None = None):
+    """Positions only of each design at its inputs, in one batch (the fused pass's first loop,
+    design by design over its part): the first `groups[k]` groups of design k in the solution
+    order (all by default), with the design's assembly branches. Returns per design whether
+    every one of them assembles, and the poses: (Q0[link, (x, y, θ), sample] — θ not set —,
+    T[link, (cos θ, sin θ), sample], the designs' first samples)."""
     sizes = [u.size for u in us]
     starts = np.concatenate([[0], np.cumsum(sizes)]).astype(int)
     S, B = int(starts[-1]), max(max(sizes, default=1), 1)
@@ -226,20 +229,94 @@ def _assembles(designs: list[_Search], us: list[np.ndarray]) -> list[np.ndarray]
     ok = np.ones(S, dtype=bool)
     R = np.empty((max(max(s.tab.vectors for s in designs), 1), B))
     signs = np.empty((max(max(len(s.tab.signs) for s in designs), 1), B))
-    for s, u, lo, hi in zip(designs, us, starts[:-1], starts[1:]):
+    for k, (s, u, lo, hi) in enumerate(zip(designs, us, starts[:-1], starts[1:])):
         T[s.mech.link_index[s.mech.frame], 0, lo:hi] = 1.0
         U[0, 0, lo:hi] = u
         given = {g: sch.signs(u) for g, sch in s.schedule.items()}
         for row, (group, design) in enumerate(s.tab.signs):
             signs[row, :hi - lo] = given.get(group, design)
-        kernels.fused_positions(ok, s.tab.ops, s.tab.fl, Q0, T, U, signs, R, int(lo), int(hi))
+        g = len(s.tab.ops) if groups is None else groups[k]
+        kernels.fused_positions(ok, s.tab.ops[:g], s.tab.fl[:g], Q0, T, U, signs, R, int(lo),
+                                int(hi))
+    return [ok[lo:hi] for lo, hi in zip(starts[:-1], starts[1:])], (Q0, T, starts)
+
+
+def _assembles(designs: list[_Search], us: list[np.ndarray]) -> list[np.ndarray]:
+    """`motion._assembles` of each design at its inputs, all in one batch: positions only,
+    with the design's assembly branches, an input within `motion.CHANGE_POINT_TOL` of a change
+    point counting as assembling."""
+    from .branches import near_change_point
+    from .motion import CHANGE_POINT_TOL
+
     out = []
-    for s, u, lo, hi in zip(designs, us, starts[:-1], starts[1:]):
-        a = ok[lo:hi].copy()
+    for s, u, a in zip(designs, us, _placed(designs, us)[0]):
+        a = a.copy()
         if s.schedule and not a.all():  # a change point is passed, not a limit
             scale = 1.0 if not s.prismatic else s.mech.length_scale
             a |= near_change_point(s.mech, u, CHANGE_POINT_TOL * scale)
         out.append(a)
+    return out
+
+
+class _Touches(Exception):
+    """A branch scan met a touching minimum: the design's change points need `branch_schedule`."""
+
+
+def _no_change_points(designs: list[_Search]) -> list[bool]:
+    """Per design (closed-form groups), whether `branches.branch_schedule` surely finds no change
+    point: its scans of every dyad's discriminant h² and pivot gap over the input's period
+    (the same grid, the design's signs, as long as none is found), taken for all designs in
+    one batch, meet no touching minimum (`branches._touches`, which would refine it) and the
+    design is not drawn at one (which `branch_schedule` warns of). False: ask
+    `branch_schedule`, as for circle–line groups (whose scans this does not take)."""
+    from .branches import BRANCHING, CHANGE, SCAN, _touches
+    from .groups import State
+
+    out = [False] * len(designs)
+    todo = [k for k, s in enumerate(designs)
+            if all(g.kind in ("driver", "RRR") for g in s.solvers)
+            and any(g.kind in BRANCHING for g in s.solvers)]
+    if not todo:
+        return out
+    designs = [designs[k] for k in todo]
+    grids = []
+    for s in designs:
+        span = 8 * s.mech.length_scale if s.prismatic else 2 * np.pi
+        grid = s.u0 - span / 2 + span * np.arange(SCAN + 1) / SCAN
+        grids.append(np.append(grid, s.u0))  # the design input last
+    dyads = [[i for i, g in enumerate(s.solvers) if g.kind == "RRR"] for s in designs]
+    clear = np.ones(len(designs), dtype=bool)
+    for j in range(max(len(d) for d in dyads)):
+        # the positions up to and including each design's j-th dyad: NaN where any fails
+        oks, (Q0, T, starts) = _placed(designs, grids, [d[j] + 1 if j < len(d) else 0
+                                                        for d in dyads])
+        for k, (s, grid, ok) in enumerate(zip(designs, grids, oks)):
+            if j >= len(dyads[k]) or not clear[k]:
+                continue
+            lo, hi = starts[k], starts[k + 1]
+            L = len(s.mech.link_names)
+            Q = Q0[:L, :, lo:hi].copy()[None].transpose(0, 3, 1, 2)
+            Q[:, ~ok] = np.nan
+            state = State(s.mech, Q, {}, T=np.where(ok, T[:L, :, lo:hi], np.nan),
+                          known=set(range(L)))
+            dyad = s.solvers[dyads[k][j]]
+            h2 = dyad.discriminant(state)
+            if abs(h2[-1]) < CHANGE:  # drawn at a change or dead position
+                clear[k] = False
+                continue
+            scan = grid[:-1]
+            for g in (h2[:-1], dyad.pivot_gap(state)[:-1]):
+                def scanned(u: np.ndarray, g=g, scan=scan) -> np.ndarray:
+                    if u is scan:
+                        return g
+                    raise _Touches  # a minimum to refine
+                try:
+                    _touches(scanned, scan, 0, [], 0.0)
+                except _Touches:
+                    clear[k] = False
+                    break
+    for k, c in zip(todo, clear):
+        out[k] = bool(c)
     return out
 
 
@@ -325,18 +402,19 @@ def _limits(designs: list[_Search]) -> list:
     return out
 
 
-def _motion_inputs(mech: Mechanism, limits) -> tuple[np.ndarray, np.ndarray]:
+def _motion_inputs(mech: Mechanism, limits, schedule: dict) -> tuple[np.ndarray, np.ndarray]:
     """The inputs and input speeds of `motion.whole_motion` of a one-driver, constant-speed
     design whose `input_limits` are `limits`: a crank's period in 1° steps, a rocker from the
     design position to its upper limit, back to the lower and forward to the design position
-    (1° steps, or 1/200 of a slider's stroke), its speed reversed on the way back."""
+    (1° steps, or 1/200 of a slider's stroke), its speed reversed on the way back. `schedule`:
+    its change points (`branches.branch_schedule`; without any, the chain's period is a turn)."""
     from .branches import chain_period
 
     d = mech.drivers[0]
     u0, speed = mech.driver_input_at_design(d), d.law.speed
     if limits is None:
         h = np.radians(1.0)
-        turn = chain_period(mech)
+        turn = chain_period(mech) if schedule else 2 * np.pi
         n = int(round(turn / h))
         u = u0 + np.sign(speed or 1.0) * np.linspace(0.0, turn, n + 1)
         return u, np.full(u.shape, speed)
@@ -368,7 +446,7 @@ def whole_motions(mechs, *, compiled: bool | None = None, isolate: bool = False)
         return [s for i in range(0, len(mechs), WHOLE_BATCH) for s in whole_motions(
             mechs[i:i + WHOLE_BATCH], compiled=compiled, isolate=isolate)]
     out: list = [None] * len(mechs)
-    inputs, velocities, times = {}, {}, {}
+    inputs, velocities, times, schedules = {}, {}, {}, {}
     search: list[_Search] = []
     alone = []
     with kernels.compiled_loops(compiled):
@@ -385,27 +463,34 @@ def whole_motions(mechs, *, compiled: bool | None = None, isolate: bool = False)
                     else:
                         times[k] = np.linspace(0.0, min(law.duration for law in laws), 361)
                     continue
-                from .branches import branch_schedule
                 d = m.drivers[0]
-                search.append(_Search(k, m, fused[1], m.driver_input_at_design(d),
-                                      m.joint(d.joint).kind == "prismatic", branch_schedule(m)))
+                search.append(_Search(k, m, *fused, m.driver_input_at_design(d),
+                                      m.joint(d.joint).kind == "prismatic", {}))
             except LinkworkError as exc:
                 if not isolate:
                     raise
                 out[k] = exc
+        # the change points: none, as the batched scans show for most designs, or
+        # `branch_schedule`'s (Brent's method on each touching minimum)
+        from .branches import branch_schedule
+        for s, clear in zip(search, _no_change_points(search) if search else []):
+            if not clear:
+                s.schedule = branch_schedule(s.mech)
         limits = _limits(search) if search else []
         for s, lim in zip(search, limits):
             if lim is False:
                 alone.append(s.index)
             else:
-                inputs[s.index], velocities[s.index] = _motion_inputs(s.mech, lim)
+                inputs[s.index], velocities[s.index] = _motion_inputs(s.mech, lim, s.schedule)
+                schedules[s.index] = s.schedule
         for k in sorted(alone):
             out[k] = _one_by_one(isolate, whole_motion, mechs[k], order=2)
         batch = sorted(set(inputs) | set(times))
         sols = solve_designs([mechs[k] for k in batch], [inputs.get(k) for k in batch],
                              times=[times.get(k) for k in batch],
                              velocities=[velocities.get(k) for k in batch], per_design=True,
-                             compiled=compiled, isolate=isolate)
+                             compiled=compiled, isolate=isolate,
+                             schedules=[schedules.get(k) for k in batch])
     for k, s in zip(batch, sols):
         out[k] = s
     return out
