@@ -30,9 +30,29 @@ from .jet import Jet
 
 NEWTON_TOL = 1e-12  # relative to the mechanism's length scale
 LIMIT_RESIDUAL = 1e-8  # … a pose closed this well at a limit position is returned (singular)
+#: a Newton residual at most this many times ε·(the drawing's coordinates) is the rounding of
+#: the equations themselves (polished samples of the library: up to 6.5; `backward_error`)
+ROUNDING_RESIDUAL = 8.0
 # above this the linear solve for the rates loses every digit (condition × ε ~ 1): the rates of
 # such samples are NaN, not invented (the sample is singular either way)
 UNRELIABLE_CONDITION = 1e14
+
+
+def backward_error(mech: Mechanism, residual: np.ndarray) -> np.ndarray:
+    """Newton's final residual (a length, per sample) as the error budget takes it
+    (`precision.ErrorBudget`, the group's backward error over L). A residual at the level of
+    the equations' rounding (`ROUNDING_RESIDUAL`·ε·the drawing's coordinates) counts as none:
+    Newton's last step leaves the exact poses rounded, as a closed form does, and the budget
+    counts that rounding for every group alike (ε·m₀). The residual measured there is rounding
+    noise that differs with the path Newton came along (a march carried over from a drag's
+    previous frame or marched afresh, 0.3 … 3 ε·m₀ at the same sample): added to the bound it
+    moved samples whose bound lies near the tolerance between ok and singular. A larger
+    residual (a limit position, an over-closed group's least squares) is counted in full."""
+    from .precision import EPS, coordinate_size  # (precision imports this module)
+
+    r = residual / mech.length_scale
+    with np.errstate(invalid="ignore"):
+        return np.where(r <= ROUNDING_RESIDUAL * EPS * coordinate_size(mech), 0.0, r)
 
 
 def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
@@ -678,7 +698,7 @@ class GroupSolver:
         """Newton's method on the group alone, from `guess` (N, k, 3) poses."""
         if self.cam is not None:
             ok, err = cam_group.positions(self.cam, state, guess, NEWTON_TOL * self.mech.length_scale)
-            state.residuals[self.group] = err / self.mech.length_scale
+            state.residuals[self.group] = backward_error(self.mech, err)
             return ok
         idx = [state.li(ln) for ln in self.group.links]
         N = state.Q.shape[1]
@@ -717,7 +737,7 @@ class GroupSolver:
         state.Q[0][:, idx, :] = q
         state.forget_trig(idx)
         # the backward error of the poses, for the forward error estimate (`precision`)
-        state.residuals[self.group] = err / scale
+        state.residuals[self.group] = backward_error(self.mech, err)
         return converged
 
     # ------------------------------------------------------------------ derivatives
