@@ -129,12 +129,17 @@ def _world(Q0, T, i, s0, s1, n):
 
 
 @_loop()
+def _origin(c, sn, s0, s1, px, py):
+    """Origin of a link at angle (c, sn) = (cos θ, sin θ) whose design point s lies at (px, py)."""
+    return px - (c * s0 - sn * s1), py - (sn * s0 + c * s1)
+
+
+@_loop()
 def _place(Q0, T, i, c, sn, s0, s1, px, py, n):
     """Place link i at sample n: angle given by c, sn = cos θ, sin θ, its design point s at
     (px, py)."""
     T[i, 0, n], T[i, 1, n] = c, sn
-    Q0[i, 0, n] = px - (c * s0 - sn * s1)
-    Q0[i, 1, n] = py - (sn * s0 + c * s1)
+    Q0[i, 0, n], Q0[i, 1, n] = _origin(c, sn, s0, s1, px, py)
 
 
 @_loop(2)
@@ -163,6 +168,17 @@ def _rrr_position(Q0, T, iA, pa0, pa1, iC, pc0, pc1, i1, i2, diff, L1sq, tol, si
     dyad assembles and the hinge vectors B − A, B − C."""
     ax, ay = _world(Q0, T, iA, pa0, pa1, n)
     cx, cy = _world(Q0, T, iC, pc0, pc1, n)
+    good, r1x, r1y, r2x, r2y, c1, s1, c2, s2 = _rrr_solve(ax, ay, cx, cy, diff, L1sq, tol, sign,
+                                                          k10, k11, k20, k21)
+    _place(Q0, T, i1, c1, s1, pa0, pa1, ax, ay, n)
+    _place(Q0, T, i2, c2, s2, pc0, pc1, cx, cy, n)
+    return good, r1x, r1y, r2x, r2y
+
+
+@_loop()
+def _rrr_solve(ax, ay, cx, cy, diff, L1sq, tol, sign, k10, k11, k20, k21):
+    """The circle–circle intersection of `rrr_positions` from the world pivots A and C: whether
+    it assembles, the hinge vectors B − A, B − C and the two links' cos θ, sin θ."""
     dx, dy = cx - ax, cy - ay
     D2 = dx * dx + dy * dy
     inv = 1.0 / math.sqrt(D2)
@@ -176,37 +192,46 @@ def _rrr_position(Q0, T, iA, pa0, pa1, iC, pc0, pc1, i1, i2, diff, L1sq, tol, si
     r2x, r2y = ax + r1x - cx, ay + r1y - cy  # B − C
     n1 = 1.0 / math.sqrt(r1x * r1x + r1y * r1y)
     n2 = 1.0 / math.sqrt(r2x * r2x + r2y * r2y)
-    c1, s1 = (r1x * k10 + r1y * k11) * n1, (r1y * k10 - r1x * k11) * n1
-    c2, s2 = (r2x * k20 + r2y * k21) * n2, (r2y * k20 - r2x * k21) * n2
-    _place(Q0, T, i1, c1, s1, pa0, pa1, ax, ay, n)
-    _place(Q0, T, i2, c2, s2, pc0, pc1, cx, cy, n)
-    return good, r1x, r1y, r2x, r2y
+    return (good, r1x, r1y, r2x, r2y, (r1x * k10 + r1y * k11) * n1,
+            (r1y * k10 - r1x * k11) * n1, (r2x * k20 + r2y * k21) * n2,
+            (r2y * k20 - r2x * k21) * n2)
 
 
 @_loop()
 def _point_rates(Q, T, i, s0, s1, n):
     """Velocity and acceleration (vx, vy, ax, ay) of design point s on link i at sample n."""
-    c, sn = T[i, 0, n], T[i, 1, n]
+    return _motion(T[i, 0, n], T[i, 1, n], s0, s1, Q[1, i, 0, n], Q[1, i, 1, n], Q[1, i, 2, n],
+                   Q[2, i, 0, n], Q[2, i, 1, n], Q[2, i, 2, n])
+
+
+@_loop()
+def _motion(c, sn, s0, s1, vx, vy, w, ax2, ay2, at2):
+    """Velocity and acceleration (vx, vy, ax, ay) of design point s on a link at angle (c, sn)
+    whose origin's Taylor coefficients are (vx, vy, ω) and (ax2, ay2, at2) (second ones halved)."""
     rx, ry = c * s0 - sn * s1, sn * s0 + c * s1
-    w, al = Q[1, i, 2, n], 2.0 * Q[2, i, 2, n]
+    al = 2.0 * at2
     ww = w * w
-    return (Q[1, i, 0, n] - w * ry, Q[1, i, 1, n] + w * rx,
-            2.0 * Q[2, i, 0, n] - al * ry - ww * rx, 2.0 * Q[2, i, 1, n] + al * rx - ww * ry)
+    return (vx - w * ry, vy + w * rx, 2.0 * ax2 - al * ry - ww * rx,
+            2.0 * ay2 + al * rx - ww * ry)
 
 
 @_loop()
 def _set_rates(Q, T, i, s0, s1, n, vx, vy, ax, ay, om, al):
-    """Rates of link i from the motion (v, a) of its design point s and its ω and α:
+    """Rates of link i from the motion (v, a) of its design point s and its ω and α
+    (`_origin_rates`)."""
+    (Q[1, i, 0, n], Q[1, i, 1, n], Q[1, i, 2, n], Q[2, i, 0, n], Q[2, i, 1, n],
+     Q[2, i, 2, n]) = _origin_rates(T[i, 0, n], T[i, 1, n], s0, s1, vx, vy, ax, ay, om, al)
+
+
+@_loop()
+def _origin_rates(c, sn, s0, s1, vx, vy, ax, ay, om, al):
+    """Taylor coefficients (first: x, y, θ; second: x, y, θ, halved) of a link at angle
+    (c, sn) from the motion (v, a) of its design point s and its ω and α:
     v_origin = v − ω ⊥r, a_origin = a − α ⊥r + ω² r, r = R(θ)s, ⊥(x, y) = (−y, x)."""
-    c, sn = T[i, 0, n], T[i, 1, n]
     rx, ry = c * s0 - sn * s1, sn * s0 + c * s1
     oo = om * om
-    Q[1, i, 0, n] = vx + om * ry
-    Q[1, i, 1, n] = vy - om * rx
-    Q[1, i, 2, n] = om
-    Q[2, i, 0, n] = 0.5 * (ax + al * ry + oo * rx)
-    Q[2, i, 1, n] = 0.5 * (ay - al * rx + oo * ry)
-    Q[2, i, 2, n] = 0.5 * al
+    return (vx + om * ry, vy - om * rx, om, 0.5 * (ax + al * ry + oo * rx),
+            0.5 * (ay - al * rx + oo * ry), 0.5 * al)
 
 
 @_loop(3)
@@ -234,6 +259,21 @@ def _rrr_rate(Q, T, iA, a0, a1, iC, c0, c1, i1, i2, ba0, ba1, bc0, bc1, mid, hd2
     vAx, vAy, aAx, aAy = _point_rates(Q, T, iA, a0, a1, n)
     vCx, vCy, aCx, aCy = _point_rates(Q, T, iC, c0, c1, n)
     c1_, s1, c2, s2 = T[i1, 0, n], T[i1, 1, n], T[i2, 0, n], T[i2, 1, n]
+    om1, om2, al1, al2, k = _rrr_rate_solve(vAx, vAy, aAx, aAy, vCx, vCy, aCx, aCy, c1_, s1, c2,
+                                            s2, ba0, ba1, bc0, bc1, mid, hd2, unreliable)
+    _set_rates(Q, T, i1, a0, a1, n, vAx, vAy, aAx, aAy, om1, al1)
+    _set_rates(Q, T, i2, c0, c1, n, vCx, vCy, aCx, aCy, om2, al2)
+    x0, x1, x2 = _sizes_2(Q, i1, n, L, inv_omega)
+    y0, y1, y2 = _sizes_2(Q, i2, n, L, inv_omega)
+    _group_error_2(k, m, E, j, eps, max(x0, y0), max(x1, y1), max(x2, y2))
+    return k
+
+
+@_loop()
+def _rrr_rate_solve(vAx, vAy, aAx, aAy, vCx, vCy, aCx, aCy, c1_, s1, c2, s2, ba0, ba1, bc0, bc1,
+                    mid, hd2, unreliable):
+    """ω1, ω2, α1, α2 and the condition number of `rrr_rates` from the motion of A and C and
+    the links' cos θ, sin θ (NaN where the condition number reaches `unreliable`)."""
     r1x, r1y = c1_ * ba0 - s1 * ba1, s1 * ba0 + c1_ * ba1
     r2x, r2y = c2 * bc0 - s2 * bc1, s2 * bc0 + c2 * bc1
     inv = 1.0 / (r1y * r2x - r1x * r2y)
@@ -247,16 +287,10 @@ def _rrr_rate(Q, T, iA, a0, a1, iC, c0, c1, i1, i2, ba0, ba1, bc0, bc1, mid, hd2
     al2 = -(w2x * r1x + w2y * r1y) * inv
     b = r1x * r2x + r1y * r2y
     k = (mid + math.sqrt(hd2 + b * b)) * abs(inv)
-    if not k < math.inf:  # NaN and ∞: the dyad is singular (or unassembled) here
-        k = math.inf
-    if k >= unreliable:
-        om1 = om2 = al1 = al2 = math.nan
-    _set_rates(Q, T, i1, a0, a1, n, vAx, vAy, aAx, aAy, om1, al1)
-    _set_rates(Q, T, i2, c0, c1, n, vCx, vCy, aCx, aCy, om2, al2)
-    x0, x1, x2 = _sizes_2(Q, i1, n, L, inv_omega)
-    y0, y1, y2 = _sizes_2(Q, i2, n, L, inv_omega)
-    _group_error_2(k, m, E, j, eps, max(x0, y0), max(x1, y1), max(x2, y2))
-    return k
+    k = k if k < math.inf else math.inf  # NaN and ∞: the dyad is singular (or unassembled)
+    bad = k >= unreliable
+    return (math.nan if bad else om1, math.nan if bad else om2, math.nan if bad else al1,
+            math.nan if bad else al2, k)
 
 
 @_loop(2)
@@ -284,22 +318,30 @@ def _rrp_position(Q0, T, iA, a0, a1, ig, p0, p1, e00, e01, rsq, tol, sign, ir, i
     cg, sg = T[ig, 0, n], T[ig, 1, n]
     ax, ay = _world(Q0, T, iA, a0, a1, n)
     qx, qy = _world(Q0, T, ig, p0, p1, n)
-    ex, ey = cg * e00 - sg * e01, sg * e00 + cg * e01
-    wx, wy = qx - ax, qy - ay
-    b = ex * wx + ey * wy
-    disc = b * b - (wx * wx + wy * wy - rsq)
-    if disc < 0.0 and disc > tol:
-        disc = 0.0
-    lam = sign * math.sqrt(disc) - b  # NaN where the rod's circle misses the track
-    px, py = qx + lam * ex, qy + lam * ey
-    good = px - px == 0.0 and py - py == 0.0  # not NaN or ∞
-    rx, ry = px - ax, py - ay
-    nr = 1.0 / math.sqrt(rx * rx + ry * ry)
-    c, sn = (rx * k0 + ry * k1) * nr, (ry * k0 - rx * k1) * nr
+    good, rx, ry, c, sn, px, py = _rrp_solve(ax, ay, qx, qy, cg, sg, e00, e01, rsq, tol, sign, k0,
+                                             k1)
     _place(Q0, T, ir, c, sn, a0, a1, ax, ay, n)
     _place(Q0, T, ib, cg, sg, p0, p1, px, py, n)
     Q0[ib, 2, n] = Q0[ig, 2, n]
     return good, rx, ry
+
+
+@_loop()
+def _rrp_solve(ax, ay, qx, qy, cg, sg, e00, e01, rsq, tol, sign, k0, k1):
+    """The circle–line intersection of `rrp_positions` from the world pivot A, the world design
+    place Q of P on the guide and the guide's cos θ, sin θ: whether it assembles, the rod's
+    vector A → P, its cos θ, sin θ and P."""
+    ex, ey = cg * e00 - sg * e01, sg * e00 + cg * e01
+    wx, wy = qx - ax, qy - ay
+    b = ex * wx + ey * wy
+    disc = b * b - (wx * wx + wy * wy - rsq)
+    disc = 0.0 if disc < 0.0 and disc > tol else disc
+    lam = sign * math.sqrt(disc) - b  # NaN where the rod's circle misses the track
+    px, py = qx + lam * ex, qy + lam * ey
+    good = (px - px == 0.0) & (py - py == 0.0)  # not NaN or ∞
+    rx, ry = px - ax, py - ay
+    nr = 1.0 / math.sqrt(rx * rx + ry * ry)
+    return good, rx, ry, (rx * k0 + ry * k1) * nr, (ry * k0 - rx * k1) * nr, px, py
 
 
 @_loop(3)
@@ -327,33 +369,43 @@ def _rrp_rate(Q, T, iA, a0, a1, ig, p0, p1, e00, e01, ap0, ap1, length, ir, ib, 
     number."""
     vAx, vAy, aAx, aAy = _point_rates(Q, T, iA, a0, a1, n)
     c, sn, cg, sg = T[ir, 0, n], T[ir, 1, n], T[ig, 0, n], T[ig, 1, n]
-    rx, ry = c * ap0 - sn * ap1, sn * ap0 + c * ap1
-    ex, ey = cg * e00 - sg * e01, sg * e00 + cg * e01
     # P's place along the track (the block and the guide have the same angle)
+    ex, ey = cg * e00 - sg * e01, sg * e00 + cg * e01
     lam = (Q[0, ib, 0, n] - Q[0, ig, 0, n]) * ex + (Q[0, ib, 1, n] - Q[0, ig, 1, n]) * ey
     vcx, vcy, acx, acy = _point_rates(Q, T, ig, p0 + lam * e00, p1 + lam * e01, n)
+    og, ag = Q[1, ig, 2, n], 2.0 * Q[2, ig, 2, n]
+    om, al, k, vPx, vPy, aPx, aPy = _rrp_rate_solve(vAx, vAy, aAx, aAy, vcx, vcy, acx, acy, c,
+                                                    sn, ex, ey, ap0, ap1, og, length, unreliable)
+    _set_rates(Q, T, ir, a0, a1, n, vAx, vAy, aAx, aAy, om, al)
+    _set_rates(Q, T, ib, p0, p1, n, vPx, vPy, aPx, aPy, og, ag)
+    x0, x1, x2 = _sizes_2(Q, ir, n, L, inv_omega)
+    y0, y1, y2 = _sizes_2(Q, ib, n, L, inv_omega)
+    _group_error_2(k, m, E, j, eps, max(x0, y0), max(x1, y1), max(x2, y2))
+    return k
+
+
+@_loop()
+def _rrp_rate_solve(vAx, vAy, aAx, aAy, vcx, vcy, acx, acy, c, sn, ex, ey, ap0, ap1, og, length,
+                    unreliable):
+    """The rod's ω, α, the condition number and the motion (v, a) of P of `rrp_rates`, from
+    the motion of A and of the guide's point under P, the rod's cos θ, sin θ, the track's
+    direction e and the guide's ω (NaN where the condition number reaches `unreliable`)."""
+    rx, ry = c * ap0 - sn * ap1, sn * ap0 + c * ap1
     inv = 1.0 / (rx * ex + ry * ey)
     wx, wy = vcx - vAx, vcy - vAy
     om = (ex * wy - ey * wx) * inv
     slide = -(rx * wx + ry * wy) * inv  # λ̇
-    og = Q[1, ig, 2, n]
     cor, oo = 2.0 * slide * og, om * om
     w2x = acx - cor * ey - aAx + oo * rx
     w2y = acy + cor * ex - aAy + oo * ry
     al = (ex * w2y - ey * w2x) * inv
     k = (length + abs(rx * ey - ry * ex)) * abs(inv)
-    if not k < math.inf:  # NaN and ∞: at the limit position (or unassembled)
-        k = math.inf
-    if k >= unreliable:
-        om = al = math.nan
-    _set_rates(Q, T, ir, a0, a1, n, vAx, vAy, aAx, aAy, om, al)
-    _set_rates(Q, T, ib, p0, p1, n, vAx - om * ry, vAy + om * rx,
-               aAx - al * ry - om * om * rx, aAy + al * rx - om * om * ry, og,
-               2.0 * Q[2, ig, 2, n])
-    x0, x1, x2 = _sizes_2(Q, ir, n, L, inv_omega)
-    y0, y1, y2 = _sizes_2(Q, ib, n, L, inv_omega)
-    _group_error_2(k, m, E, j, eps, max(x0, y0), max(x1, y1), max(x2, y2))
-    return k
+    k = k if k < math.inf else math.inf  # NaN and ∞: at the limit position (or unassembled)
+    bad = k >= unreliable
+    om = math.nan if bad else om
+    al = math.nan if bad else al
+    return (om, al, k, vAx - om * ry, vAy + om * rx, aAx - al * ry - om * om * rx,
+            aAy + al * rx - om * om * ry)
 
 
 @_loop(2)
@@ -461,29 +513,38 @@ def propagate_errors(Q, links, L, omega, kappa, rho, m, E, eps):
 @_loop()
 def _size(Q, k, i, n, L):
     """Size of link i's k-th pose coefficient at sample n: lengths over L, angles as they are."""
-    return max(max(abs(Q[k, i, 0, n]), abs(Q[k, i, 1, n])) / L, abs(Q[k, i, 2, n]))
+    return _size3(Q[k, i, 0, n], Q[k, i, 1, n], Q[k, i, 2, n], L)
+
+
+@_loop()
+def _size3(x, y, t, L):
+    """Size of a pose coefficient (x, y, θ): lengths over L, angles as they are."""
+    return max(max(abs(x), abs(y)) / L, abs(t))
 
 
 @_loop()
 def _group_error_2(k_, m, E, n, eps, m0, m1, m2):
     """`_group_error` unrolled for order 2 with a closed form (no residual), the sizes m0, m1,
-    m2 at hand: the compiled kernels' pass (scalars in registers, no work array)."""
-    if m0 < m[0, n]:
-        m0 = m[0, n]
-    if m1 < m[1, n]:
-        m1 = m[1, n]
-    if m2 < m[2, n]:
-        m2 = m[2, n]
-    m[0, n], m[1, n], m[2, n] = m0, m1, m2
-    E0, E1, E2 = E[0, n], E[1, n], E[2, n]
-    if not k_ < math.inf:
-        E[0, n] = E[1, n] = E[2, n] = math.inf
-        return
+    m2 at hand (`_bound_2` on column n of m and E)."""
+    m[0, n], m[1, n], m[2, n], E[0, n], E[1, n], E[2, n] = _bound_2(
+        k_, eps, m[0, n], m[1, n], m[2, n], E[0, n], E[1, n], E[2, n], m0, m1, m2)
+
+
+@_loop()
+def _bound_2(k_, eps, m0, m1, m2, E0, E1, E2, x0, x1, x2):
+    """The running sizes m0, m1, m2 and bounds E0, E1, E2 (order 2, a closed form: no
+    residual) after a group of condition number k_ whose links' sizes are x0, x1, x2: the
+    compiled kernels' pass, scalars in registers, without branches (vectorised loops)."""
+    m0 = m0 if x0 < m0 else x0
+    m1 = m1 if x1 < m1 else x1
+    m2 = m2 if x2 < m2 else x2
     e0 = k_ * (eps * m0 + E0)
     e1 = k_ * (E1 + e0 * m1 + max(e0, E0) * m1 + eps * 2.0 * m0 * m1)
     e2 = k_ * (E2 + e0 * m2 + max(e0, E0) * m2 + max(e1, E1) * m1
                + eps * (2.0 * m0 * m2 + m1 * m1))
-    E[0, n], E[1, n], E[2, n] = max(E0, e0), max(E1, e1), max(E2, e2)
+    bad = not k_ < math.inf
+    return (m0, m1, m2, math.inf if bad else max(E0, e0), math.inf if bad else max(E1, e1),
+            math.inf if bad else max(E2, e2))
 
 
 @_loop()
