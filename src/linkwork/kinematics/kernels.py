@@ -83,6 +83,24 @@ def _loop(samples_axis: int | None = None):
     return register
 
 
+#: the loops whose every written row is an argument of its own that no other argument reaches:
+#: compiled with LLVM's noalias on their arguments (`_NoAlias`), which lets it vectorise them
+_ROWS: set[str] = set()
+
+
+def _rows(fn: types.FunctionType) -> types.FunctionType:
+    """Register a block loop of the fused pass (see `_ROWS`)."""
+    _ROWS.add(fn.__name__)
+    return _loop()(fn)
+
+
+def _at(n):
+    """A sample's index as the loops use it: unsigned when compiled (`_compiled`), so that
+    numba leaves out the wraparound of negative indices, which keeps LLVM from seeing the rows
+    as contiguous."""
+    return n
+
+
 def _bound(namespace: dict) -> dict:
     """Every loop rebound to `namespace` as its globals, so that the loops call each other's
     version of the same kind."""
@@ -111,8 +129,21 @@ def _compiled() -> dict:
     # is installed read-only; a per-user cache folder works everywhere (NUMBA_CACHE_DIR wins)
     if not nb.config.CACHE_DIR:
         nb.config.CACHE_DIR = user_cache_dir("linkwork", appauthor=False)
+    from numba.core.compiler import Compiler
+
+    class _NoAlias(Compiler):
+        """numba's pipeline with LLVM's noalias on every pointer argument (`_ROWS`)."""
+
+        def define_pipelines(self):
+            self.state.flags.noalias = True
+            return super().define_pipelines()
+
     ns = _bound(dict(globals()))
+    ns["_at"] = np.uint64
     for name, (_, samples_axis) in _LOOPS.items():
+        if name in _ROWS:  # called by the fused loops, each on its own (not inlined)
+            ns[name] = nb.njit(inline="never", pipeline_class=_NoAlias, **_FLAGS)(ns[name])
+            continue
         # the per-sample helpers inlined into the loops by numba itself: LLVM leaves the calls
         # of the fused loops' large bodies in place, and each call then passes its arrays with
         # reference counting (atomic) at every sample and group, several times the arithmetic
@@ -628,16 +659,146 @@ def _relative_error(E, m, eps, weights, n):
 DRIVER, RRR, RRP = 0, 1, 2
 
 
+# The block loops of the fused pass, one per group kind and kind of work: every row they write
+# is an argument of its own that no other argument reaches (`_rows`), and the samples are
+# indexed unsigned (`_at`): LLVM then vectorises them (eight samples per instruction), which
+# it cannot where rows written and read are parts of one array.
+@_rows
+def _driver_block_positions(Q0, T, b, i, h0, h1, u, u0, x, y, th, c, s, ok, lo, hi):
+    """`driver_positions` on the block lo … hi − 1, link i's rows x, y, θ, cos θ, sin θ
+    written; ok[n] false where the input is NaN or ∞."""
+    for n in range(lo, hi):
+        k = _at(n)
+        hx, hy = _world(Q0, T, b, h0, h1, k)
+        t = Q0[b, 2, k] + (u[k] - u0)
+        cc, ss = math.cos(t), math.sin(t)
+        th[k], c[k], s[k] = t, cc, ss
+        x[k], y[k] = _origin(cc, ss, h0, h1, hx, hy)
+        ok[k] = ok[k] & (u[k] - u[k] == 0.0)
+
+
+@_rows
+def _rrr_block_positions(Q0, T, iA, pa0, pa1, iC, pc0, pc1, diff, L1sq, tol, sign, k10, k11,
+                         k20, k21, x1, y1, c1, s1, x2, y2, c2, s2, r1x, r1y, r2x, r2y, ok, lo,
+                         hi):
+    """`rrr_positions` on the block lo … hi − 1: the rows x, y, cos θ, sin θ of both links
+    written, the hinge vectors to r1x … r2y[n − lo] (sign[n − lo]: the assembly signs)."""
+    for n in range(lo, hi):
+        k, j = _at(n), _at(n - lo)
+        ax, ay = _world(Q0, T, iA, pa0, pa1, k)
+        cx, cy = _world(Q0, T, iC, pc0, pc1, k)
+        good, r1x[j], r1y[j], r2x[j], r2y[j], cc1, ss1, cc2, ss2 = _rrr_solve(
+            ax, ay, cx, cy, diff, L1sq, tol, sign[j], k10, k11, k20, k21)
+        c1[k], s1[k], c2[k], s2[k] = cc1, ss1, cc2, ss2
+        x1[k], y1[k] = _origin(cc1, ss1, pa0, pa1, ax, ay)
+        x2[k], y2[k] = _origin(cc2, ss2, pc0, pc1, cx, cy)
+        ok[k] = ok[k] & good
+
+
+@_rows
+def _rrp_block_positions(Q0, T, iA, a0, a1, ig, p0, p1, e00, e01, rsq, tol, sign, k0, k1, xr,
+                         yr, cr, sr, xb, yb, tb, cb, sb, rx, ry, ok, lo, hi):
+    """`rrp_positions` on the block lo … hi − 1: the rod's rows x, y, cos θ, sin θ and the
+    block's x, y, θ, cos θ, sin θ written, the rod's vector to rx, ry[n − lo]."""
+    for n in range(lo, hi):
+        k, j = _at(n), _at(n - lo)
+        cg, sg = T[ig, 0, k], T[ig, 1, k]
+        ax, ay = _world(Q0, T, iA, a0, a1, k)
+        qx, qy = _world(Q0, T, ig, p0, p1, k)
+        good, rx[j], ry[j], c, sn, px, py = _rrp_solve(ax, ay, qx, qy, cg, sg, e00, e01, rsq,
+                                                       tol, sign[j], k0, k1)
+        cr[k], sr[k], cb[k], sb[k], tb[k] = c, sn, cg, sg, Q0[ig, 2, k]
+        xr[k], yr[k] = _origin(c, sn, a0, a1, ax, ay)
+        xb[k], yb[k] = _origin(cg, sg, p0, p1, px, py)
+        ok[k] = ok[k] & good
+
+
+@_rows
+def _driver_block_rates(Q, T, b, i, h0, h1, u1, u2, kappa, L, eps, inv_omega, m0, m1, m2, E0,
+                        E1, E2, cond, vx, vy, vt, wx, wy, wt, lo, hi):
+    """`driver_rates` on the block lo … hi − 1: link i's rows of first (v…) and second (w…)
+    coefficients written, the bounds (m…, E…[n − lo]) and cond[n] carried on."""
+    for n in range(lo, hi):
+        k, j = _at(n), _at(n - lo)
+        hvx, hvy, hax, hay = _point_rates(Q, T, b, h0, h1, k)
+        v0, v1, v2, w0, w1, w2 = _origin_rates(
+            T[i, 0, k], T[i, 1, k], h0, h1, hvx, hvy, hax, hay, Q[1, b, 2, k] + u1[k],
+            2.0 * (Q[2, b, 2, k] + u2[k]))
+        vx[k], vy[k], vt[k], wx[k], wy[k], wt[k] = v0, v1, v2, w0, w1, w2
+        inv = inv_omega[j]
+        m0[j], m1[j], m2[j], E0[j], E1[j], E2[j] = _bound_2(
+            kappa, eps, m0[j], m1[j], m2[j], E0[j], E1[j], E2[j],
+            abs(Q[0, i, 2, k]) * (1.0 / math.pi), _size3(v0, v1, v2, L) * inv,
+            _size3(w0, w1, w2, L) * inv * inv)
+        cond[k] = kappa if kappa > cond[k] else cond[k]
+
+
+@_rows
+def _rrr_block_rates(Q, T, iA, a0, a1, iC, c0, c1, i1, i2, ba0, ba1, bc0, bc1, mid, hd2,
+                     unreliable, L, eps, inv_omega, m0, m1, m2, E0, E1, E2, cond, v1x, v1y, v1t,
+                     w1x, w1y, w1t, v2x, v2y, v2t, w2x, w2y, w2t, lo, hi):
+    """`rrr_rates` on the block lo … hi − 1: both links' rows of first (v…) and second (w…)
+    coefficients written, the bounds and cond carried on as in `_driver_block_rates`."""
+    for n in range(lo, hi):
+        k, j = _at(n), _at(n - lo)
+        vAx, vAy, aAx, aAy = _point_rates(Q, T, iA, a0, a1, k)
+        vCx, vCy, aCx, aCy = _point_rates(Q, T, iC, c0, c1, k)
+        cs1, sn1, cs2, sn2 = T[i1, 0, k], T[i1, 1, k], T[i2, 0, k], T[i2, 1, k]
+        om1, om2, al1, al2, kap = _rrr_rate_solve(vAx, vAy, aAx, aAy, vCx, vCy, aCx, aCy, cs1,
+                                                  sn1, cs2, sn2, ba0, ba1, bc0, bc1, mid, hd2,
+                                                  unreliable)
+        p0, p1, p2, q0, q1, q2 = _origin_rates(cs1, sn1, a0, a1, vAx, vAy, aAx, aAy, om1, al1)
+        v1x[k], v1y[k], v1t[k], w1x[k], w1y[k], w1t[k] = p0, p1, p2, q0, q1, q2
+        r0, r1, r2, t0, t1, t2 = _origin_rates(cs2, sn2, c0, c1, vCx, vCy, aCx, aCy, om2, al2)
+        v2x[k], v2y[k], v2t[k], w2x[k], w2y[k], w2t[k] = r0, r1, r2, t0, t1, t2
+        inv = inv_omega[j]
+        m0[j], m1[j], m2[j], E0[j], E1[j], E2[j] = _bound_2(
+            kap, eps, m0[j], m1[j], m2[j], E0[j], E1[j], E2[j],
+            max(abs(Q[0, i1, 2, k]) * (1.0 / math.pi), abs(Q[0, i2, 2, k]) * (1.0 / math.pi)),
+            max(_size3(p0, p1, p2, L) * inv, _size3(r0, r1, r2, L) * inv),
+            max(_size3(q0, q1, q2, L) * inv * inv, _size3(t0, t1, t2, L) * inv * inv))
+        cond[k] = kap if kap > cond[k] else cond[k]
+
+
+@_rows
+def _rrp_block_rates(Q, T, iA, a0, a1, ig, p0, p1, e00, e01, ap0, ap1, length, ir, ib,
+                     unreliable, L, eps, inv_omega, m0, m1, m2, E0, E1, E2, cond, vrx, vry, vrt,
+                     wrx, wry, wrt, vbx, vby, vbt, wbx, wby, wbt, lo, hi):
+    """`rrp_rates` on the block lo … hi − 1: the rod's and the block's rows written, the
+    bounds and cond carried on as in `_driver_block_rates`."""
+    for n in range(lo, hi):
+        k, j = _at(n), _at(n - lo)
+        vAx, vAy, aAx, aAy = _point_rates(Q, T, iA, a0, a1, k)
+        c, sn, cg, sg = T[ir, 0, k], T[ir, 1, k], T[ig, 0, k], T[ig, 1, k]
+        ex, ey = cg * e00 - sg * e01, sg * e00 + cg * e01
+        lam = (Q[0, ib, 0, k] - Q[0, ig, 0, k]) * ex + (Q[0, ib, 1, k] - Q[0, ig, 1, k]) * ey
+        vcx, vcy, acx, acy = _point_rates(Q, T, ig, p0 + lam * e00, p1 + lam * e01, k)
+        og, ag = Q[1, ig, 2, k], 2.0 * Q[2, ig, 2, k]
+        om, al, kap, vPx, vPy, aPx, aPy = _rrp_rate_solve(
+            vAx, vAy, aAx, aAy, vcx, vcy, acx, acy, c, sn, ex, ey, ap0, ap1, og, length,
+            unreliable)
+        r0, r1, r2, t0, t1, t2 = _origin_rates(c, sn, a0, a1, vAx, vAy, aAx, aAy, om, al)
+        vrx[k], vry[k], vrt[k], wrx[k], wry[k], wrt[k] = r0, r1, r2, t0, t1, t2
+        q0, q1, q2, u0, u1, u2 = _origin_rates(cg, sg, p0, p1, vPx, vPy, aPx, aPy, og, ag)
+        vbx[k], vby[k], vbt[k], wbx[k], wby[k], wbt[k] = q0, q1, q2, u0, u1, u2
+        inv = inv_omega[j]
+        m0[j], m1[j], m2[j], E0[j], E1[j], E2[j] = _bound_2(
+            kap, eps, m0[j], m1[j], m2[j], E0[j], E1[j], E2[j],
+            max(abs(Q[0, ir, 2, k]) * (1.0 / math.pi), abs(Q[0, ib, 2, k]) * (1.0 / math.pi)),
+            max(_size3(r0, r1, r2, L) * inv, _size3(q0, q1, q2, L) * inv),
+            max(_size3(t0, t1, t2, L) * inv * inv, _size3(u0, u1, u2, L) * inv * inv))
+        cond[k] = kap if kap > cond[k] else cond[k]
+
+
 @_loop(0)
 def fused_positions(ok, ops, fl, Q0, T, U, signs, R, lo, hi):
     """Positions of every group of a mechanism at the samples lo … hi − 1 (a block), through
     the whole solution order (the tables `ops`, `fl` of `fused.tables`: per group its opcode,
-    link indices and constants), each group's loop over the block that of its own kernel
-    (`driver_positions`, `rrr_positions`, `rrp_positions`: the block stays in the CPU's cache,
-    and a loop over samples with the group's constants in registers is what the compiler
-    vectorises). ok[n]: every group assembles. U[driver, k, n]: the inputs' Taylor
-    coefficients; signs[row, n − lo]: the dyads' assembly signs; the dyads' hinge vectors go to
-    R[col …, n − lo] for the caller's vectorised arctan2."""
+    link indices and constants), each group's loop over the block a vectorised block loop
+    (`_rrr_block_positions` …) with the group's constants in registers. ok[n]: every group
+    assembles. U[driver, k, n]: the inputs' Taylor coefficients; signs[row, n − lo]: the dyads'
+    assembly signs; the dyads' hinge vectors go to R[col …, n − lo] for the caller's
+    vectorised arctan2."""
     for n in range(lo, hi):
         ok[n] = True
     for g in range(ops.shape[0]):
@@ -647,27 +808,18 @@ def fused_positions(ok, ops, fl, Q0, T, U, signs, R, lo, hi):
             fl[g, 6]
         f7, f8, f9, f10, f11 = fl[g, 7], fl[g, 8], fl[g, 9], fl[g, 10], fl[g, 11]
         if op == DRIVER:
-            for n in range(lo, hi):
-                u = U[i3, 0, n]
-                _driver_position(Q0, T, i1, i2, f0, f1, u, f2, n)
-                if not u - u == 0.0:  # NaN or ∞
-                    ok[n] = False
+            _driver_block_positions(Q0, T, i1, i2, f0, f1, U[i3, 0], f2, Q0[i2, 0], Q0[i2, 1],
+                                    Q0[i2, 2], T[i2, 0], T[i2, 1], ok, lo, hi)
         elif op == RRR:
-            for n in range(lo, hi):
-                j = n - lo
-                gd, R[c, j], R[c + 1, j], R[c + 2, j], R[c + 3, j] = _rrr_position(
-                    Q0, T, i1, f0, f1, i2, f2, f3, i3, i4, f4, f5, f6, signs[row, j], f8, f9,
-                    f10, f11, n)
-                if not gd:
-                    ok[n] = False
+            _rrr_block_positions(Q0, T, i1, f0, f1, i2, f2, f3, f4, f5, f6, signs[row], f8, f9,
+                                 f10, f11, Q0[i3, 0], Q0[i3, 1], T[i3, 0], T[i3, 1], Q0[i4, 0],
+                                 Q0[i4, 1], T[i4, 0], T[i4, 1], R[c], R[c + 1], R[c + 2],
+                                 R[c + 3], ok, lo, hi)
         else:
-            for n in range(lo, hi):
-                j = n - lo
-                gd, R[c, j], R[c + 1, j] = _rrp_position(
-                    Q0, T, i1, f0, f1, i2, f2, f3, f4, f5, f6, f7, signs[row, j], i3, i4, f9,
-                    f10, n)
-                if not gd:
-                    ok[n] = False
+            _rrp_block_positions(Q0, T, i1, f0, f1, i2, f2, f3, f4, f5, f6, f7, signs[row], f9,
+                                 f10, Q0[i3, 0], Q0[i3, 1], T[i3, 0], T[i3, 1], Q0[i4, 0],
+                                 Q0[i4, 1], Q0[i4, 2], T[i4, 0], T[i4, 1], R[c], R[c + 1], ok,
+                                 lo, hi)
 
 
 @_loop(0)
@@ -690,23 +842,21 @@ def fused_rates(cond, ops, fl, Q, T, U, per, L, eps, m0, unreliable, plain, weig
         f11, f12, f13, f14, f15, f16, f17 = fl[g, 11], fl[g, 12], fl[g, 13], fl[g, 14], \
             fl[g, 15], fl[g, 16], fl[g, 17]
         if op == DRIVER:
-            for n in range(lo, hi):
-                _driver_rate(Q, T, i1, i2, f0, f1, U[i3, 1, n], U[i3, 2, n], f3, L, E0[n - lo], m,
-                             E, n - lo, eps, n)
-                if f3 > cond[n]:
-                    cond[n] = f3
+            _driver_block_rates(Q, T, i1, i2, f0, f1, U[i3, 1], U[i3, 2], f3, L, eps, E0, m[0],
+                                m[1], m[2], E[0], E[1], E[2], cond, Q[1, i2, 0], Q[1, i2, 1],
+                                Q[1, i2, 2], Q[2, i2, 0], Q[2, i2, 1], Q[2, i2, 2], lo, hi)
         elif op == RRR:
-            for n in range(lo, hi):
-                k = _rrr_rate(Q, T, i1, f0, f1, i2, f2, f3, i3, i4, f12, f13, f14, f15, f16, f17,
-                              unreliable, L, E0[n - lo], m, E, n - lo, eps, n)
-                if k > cond[n]:
-                    cond[n] = k
+            _rrr_block_rates(Q, T, i1, f0, f1, i2, f2, f3, i3, i4, f12, f13, f14, f15, f16, f17,
+                             unreliable, L, eps, E0, m[0], m[1], m[2], E[0], E[1], E[2], cond,
+                             Q[1, i3, 0], Q[1, i3, 1], Q[1, i3, 2], Q[2, i3, 0], Q[2, i3, 1],
+                             Q[2, i3, 2], Q[1, i4, 0], Q[1, i4, 1], Q[1, i4, 2], Q[2, i4, 0],
+                             Q[2, i4, 1], Q[2, i4, 2], lo, hi)
         else:
-            for n in range(lo, hi):
-                k = _rrp_rate(Q, T, i1, f0, f1, i2, f2, f3, f4, f5, f11, f12, f13, i3, i4,
-                              unreliable, L, E0[n - lo], m, E, n - lo, eps, n)
-                if k > cond[n]:
-                    cond[n] = k
+            _rrp_block_rates(Q, T, i1, f0, f1, i2, f2, f3, f4, f5, f11, f12, f13, i3, i4,
+                             unreliable, L, eps, E0, m[0], m[1], m[2], E[0], E[1], E[2], cond,
+                             Q[1, i3, 0], Q[1, i3, 1], Q[1, i3, 2], Q[2, i3, 0], Q[2, i3, 1],
+                             Q[2, i3, 2], Q[1, i4, 0], Q[1, i4, 1], Q[1, i4, 2], Q[2, i4, 0],
+                             Q[2, i4, 1], Q[2, i4, 2], lo, hi)
     for n in range(lo, hi):
         j = n - lo
         err[n] = _relative_error(E, m, eps, plain, j)
