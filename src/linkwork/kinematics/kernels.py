@@ -648,10 +648,14 @@ def _relative_error(E, m, eps, weights, n):
     K = min(E.shape[0], 3)
     top = 0.0
     for k in range(K):  # positions against the scale L; rates against their size too
-        v = (E[k, n] / max(m[k, n], 1.0) if k else E[0, n]) * weights[k]
-        if not v <= top:  # NaN too
-            top = v if v == v else math.inf
+        top = _worse(top, (E[k, n] / max(m[k, n], 1.0) if k else E[0, n]) * weights[k])
     return top + eps
+
+
+@_loop()
+def _worse(top, v):
+    """The larger of top and v, ∞ where v is NaN."""
+    return top if v <= top else (v if v == v else math.inf)
 
 
 # ---------------------------------------------------------------------------- the fused pass
@@ -831,11 +835,9 @@ def fused_rates(cond, ops, fl, Q, T, U, per, L, eps, m0, unreliable, plain, weig
     m, E of the block's size; m0: the drawing's coordinates over L) and their relative values
     (`relative_errors` with the weights `plain` into err, `weighted` into serr); E0[n − lo]:
     the positions' bound."""
-    for n in range(lo, hi):
-        j = n - lo
-        m[0, j], m[1, j], m[2, j] = m0, 0.0, 0.0
-        E[0, j], E[1, j], E[2, j] = 0.0, 0.0, 0.0
-        E0[j] = 1.0 / _rate_scale(U, per, n)  # 1/Ω here until the end
+    for d in range(U.shape[0]):  # 1/Ω in E0 until the end (`_rate_scale`)
+        _rate_scale_block(U[d, 1], U[d, 2], per[d], E0, d == 0, lo, hi)
+    _bounds_start_block(m0, E0, m[0], m[1], m[2], E[0], E[1], E[2], lo, hi)
     for g in range(ops.shape[0]):
         op, i1, i2, i3, i4 = ops[g, 0], ops[g, 1], ops[g, 2], ops[g, 3], ops[g, 4]
         f0, f1, f2, f3, f4, f5 = fl[g, 0], fl[g, 1], fl[g, 2], fl[g, 3], fl[g, 4], fl[g, 5]
@@ -857,8 +859,41 @@ def fused_rates(cond, ops, fl, Q, T, U, per, L, eps, m0, unreliable, plain, weig
                              Q[1, i3, 0], Q[1, i3, 1], Q[1, i3, 2], Q[2, i3, 0], Q[2, i3, 1],
                              Q[2, i3, 2], Q[1, i4, 0], Q[1, i4, 1], Q[1, i4, 2], Q[2, i4, 0],
                              Q[2, i4, 1], Q[2, i4, 2], lo, hi)
+    _relative_block(m[1], m[2], E[0], E[1], E[2], eps, plain, weighted, err, serr, E0, lo, hi)
+
+
+@_rows
+def _rate_scale_block(u1, u2, per, top, first, lo, hi):
+    """`_rate_scale` of one driver at order 2 on the block lo … hi − 1 (u1, u2: its first and
+    second Taylor coefficients), raising top[n − lo] (set when `first`)."""
     for n in range(lo, hi):
-        j = n - lo
-        err[n] = _relative_error(E, m, eps, plain, j)
-        serr[n] = _relative_error(E, m, eps, weighted, j)
-        E0[j] = E[0, j]
+        k, j = _at(n), _at(n - lo)
+        t = 0.0 if first else top[j]
+        v = abs(u1[k]) / per
+        t = v if v > t else t
+        v = math.sqrt(abs(u2[k]) / per)
+        top[j] = v if v > t else t
+
+
+@_rows
+def _bounds_start_block(m0, inv, m0r, m1r, m2r, E0r, E1r, E2r, lo, hi):
+    """The error bounds' start on a block (`precision.ErrorBudget`): sizes m0 (the drawing's
+    coordinates), 0, 0, bounds 0; inv[j]: Ω there, 1/Ω here (Ω = 1 where every rate is 0)."""
+    for j in range(hi - lo):
+        i = _at(j)
+        t = inv[i]
+        inv[i] = 1.0 / (t if t > 0.0 else 1.0)
+        m0r[i], m1r[i], m2r[i], E0r[i], E1r[i], E2r[i] = m0, 0.0, 0.0, 0.0, 0.0, 0.0
+
+
+@_rows
+def _relative_block(m1, m2, E0, E1, E2, eps, plain, weighted, err, serr, pos, lo, hi):
+    """`relative_errors` at order 2 on the block lo … hi − 1: with the weights `plain` into
+    err[n], `weighted` into serr[n]; the positions' bound E0 to pos[n − lo]."""
+    for n in range(lo, hi):
+        k, j = _at(n), _at(n - lo)
+        a, b, c = E0[j], E1[j] / max(m1[j], 1.0), E2[j] / max(m2[j], 1.0)
+        err[k] = _worse(_worse(_worse(0.0, a * plain[0]), b * plain[1]), c * plain[2]) + eps
+        serr[k] = _worse(_worse(_worse(0.0, a * weighted[0]), b * weighted[1]),
+                         c * weighted[2]) + eps
+        pos[j] = a
