@@ -83,6 +83,24 @@ def _loop(samples_axis: int | None = None):
     return register
 
 
+#: the loops whose every written row is an argument of its own that no other argument reaches:
+#: compiled with LLVM's noalias on their arguments (`_NoAlias`), which lets it vectorise them
+_ROWS: set[str] = set()
+
+
+def _rows(fn: types.FunctionType) -> types.FunctionType:
+    """Register a block loop of the fused pass (see `_ROWS`)."""
+    _ROWS.add(fn.__name__)
+    return _loop()(fn)
+
+
+def _at(n):
+    """A sample's index as the loops use it: unsigned when compiled (`_compiled`), so that
+    numba leaves out the wraparound of negative indices, which keeps LLVM from seeing the rows
+    as contiguous."""
+    return n
+
+
 def _bound(namespace: dict) -> dict:
     """Every loop rebound to `namespace` as its globals, so that the loops call each other's
     version of the same kind."""
@@ -111,8 +129,21 @@ def _compiled() -> dict:
     # is installed read-only; a per-user cache folder works everywhere (NUMBA_CACHE_DIR wins)
     if not nb.config.CACHE_DIR:
         nb.config.CACHE_DIR = user_cache_dir("linkwork", appauthor=False)
+    from numba.core.compiler import Compiler
+
+    class _NoAlias(Compiler):
+        """numba's pipeline with LLVM's noalias on every pointer argument (`_ROWS`)."""
+
+        def define_pipelines(self):
+            self.state.flags.noalias = True
+            return super().define_pipelines()
+
     ns = _bound(dict(globals()))
+    ns["_at"] = np.uint64
     for name, (_, samples_axis) in _LOOPS.items():
+        if name in _ROWS:  # called by the fused loops, each on its own (not inlined)
+            ns[name] = nb.njit(inline="never", pipeline_class=_NoAlias, **_FLAGS)(ns[name])
+            continue
         # the per-sample helpers inlined into the loops by numba itself: LLVM leaves the calls
         # of the fused loops' large bodies in place, and each call then passes its arrays with
         # reference counting (atomic) at every sample and group, several times the arithmetic
@@ -129,12 +160,17 @@ def _world(Q0, T, i, s0, s1, n):
 
 
 @_loop()
+def _origin(c, sn, s0, s1, px, py):
+    """Origin of a link at angle (c, sn) = (cos θ, sin θ) whose design point s lies at (px, py)."""
+    return px - (c * s0 - sn * s1), py - (sn * s0 + c * s1)
+
+
+@_loop()
 def _place(Q0, T, i, c, sn, s0, s1, px, py, n):
     """Place link i at sample n: angle given by c, sn = cos θ, sin θ, its design point s at
     (px, py)."""
     T[i, 0, n], T[i, 1, n] = c, sn
-    Q0[i, 0, n] = px - (c * s0 - sn * s1)
-    Q0[i, 1, n] = py - (sn * s0 + c * s1)
+    Q0[i, 0, n], Q0[i, 1, n] = _origin(c, sn, s0, s1, px, py)
 
 
 @_loop(2)
@@ -163,6 +199,17 @@ def _rrr_position(Q0, T, iA, pa0, pa1, iC, pc0, pc1, i1, i2, diff, L1sq, tol, si
     dyad assembles and the hinge vectors B − A, B − C."""
     ax, ay = _world(Q0, T, iA, pa0, pa1, n)
     cx, cy = _world(Q0, T, iC, pc0, pc1, n)
+    good, r1x, r1y, r2x, r2y, c1, s1, c2, s2 = _rrr_solve(ax, ay, cx, cy, diff, L1sq, tol, sign,
+                                                          k10, k11, k20, k21)
+    _place(Q0, T, i1, c1, s1, pa0, pa1, ax, ay, n)
+    _place(Q0, T, i2, c2, s2, pc0, pc1, cx, cy, n)
+    return good, r1x, r1y, r2x, r2y
+
+
+@_loop()
+def _rrr_solve(ax, ay, cx, cy, diff, L1sq, tol, sign, k10, k11, k20, k21):
+    """The circle–circle intersection of `rrr_positions` from the world pivots A and C: whether
+    it assembles, the hinge vectors B − A, B − C and the two links' cos θ, sin θ."""
     dx, dy = cx - ax, cy - ay
     D2 = dx * dx + dy * dy
     inv = 1.0 / math.sqrt(D2)
@@ -176,37 +223,46 @@ def _rrr_position(Q0, T, iA, pa0, pa1, iC, pc0, pc1, i1, i2, diff, L1sq, tol, si
     r2x, r2y = ax + r1x - cx, ay + r1y - cy  # B − C
     n1 = 1.0 / math.sqrt(r1x * r1x + r1y * r1y)
     n2 = 1.0 / math.sqrt(r2x * r2x + r2y * r2y)
-    c1, s1 = (r1x * k10 + r1y * k11) * n1, (r1y * k10 - r1x * k11) * n1
-    c2, s2 = (r2x * k20 + r2y * k21) * n2, (r2y * k20 - r2x * k21) * n2
-    _place(Q0, T, i1, c1, s1, pa0, pa1, ax, ay, n)
-    _place(Q0, T, i2, c2, s2, pc0, pc1, cx, cy, n)
-    return good, r1x, r1y, r2x, r2y
+    return (good, r1x, r1y, r2x, r2y, (r1x * k10 + r1y * k11) * n1,
+            (r1y * k10 - r1x * k11) * n1, (r2x * k20 + r2y * k21) * n2,
+            (r2y * k20 - r2x * k21) * n2)
 
 
 @_loop()
 def _point_rates(Q, T, i, s0, s1, n):
     """Velocity and acceleration (vx, vy, ax, ay) of design point s on link i at sample n."""
-    c, sn = T[i, 0, n], T[i, 1, n]
+    return _motion(T[i, 0, n], T[i, 1, n], s0, s1, Q[1, i, 0, n], Q[1, i, 1, n], Q[1, i, 2, n],
+                   Q[2, i, 0, n], Q[2, i, 1, n], Q[2, i, 2, n])
+
+
+@_loop()
+def _motion(c, sn, s0, s1, vx, vy, w, ax2, ay2, at2):
+    """Velocity and acceleration (vx, vy, ax, ay) of design point s on a link at angle (c, sn)
+    whose origin's Taylor coefficients are (vx, vy, ω) and (ax2, ay2, at2) (second ones halved)."""
     rx, ry = c * s0 - sn * s1, sn * s0 + c * s1
-    w, al = Q[1, i, 2, n], 2.0 * Q[2, i, 2, n]
+    al = 2.0 * at2
     ww = w * w
-    return (Q[1, i, 0, n] - w * ry, Q[1, i, 1, n] + w * rx,
-            2.0 * Q[2, i, 0, n] - al * ry - ww * rx, 2.0 * Q[2, i, 1, n] + al * rx - ww * ry)
+    return (vx - w * ry, vy + w * rx, 2.0 * ax2 - al * ry - ww * rx,
+            2.0 * ay2 + al * rx - ww * ry)
 
 
 @_loop()
 def _set_rates(Q, T, i, s0, s1, n, vx, vy, ax, ay, om, al):
-    """Rates of link i from the motion (v, a) of its design point s and its ω and α:
+    """Rates of link i from the motion (v, a) of its design point s and its ω and α
+    (`_origin_rates`)."""
+    (Q[1, i, 0, n], Q[1, i, 1, n], Q[1, i, 2, n], Q[2, i, 0, n], Q[2, i, 1, n],
+     Q[2, i, 2, n]) = _origin_rates(T[i, 0, n], T[i, 1, n], s0, s1, vx, vy, ax, ay, om, al)
+
+
+@_loop()
+def _origin_rates(c, sn, s0, s1, vx, vy, ax, ay, om, al):
+    """Taylor coefficients (first: x, y, θ; second: x, y, θ, halved) of a link at angle
+    (c, sn) from the motion (v, a) of its design point s and its ω and α:
     v_origin = v − ω ⊥r, a_origin = a − α ⊥r + ω² r, r = R(θ)s, ⊥(x, y) = (−y, x)."""
-    c, sn = T[i, 0, n], T[i, 1, n]
     rx, ry = c * s0 - sn * s1, sn * s0 + c * s1
     oo = om * om
-    Q[1, i, 0, n] = vx + om * ry
-    Q[1, i, 1, n] = vy - om * rx
-    Q[1, i, 2, n] = om
-    Q[2, i, 0, n] = 0.5 * (ax + al * ry + oo * rx)
-    Q[2, i, 1, n] = 0.5 * (ay - al * rx + oo * ry)
-    Q[2, i, 2, n] = 0.5 * al
+    return (vx + om * ry, vy - om * rx, om, 0.5 * (ax + al * ry + oo * rx),
+            0.5 * (ay - al * rx + oo * ry), 0.5 * al)
 
 
 @_loop(3)
@@ -234,6 +290,21 @@ def _rrr_rate(Q, T, iA, a0, a1, iC, c0, c1, i1, i2, ba0, ba1, bc0, bc1, mid, hd2
     vAx, vAy, aAx, aAy = _point_rates(Q, T, iA, a0, a1, n)
     vCx, vCy, aCx, aCy = _point_rates(Q, T, iC, c0, c1, n)
     c1_, s1, c2, s2 = T[i1, 0, n], T[i1, 1, n], T[i2, 0, n], T[i2, 1, n]
+    om1, om2, al1, al2, k = _rrr_rate_solve(vAx, vAy, aAx, aAy, vCx, vCy, aCx, aCy, c1_, s1, c2,
+                                            s2, ba0, ba1, bc0, bc1, mid, hd2, unreliable)
+    _set_rates(Q, T, i1, a0, a1, n, vAx, vAy, aAx, aAy, om1, al1)
+    _set_rates(Q, T, i2, c0, c1, n, vCx, vCy, aCx, aCy, om2, al2)
+    x0, x1, x2 = _sizes_2(Q, i1, n, L, inv_omega)
+    y0, y1, y2 = _sizes_2(Q, i2, n, L, inv_omega)
+    _group_error_2(k, m, E, j, eps, max(x0, y0), max(x1, y1), max(x2, y2))
+    return k
+
+
+@_loop()
+def _rrr_rate_solve(vAx, vAy, aAx, aAy, vCx, vCy, aCx, aCy, c1_, s1, c2, s2, ba0, ba1, bc0, bc1,
+                    mid, hd2, unreliable):
+    """ω1, ω2, α1, α2 and the condition number of `rrr_rates` from the motion of A and C and
+    the links' cos θ, sin θ (NaN where the condition number reaches `unreliable`)."""
     r1x, r1y = c1_ * ba0 - s1 * ba1, s1 * ba0 + c1_ * ba1
     r2x, r2y = c2 * bc0 - s2 * bc1, s2 * bc0 + c2 * bc1
     inv = 1.0 / (r1y * r2x - r1x * r2y)
@@ -247,16 +318,10 @@ def _rrr_rate(Q, T, iA, a0, a1, iC, c0, c1, i1, i2, ba0, ba1, bc0, bc1, mid, hd2
     al2 = -(w2x * r1x + w2y * r1y) * inv
     b = r1x * r2x + r1y * r2y
     k = (mid + math.sqrt(hd2 + b * b)) * abs(inv)
-    if not k < math.inf:  # NaN and ∞: the dyad is singular (or unassembled) here
-        k = math.inf
-    if k >= unreliable:
-        om1 = om2 = al1 = al2 = math.nan
-    _set_rates(Q, T, i1, a0, a1, n, vAx, vAy, aAx, aAy, om1, al1)
-    _set_rates(Q, T, i2, c0, c1, n, vCx, vCy, aCx, aCy, om2, al2)
-    x0, x1, x2 = _sizes_2(Q, i1, n, L, inv_omega)
-    y0, y1, y2 = _sizes_2(Q, i2, n, L, inv_omega)
-    _group_error_2(k, m, E, j, eps, max(x0, y0), max(x1, y1), max(x2, y2))
-    return k
+    k = k if k < math.inf else math.inf  # NaN and ∞: the dyad is singular (or unassembled)
+    bad = k >= unreliable
+    return (math.nan if bad else om1, math.nan if bad else om2, math.nan if bad else al1,
+            math.nan if bad else al2, k)
 
 
 @_loop(2)
@@ -284,22 +349,30 @@ def _rrp_position(Q0, T, iA, a0, a1, ig, p0, p1, e00, e01, rsq, tol, sign, ir, i
     cg, sg = T[ig, 0, n], T[ig, 1, n]
     ax, ay = _world(Q0, T, iA, a0, a1, n)
     qx, qy = _world(Q0, T, ig, p0, p1, n)
-    ex, ey = cg * e00 - sg * e01, sg * e00 + cg * e01
-    wx, wy = qx - ax, qy - ay
-    b = ex * wx + ey * wy
-    disc = b * b - (wx * wx + wy * wy - rsq)
-    if disc < 0.0 and disc > tol:
-        disc = 0.0
-    lam = sign * math.sqrt(disc) - b  # NaN where the rod's circle misses the track
-    px, py = qx + lam * ex, qy + lam * ey
-    good = px - px == 0.0 and py - py == 0.0  # not NaN or ∞
-    rx, ry = px - ax, py - ay
-    nr = 1.0 / math.sqrt(rx * rx + ry * ry)
-    c, sn = (rx * k0 + ry * k1) * nr, (ry * k0 - rx * k1) * nr
+    good, rx, ry, c, sn, px, py = _rrp_solve(ax, ay, qx, qy, cg, sg, e00, e01, rsq, tol, sign, k0,
+                                             k1)
     _place(Q0, T, ir, c, sn, a0, a1, ax, ay, n)
     _place(Q0, T, ib, cg, sg, p0, p1, px, py, n)
     Q0[ib, 2, n] = Q0[ig, 2, n]
     return good, rx, ry
+
+
+@_loop()
+def _rrp_solve(ax, ay, qx, qy, cg, sg, e00, e01, rsq, tol, sign, k0, k1):
+    """The circle–line intersection of `rrp_positions` from the world pivot A, the world design
+    place Q of P on the guide and the guide's cos θ, sin θ: whether it assembles, the rod's
+    vector A → P, its cos θ, sin θ and P."""
+    ex, ey = cg * e00 - sg * e01, sg * e00 + cg * e01
+    wx, wy = qx - ax, qy - ay
+    b = ex * wx + ey * wy
+    disc = b * b - (wx * wx + wy * wy - rsq)
+    disc = 0.0 if disc < 0.0 and disc > tol else disc
+    lam = sign * math.sqrt(disc) - b  # NaN where the rod's circle misses the track
+    px, py = qx + lam * ex, qy + lam * ey
+    good = (px - px == 0.0) & (py - py == 0.0)  # not NaN or ∞
+    rx, ry = px - ax, py - ay
+    nr = 1.0 / math.sqrt(rx * rx + ry * ry)
+    return good, rx, ry, (rx * k0 + ry * k1) * nr, (ry * k0 - rx * k1) * nr, px, py
 
 
 @_loop(3)
@@ -327,33 +400,43 @@ def _rrp_rate(Q, T, iA, a0, a1, ig, p0, p1, e00, e01, ap0, ap1, length, ir, ib, 
     number."""
     vAx, vAy, aAx, aAy = _point_rates(Q, T, iA, a0, a1, n)
     c, sn, cg, sg = T[ir, 0, n], T[ir, 1, n], T[ig, 0, n], T[ig, 1, n]
-    rx, ry = c * ap0 - sn * ap1, sn * ap0 + c * ap1
-    ex, ey = cg * e00 - sg * e01, sg * e00 + cg * e01
     # P's place along the track (the block and the guide have the same angle)
+    ex, ey = cg * e00 - sg * e01, sg * e00 + cg * e01
     lam = (Q[0, ib, 0, n] - Q[0, ig, 0, n]) * ex + (Q[0, ib, 1, n] - Q[0, ig, 1, n]) * ey
     vcx, vcy, acx, acy = _point_rates(Q, T, ig, p0 + lam * e00, p1 + lam * e01, n)
+    og, ag = Q[1, ig, 2, n], 2.0 * Q[2, ig, 2, n]
+    om, al, k, vPx, vPy, aPx, aPy = _rrp_rate_solve(vAx, vAy, aAx, aAy, vcx, vcy, acx, acy, c,
+                                                    sn, ex, ey, ap0, ap1, og, length, unreliable)
+    _set_rates(Q, T, ir, a0, a1, n, vAx, vAy, aAx, aAy, om, al)
+    _set_rates(Q, T, ib, p0, p1, n, vPx, vPy, aPx, aPy, og, ag)
+    x0, x1, x2 = _sizes_2(Q, ir, n, L, inv_omega)
+    y0, y1, y2 = _sizes_2(Q, ib, n, L, inv_omega)
+    _group_error_2(k, m, E, j, eps, max(x0, y0), max(x1, y1), max(x2, y2))
+    return k
+
+
+@_loop()
+def _rrp_rate_solve(vAx, vAy, aAx, aAy, vcx, vcy, acx, acy, c, sn, ex, ey, ap0, ap1, og, length,
+                    unreliable):
+    """The rod's ω, α, the condition number and the motion (v, a) of P of `rrp_rates`, from
+    the motion of A and of the guide's point under P, the rod's cos θ, sin θ, the track's
+    direction e and the guide's ω (NaN where the condition number reaches `unreliable`)."""
+    rx, ry = c * ap0 - sn * ap1, sn * ap0 + c * ap1
     inv = 1.0 / (rx * ex + ry * ey)
     wx, wy = vcx - vAx, vcy - vAy
     om = (ex * wy - ey * wx) * inv
     slide = -(rx * wx + ry * wy) * inv  # λ̇
-    og = Q[1, ig, 2, n]
     cor, oo = 2.0 * slide * og, om * om
     w2x = acx - cor * ey - aAx + oo * rx
     w2y = acy + cor * ex - aAy + oo * ry
     al = (ex * w2y - ey * w2x) * inv
     k = (length + abs(rx * ey - ry * ex)) * abs(inv)
-    if not k < math.inf:  # NaN and ∞: at the limit position (or unassembled)
-        k = math.inf
-    if k >= unreliable:
-        om = al = math.nan
-    _set_rates(Q, T, ir, a0, a1, n, vAx, vAy, aAx, aAy, om, al)
-    _set_rates(Q, T, ib, p0, p1, n, vAx - om * ry, vAy + om * rx,
-               aAx - al * ry - om * om * rx, aAy + al * rx - om * om * ry, og,
-               2.0 * Q[2, ig, 2, n])
-    x0, x1, x2 = _sizes_2(Q, ir, n, L, inv_omega)
-    y0, y1, y2 = _sizes_2(Q, ib, n, L, inv_omega)
-    _group_error_2(k, m, E, j, eps, max(x0, y0), max(x1, y1), max(x2, y2))
-    return k
+    k = k if k < math.inf else math.inf  # NaN and ∞: at the limit position (or unassembled)
+    bad = k >= unreliable
+    om = math.nan if bad else om
+    al = math.nan if bad else al
+    return (om, al, k, vAx - om * ry, vAy + om * rx, aAx - al * ry - om * om * rx,
+            aAy + al * rx - om * om * ry)
 
 
 @_loop(2)
@@ -461,29 +544,38 @@ def propagate_errors(Q, links, L, omega, kappa, rho, m, E, eps):
 @_loop()
 def _size(Q, k, i, n, L):
     """Size of link i's k-th pose coefficient at sample n: lengths over L, angles as they are."""
-    return max(max(abs(Q[k, i, 0, n]), abs(Q[k, i, 1, n])) / L, abs(Q[k, i, 2, n]))
+    return _size3(Q[k, i, 0, n], Q[k, i, 1, n], Q[k, i, 2, n], L)
+
+
+@_loop()
+def _size3(x, y, t, L):
+    """Size of a pose coefficient (x, y, θ): lengths over L, angles as they are."""
+    return max(max(abs(x), abs(y)) / L, abs(t))
 
 
 @_loop()
 def _group_error_2(k_, m, E, n, eps, m0, m1, m2):
     """`_group_error` unrolled for order 2 with a closed form (no residual), the sizes m0, m1,
-    m2 at hand: the compiled kernels' pass (scalars in registers, no work array)."""
-    if m0 < m[0, n]:
-        m0 = m[0, n]
-    if m1 < m[1, n]:
-        m1 = m[1, n]
-    if m2 < m[2, n]:
-        m2 = m[2, n]
-    m[0, n], m[1, n], m[2, n] = m0, m1, m2
-    E0, E1, E2 = E[0, n], E[1, n], E[2, n]
-    if not k_ < math.inf:
-        E[0, n] = E[1, n] = E[2, n] = math.inf
-        return
+    m2 at hand (`_bound_2` on column n of m and E)."""
+    m[0, n], m[1, n], m[2, n], E[0, n], E[1, n], E[2, n] = _bound_2(
+        k_, eps, m[0, n], m[1, n], m[2, n], E[0, n], E[1, n], E[2, n], m0, m1, m2)
+
+
+@_loop()
+def _bound_2(k_, eps, m0, m1, m2, E0, E1, E2, x0, x1, x2):
+    """The running sizes m0, m1, m2 and bounds E0, E1, E2 (order 2, a closed form: no
+    residual) after a group of condition number k_ whose links' sizes are x0, x1, x2: the
+    compiled kernels' pass, scalars in registers, without branches (vectorised loops)."""
+    m0 = m0 if x0 < m0 else x0
+    m1 = m1 if x1 < m1 else x1
+    m2 = m2 if x2 < m2 else x2
     e0 = k_ * (eps * m0 + E0)
     e1 = k_ * (E1 + e0 * m1 + max(e0, E0) * m1 + eps * 2.0 * m0 * m1)
     e2 = k_ * (E2 + e0 * m2 + max(e0, E0) * m2 + max(e1, E1) * m1
                + eps * (2.0 * m0 * m2 + m1 * m1))
-    E[0, n], E[1, n], E[2, n] = max(E0, e0), max(E1, e1), max(E2, e2)
+    bad = not k_ < math.inf
+    return (m0, m1, m2, math.inf if bad else max(E0, e0), math.inf if bad else max(E1, e1),
+            math.inf if bad else max(E2, e2))
 
 
 @_loop()
@@ -556,10 +648,14 @@ def _relative_error(E, m, eps, weights, n):
     K = min(E.shape[0], 3)
     top = 0.0
     for k in range(K):  # positions against the scale L; rates against their size too
-        v = (E[k, n] / max(m[k, n], 1.0) if k else E[0, n]) * weights[k]
-        if not v <= top:  # NaN too
-            top = v if v == v else math.inf
+        top = _worse(top, (E[k, n] / max(m[k, n], 1.0) if k else E[0, n]) * weights[k])
     return top + eps
+
+
+@_loop()
+def _worse(top, v):
+    """The larger of top and v, ∞ where v is NaN."""
+    return top if v <= top else (v if v == v else math.inf)
 
 
 # ---------------------------------------------------------------------------- the fused pass
@@ -567,16 +663,146 @@ def _relative_error(E, m, eps, weights, n):
 DRIVER, RRR, RRP = 0, 1, 2
 
 
+# The block loops of the fused pass, one per group kind and kind of work: every row they write
+# is an argument of its own that no other argument reaches (`_rows`), and the samples are
+# indexed unsigned (`_at`): LLVM then vectorises them (eight samples per instruction), which
+# it cannot where rows written and read are parts of one array.
+@_rows
+def _driver_block_positions(Q0, T, b, i, h0, h1, u, u0, x, y, th, c, s, ok, lo, hi):
+    """`driver_positions` on the block lo … hi − 1, link i's rows x, y, θ, cos θ, sin θ
+    written; ok[n] false where the input is NaN or ∞."""
+    for n in range(lo, hi):
+        k = _at(n)
+        hx, hy = _world(Q0, T, b, h0, h1, k)
+        t = Q0[b, 2, k] + (u[k] - u0)
+        cc, ss = math.cos(t), math.sin(t)
+        th[k], c[k], s[k] = t, cc, ss
+        x[k], y[k] = _origin(cc, ss, h0, h1, hx, hy)
+        ok[k] = ok[k] & (u[k] - u[k] == 0.0)
+
+
+@_rows
+def _rrr_block_positions(Q0, T, iA, pa0, pa1, iC, pc0, pc1, diff, L1sq, tol, sign, k10, k11,
+                         k20, k21, x1, y1, c1, s1, x2, y2, c2, s2, r1x, r1y, r2x, r2y, ok, lo,
+                         hi):
+    """`rrr_positions` on the block lo … hi − 1: the rows x, y, cos θ, sin θ of both links
+    written, the hinge vectors to r1x … r2y[n − lo] (sign[n − lo]: the assembly signs)."""
+    for n in range(lo, hi):
+        k, j = _at(n), _at(n - lo)
+        ax, ay = _world(Q0, T, iA, pa0, pa1, k)
+        cx, cy = _world(Q0, T, iC, pc0, pc1, k)
+        good, r1x[j], r1y[j], r2x[j], r2y[j], cc1, ss1, cc2, ss2 = _rrr_solve(
+            ax, ay, cx, cy, diff, L1sq, tol, sign[j], k10, k11, k20, k21)
+        c1[k], s1[k], c2[k], s2[k] = cc1, ss1, cc2, ss2
+        x1[k], y1[k] = _origin(cc1, ss1, pa0, pa1, ax, ay)
+        x2[k], y2[k] = _origin(cc2, ss2, pc0, pc1, cx, cy)
+        ok[k] = ok[k] & good
+
+
+@_rows
+def _rrp_block_positions(Q0, T, iA, a0, a1, ig, p0, p1, e00, e01, rsq, tol, sign, k0, k1, xr,
+                         yr, cr, sr, xb, yb, tb, cb, sb, rx, ry, ok, lo, hi):
+    """`rrp_positions` on the block lo … hi − 1: the rod's rows x, y, cos θ, sin θ and the
+    block's x, y, θ, cos θ, sin θ written, the rod's vector to rx, ry[n − lo]."""
+    for n in range(lo, hi):
+        k, j = _at(n), _at(n - lo)
+        cg, sg = T[ig, 0, k], T[ig, 1, k]
+        ax, ay = _world(Q0, T, iA, a0, a1, k)
+        qx, qy = _world(Q0, T, ig, p0, p1, k)
+        good, rx[j], ry[j], c, sn, px, py = _rrp_solve(ax, ay, qx, qy, cg, sg, e00, e01, rsq,
+                                                       tol, sign[j], k0, k1)
+        cr[k], sr[k], cb[k], sb[k], tb[k] = c, sn, cg, sg, Q0[ig, 2, k]
+        xr[k], yr[k] = _origin(c, sn, a0, a1, ax, ay)
+        xb[k], yb[k] = _origin(cg, sg, p0, p1, px, py)
+        ok[k] = ok[k] & good
+
+
+@_rows
+def _driver_block_rates(Q, T, b, i, h0, h1, u1, u2, kappa, L, eps, inv_omega, m0, m1, m2, E0,
+                        E1, E2, cond, vx, vy, vt, wx, wy, wt, lo, hi):
+    """`driver_rates` on the block lo … hi − 1: link i's rows of first (v…) and second (w…)
+    coefficients written, the bounds (m…, E…[n − lo]) and cond[n] carried on."""
+    for n in range(lo, hi):
+        k, j = _at(n), _at(n - lo)
+        hvx, hvy, hax, hay = _point_rates(Q, T, b, h0, h1, k)
+        v0, v1, v2, w0, w1, w2 = _origin_rates(
+            T[i, 0, k], T[i, 1, k], h0, h1, hvx, hvy, hax, hay, Q[1, b, 2, k] + u1[k],
+            2.0 * (Q[2, b, 2, k] + u2[k]))
+        vx[k], vy[k], vt[k], wx[k], wy[k], wt[k] = v0, v1, v2, w0, w1, w2
+        inv = inv_omega[j]
+        m0[j], m1[j], m2[j], E0[j], E1[j], E2[j] = _bound_2(
+            kappa, eps, m0[j], m1[j], m2[j], E0[j], E1[j], E2[j],
+            abs(Q[0, i, 2, k]) * (1.0 / math.pi), _size3(v0, v1, v2, L) * inv,
+            _size3(w0, w1, w2, L) * inv * inv)
+        cond[k] = kappa if kappa > cond[k] else cond[k]
+
+
+@_rows
+def _rrr_block_rates(Q, T, iA, a0, a1, iC, c0, c1, i1, i2, ba0, ba1, bc0, bc1, mid, hd2,
+                     unreliable, L, eps, inv_omega, m0, m1, m2, E0, E1, E2, cond, v1x, v1y, v1t,
+                     w1x, w1y, w1t, v2x, v2y, v2t, w2x, w2y, w2t, lo, hi):
+    """`rrr_rates` on the block lo … hi − 1: both links' rows of first (v…) and second (w…)
+    coefficients written, the bounds and cond carried on as in `_driver_block_rates`."""
+    for n in range(lo, hi):
+        k, j = _at(n), _at(n - lo)
+        vAx, vAy, aAx, aAy = _point_rates(Q, T, iA, a0, a1, k)
+        vCx, vCy, aCx, aCy = _point_rates(Q, T, iC, c0, c1, k)
+        cs1, sn1, cs2, sn2 = T[i1, 0, k], T[i1, 1, k], T[i2, 0, k], T[i2, 1, k]
+        om1, om2, al1, al2, kap = _rrr_rate_solve(vAx, vAy, aAx, aAy, vCx, vCy, aCx, aCy, cs1,
+                                                  sn1, cs2, sn2, ba0, ba1, bc0, bc1, mid, hd2,
+                                                  unreliable)
+        p0, p1, p2, q0, q1, q2 = _origin_rates(cs1, sn1, a0, a1, vAx, vAy, aAx, aAy, om1, al1)
+        v1x[k], v1y[k], v1t[k], w1x[k], w1y[k], w1t[k] = p0, p1, p2, q0, q1, q2
+        r0, r1, r2, t0, t1, t2 = _origin_rates(cs2, sn2, c0, c1, vCx, vCy, aCx, aCy, om2, al2)
+        v2x[k], v2y[k], v2t[k], w2x[k], w2y[k], w2t[k] = r0, r1, r2, t0, t1, t2
+        inv = inv_omega[j]
+        m0[j], m1[j], m2[j], E0[j], E1[j], E2[j] = _bound_2(
+            kap, eps, m0[j], m1[j], m2[j], E0[j], E1[j], E2[j],
+            max(abs(Q[0, i1, 2, k]) * (1.0 / math.pi), abs(Q[0, i2, 2, k]) * (1.0 / math.pi)),
+            max(_size3(p0, p1, p2, L) * inv, _size3(r0, r1, r2, L) * inv),
+            max(_size3(q0, q1, q2, L) * inv * inv, _size3(t0, t1, t2, L) * inv * inv))
+        cond[k] = kap if kap > cond[k] else cond[k]
+
+
+@_rows
+def _rrp_block_rates(Q, T, iA, a0, a1, ig, p0, p1, e00, e01, ap0, ap1, length, ir, ib,
+                     unreliable, L, eps, inv_omega, m0, m1, m2, E0, E1, E2, cond, vrx, vry, vrt,
+                     wrx, wry, wrt, vbx, vby, vbt, wbx, wby, wbt, lo, hi):
+    """`rrp_rates` on the block lo … hi − 1: the rod's and the block's rows written, the
+    bounds and cond carried on as in `_driver_block_rates`."""
+    for n in range(lo, hi):
+        k, j = _at(n), _at(n - lo)
+        vAx, vAy, aAx, aAy = _point_rates(Q, T, iA, a0, a1, k)
+        c, sn, cg, sg = T[ir, 0, k], T[ir, 1, k], T[ig, 0, k], T[ig, 1, k]
+        ex, ey = cg * e00 - sg * e01, sg * e00 + cg * e01
+        lam = (Q[0, ib, 0, k] - Q[0, ig, 0, k]) * ex + (Q[0, ib, 1, k] - Q[0, ig, 1, k]) * ey
+        vcx, vcy, acx, acy = _point_rates(Q, T, ig, p0 + lam * e00, p1 + lam * e01, k)
+        og, ag = Q[1, ig, 2, k], 2.0 * Q[2, ig, 2, k]
+        om, al, kap, vPx, vPy, aPx, aPy = _rrp_rate_solve(
+            vAx, vAy, aAx, aAy, vcx, vcy, acx, acy, c, sn, ex, ey, ap0, ap1, og, length,
+            unreliable)
+        r0, r1, r2, t0, t1, t2 = _origin_rates(c, sn, a0, a1, vAx, vAy, aAx, aAy, om, al)
+        vrx[k], vry[k], vrt[k], wrx[k], wry[k], wrt[k] = r0, r1, r2, t0, t1, t2
+        q0, q1, q2, u0, u1, u2 = _origin_rates(cg, sg, p0, p1, vPx, vPy, aPx, aPy, og, ag)
+        vbx[k], vby[k], vbt[k], wbx[k], wby[k], wbt[k] = q0, q1, q2, u0, u1, u2
+        inv = inv_omega[j]
+        m0[j], m1[j], m2[j], E0[j], E1[j], E2[j] = _bound_2(
+            kap, eps, m0[j], m1[j], m2[j], E0[j], E1[j], E2[j],
+            max(abs(Q[0, ir, 2, k]) * (1.0 / math.pi), abs(Q[0, ib, 2, k]) * (1.0 / math.pi)),
+            max(_size3(r0, r1, r2, L) * inv, _size3(q0, q1, q2, L) * inv),
+            max(_size3(t0, t1, t2, L) * inv * inv, _size3(u0, u1, u2, L) * inv * inv))
+        cond[k] = kap if kap > cond[k] else cond[k]
+
+
 @_loop(0)
 def fused_positions(ok, ops, fl, Q0, T, U, signs, R, lo, hi):
     """Positions of every group of a mechanism at the samples lo … hi − 1 (a block), through
     the whole solution order (the tables `ops`, `fl` of `fused.tables`: per group its opcode,
-    link indices and constants), each group's loop over the block that of its own kernel
-    (`driver_positions`, `rrr_positions`, `rrp_positions`: the block stays in the CPU's cache,
-    and a loop over samples with the group's constants in registers is what the compiler
-    vectorises). ok[n]: every group assembles. U[driver, k, n]: the inputs' Taylor
-    coefficients; signs[row, n − lo]: the dyads' assembly signs; the dyads' hinge vectors go to
-    R[col …, n − lo] for the caller's vectorised arctan2."""
+    link indices and constants), each group's loop over the block a vectorised block loop
+    (`_rrr_block_positions` …) with the group's constants in registers. ok[n]: every group
+    assembles. U[driver, k, n]: the inputs' Taylor coefficients; signs[row, n − lo]: the dyads'
+    assembly signs; the dyads' hinge vectors go to R[col …, n − lo] for the caller's
+    vectorised arctan2."""
     for n in range(lo, hi):
         ok[n] = True
     for g in range(ops.shape[0]):
@@ -586,27 +812,18 @@ def fused_positions(ok, ops, fl, Q0, T, U, signs, R, lo, hi):
             fl[g, 6]
         f7, f8, f9, f10, f11 = fl[g, 7], fl[g, 8], fl[g, 9], fl[g, 10], fl[g, 11]
         if op == DRIVER:
-            for n in range(lo, hi):
-                u = U[i3, 0, n]
-                _driver_position(Q0, T, i1, i2, f0, f1, u, f2, n)
-                if not u - u == 0.0:  # NaN or ∞
-                    ok[n] = False
+            _driver_block_positions(Q0, T, i1, i2, f0, f1, U[i3, 0], f2, Q0[i2, 0], Q0[i2, 1],
+                                    Q0[i2, 2], T[i2, 0], T[i2, 1], ok, lo, hi)
         elif op == RRR:
-            for n in range(lo, hi):
-                j = n - lo
-                gd, R[c, j], R[c + 1, j], R[c + 2, j], R[c + 3, j] = _rrr_position(
-                    Q0, T, i1, f0, f1, i2, f2, f3, i3, i4, f4, f5, f6, signs[row, j], f8, f9,
-                    f10, f11, n)
-                if not gd:
-                    ok[n] = False
+            _rrr_block_positions(Q0, T, i1, f0, f1, i2, f2, f3, f4, f5, f6, signs[row], f8, f9,
+                                 f10, f11, Q0[i3, 0], Q0[i3, 1], T[i3, 0], T[i3, 1], Q0[i4, 0],
+                                 Q0[i4, 1], T[i4, 0], T[i4, 1], R[c], R[c + 1], R[c + 2],
+                                 R[c + 3], ok, lo, hi)
         else:
-            for n in range(lo, hi):
-                j = n - lo
-                gd, R[c, j], R[c + 1, j] = _rrp_position(
-                    Q0, T, i1, f0, f1, i2, f2, f3, f4, f5, f6, f7, signs[row, j], i3, i4, f9,
-                    f10, n)
-                if not gd:
-                    ok[n] = False
+            _rrp_block_positions(Q0, T, i1, f0, f1, i2, f2, f3, f4, f5, f6, f7, signs[row], f9,
+                                 f10, Q0[i3, 0], Q0[i3, 1], T[i3, 0], T[i3, 1], Q0[i4, 0],
+                                 Q0[i4, 1], Q0[i4, 2], T[i4, 0], T[i4, 1], R[c], R[c + 1], ok,
+                                 lo, hi)
 
 
 @_loop(0)
@@ -618,36 +835,65 @@ def fused_rates(cond, ops, fl, Q, T, U, per, L, eps, m0, unreliable, plain, weig
     m, E of the block's size; m0: the drawing's coordinates over L) and their relative values
     (`relative_errors` with the weights `plain` into err, `weighted` into serr); E0[n − lo]:
     the positions' bound."""
-    for n in range(lo, hi):
-        j = n - lo
-        m[0, j], m[1, j], m[2, j] = m0, 0.0, 0.0
-        E[0, j], E[1, j], E[2, j] = 0.0, 0.0, 0.0
-        E0[j] = 1.0 / _rate_scale(U, per, n)  # 1/Ω here until the end
+    for d in range(U.shape[0]):  # 1/Ω in E0 until the end (`_rate_scale`)
+        _rate_scale_block(U[d, 1], U[d, 2], per[d], E0, d == 0, lo, hi)
+    _bounds_start_block(m0, E0, m[0], m[1], m[2], E[0], E[1], E[2], lo, hi)
     for g in range(ops.shape[0]):
         op, i1, i2, i3, i4 = ops[g, 0], ops[g, 1], ops[g, 2], ops[g, 3], ops[g, 4]
         f0, f1, f2, f3, f4, f5 = fl[g, 0], fl[g, 1], fl[g, 2], fl[g, 3], fl[g, 4], fl[g, 5]
         f11, f12, f13, f14, f15, f16, f17 = fl[g, 11], fl[g, 12], fl[g, 13], fl[g, 14], \
             fl[g, 15], fl[g, 16], fl[g, 17]
         if op == DRIVER:
-            for n in range(lo, hi):
-                _driver_rate(Q, T, i1, i2, f0, f1, U[i3, 1, n], U[i3, 2, n], f3, L, E0[n - lo], m,
-                             E, n - lo, eps, n)
-                if f3 > cond[n]:
-                    cond[n] = f3
+            _driver_block_rates(Q, T, i1, i2, f0, f1, U[i3, 1], U[i3, 2], f3, L, eps, E0, m[0],
+                                m[1], m[2], E[0], E[1], E[2], cond, Q[1, i2, 0], Q[1, i2, 1],
+                                Q[1, i2, 2], Q[2, i2, 0], Q[2, i2, 1], Q[2, i2, 2], lo, hi)
         elif op == RRR:
-            for n in range(lo, hi):
-                k = _rrr_rate(Q, T, i1, f0, f1, i2, f2, f3, i3, i4, f12, f13, f14, f15, f16, f17,
-                              unreliable, L, E0[n - lo], m, E, n - lo, eps, n)
-                if k > cond[n]:
-                    cond[n] = k
+            _rrr_block_rates(Q, T, i1, f0, f1, i2, f2, f3, i3, i4, f12, f13, f14, f15, f16, f17,
+                             unreliable, L, eps, E0, m[0], m[1], m[2], E[0], E[1], E[2], cond,
+                             Q[1, i3, 0], Q[1, i3, 1], Q[1, i3, 2], Q[2, i3, 0], Q[2, i3, 1],
+                             Q[2, i3, 2], Q[1, i4, 0], Q[1, i4, 1], Q[1, i4, 2], Q[2, i4, 0],
+                             Q[2, i4, 1], Q[2, i4, 2], lo, hi)
         else:
-            for n in range(lo, hi):
-                k = _rrp_rate(Q, T, i1, f0, f1, i2, f2, f3, f4, f5, f11, f12, f13, i3, i4,
-                              unreliable, L, E0[n - lo], m, E, n - lo, eps, n)
-                if k > cond[n]:
-                    cond[n] = k
+            _rrp_block_rates(Q, T, i1, f0, f1, i2, f2, f3, f4, f5, f11, f12, f13, i3, i4,
+                             unreliable, L, eps, E0, m[0], m[1], m[2], E[0], E[1], E[2], cond,
+                             Q[1, i3, 0], Q[1, i3, 1], Q[1, i3, 2], Q[2, i3, 0], Q[2, i3, 1],
+                             Q[2, i3, 2], Q[1, i4, 0], Q[1, i4, 1], Q[1, i4, 2], Q[2, i4, 0],
+                             Q[2, i4, 1], Q[2, i4, 2], lo, hi)
+    _relative_block(m[1], m[2], E[0], E[1], E[2], eps, plain, weighted, err, serr, E0, lo, hi)
+
+
+@_rows
+def _rate_scale_block(u1, u2, per, top, first, lo, hi):
+    """`_rate_scale` of one driver at order 2 on the block lo … hi − 1 (u1, u2: its first and
+    second Taylor coefficients), raising top[n − lo] (set when `first`)."""
     for n in range(lo, hi):
-        j = n - lo
-        err[n] = _relative_error(E, m, eps, plain, j)
-        serr[n] = _relative_error(E, m, eps, weighted, j)
-        E0[j] = E[0, j]
+        k, j = _at(n), _at(n - lo)
+        t = 0.0 if first else top[j]
+        v = abs(u1[k]) / per
+        t = v if v > t else t
+        v = math.sqrt(abs(u2[k]) / per)
+        top[j] = v if v > t else t
+
+
+@_rows
+def _bounds_start_block(m0, inv, m0r, m1r, m2r, E0r, E1r, E2r, lo, hi):
+    """The error bounds' start on a block (`precision.ErrorBudget`): sizes m0 (the drawing's
+    coordinates), 0, 0, bounds 0; inv[j]: Ω there, 1/Ω here (Ω = 1 where every rate is 0)."""
+    for j in range(hi - lo):
+        i = _at(j)
+        t = inv[i]
+        inv[i] = 1.0 / (t if t > 0.0 else 1.0)
+        m0r[i], m1r[i], m2r[i], E0r[i], E1r[i], E2r[i] = m0, 0.0, 0.0, 0.0, 0.0, 0.0
+
+
+@_rows
+def _relative_block(m1, m2, E0, E1, E2, eps, plain, weighted, err, serr, pos, lo, hi):
+    """`relative_errors` at order 2 on the block lo … hi − 1: with the weights `plain` into
+    err[n], `weighted` into serr[n]; the positions' bound E0 to pos[n − lo]."""
+    for n in range(lo, hi):
+        k, j = _at(n), _at(n - lo)
+        a, b, c = E0[j], E1[j] / max(m1[j], 1.0), E2[j] / max(m2[j], 1.0)
+        err[k] = _worse(_worse(_worse(0.0, a * plain[0]), b * plain[1]), c * plain[2]) + eps
+        serr[k] = _worse(_worse(_worse(0.0, a * weighted[0]), b * weighted[1]),
+                         c * weighted[2]) + eps
+        pos[j] = a
