@@ -970,7 +970,8 @@ def _tangents(state: State, solvers, gen: _Generic, jacobians: dict, ok: np.ndar
 def _correct(state: State, solver, guess: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Newton's method on one generic group from the predicted poses `guess` (N, k, 3); fills
     the group's poses in Q[0] (NaN where it failed). Returns the convergence mask and the last
-    Jacobian (at the final poses, or one Newton step before them).
+    Jacobian (at the final poses, or one Newton step before them; with the columns of the known
+    links and inputs after the group's own where a pair table gave it).
 
     An iteration whose step is not at most `CONTRACTION` times the one before fails the sample:
     near a regular solution Newton's method contracts fast, so slow or growing steps mean that
@@ -987,13 +988,16 @@ def _correct(state: State, solver, guess: np.ndarray) -> tuple[np.ndarray, np.nd
     converged = np.zeros(N, dtype=bool)
     last = np.full(N, np.inf)
     J = None
+    m = 3 * group.size
     for _ in range(CORRECTOR_ITERATIONS):
         state.Q[0][:, idx, :] = q
-        r, Jq = groups.residual_and_jacobian(state, group)
+        # (a pair table's Jacobian with all its columns: the tangent's rates take them)
+        r, Jall = groups.residual_and_jacobian(state, group, all_columns=True)
+        Jq = Jall[:, :, :m]
         converged |= alive & (np.abs(r).max(axis=1) <= tol)
         if J is None:
-            J = np.full(Jq.shape, np.nan)
-        J[alive] = Jq[alive]
+            J = np.full(Jall.shape, np.nan)
+        J[alive] = Jall[alive]
         todo = alive & ~converged
         if not todo.any():
             break
@@ -1024,9 +1028,12 @@ def _tangent(state: State, solver, J: np.ndarray, ok: np.ndarray) -> None:
     jets of the residuals with the unknown velocities zero), J the corrector's last Jacobian."""
     group = solver.group
     idx = [state.li(ln) for ln in group.links]
-    r = groups.rate_residuals(state, group, 1)
+    m = 3 * group.size
+    # the corrector's Jacobian is at the poses in Q[0]: its other columns give the rates
+    r = groups.rate_residuals(state, group, 1, jacobian=J)
+    J = J[:, :, :m]
     good = ok & np.isfinite(J).all(axis=(1, 2))
-    v = np.full((r.shape[0], J.shape[2]), np.nan)
+    v = np.full((r.shape[0], m), np.nan)
     if good.any():
         v[good] = groups.least_squares(J[good], -r[good])
     state.Q[1][:, idx, :] = v.reshape(-1, group.size, 3)

@@ -235,16 +235,18 @@ def _residuals(state: State, group: Group, U: np.ndarray, order: int) -> list[Je
     return res
 
 
-def residual_and_jacobian(state: State, group: Group) -> tuple[np.ndarray, np.ndarray]:
+def residual_and_jacobian(state: State, group: Group, *,
+                          all_columns: bool = False) -> tuple[np.ndarray, np.ndarray]:
     """Residuals (N, rows) of the group's constraints at the poses in Q[0] and their Jacobian
     (N, rows, 3k) with respect to its link poses. rows = 3k, less one per wedge pair. From the
     group's `PairTable` where it has one (lower pairs and drivers), else from one evaluation on
-    first-order jets (`residual_and_jacobian_jets`)."""
+    first-order jets (`residual_and_jacobian_jets`). `all_columns`: from a table, the
+    Jacobian's columns of the known links and inputs follow (`rate_residuals` takes them)."""
     table = pair_table_of(state.mech, group)
     if table is None:
         return residual_and_jacobian_jets(state, group)
     r, J = table.evaluate(state.Q[0], {j: v[0] for j, v in state.inputs.items()})
-    return r, J[:, :, :3 * group.size]
+    return r, (J if all_columns else J[:, :, :3 * group.size])
 
 
 def residual_and_jacobian_jets(state: State, group: Group) -> tuple[np.ndarray, np.ndarray]:
@@ -270,16 +272,20 @@ def group_jacobian(state: State, group: Group) -> np.ndarray:
     return residual_and_jacobian(state, group)[1]
 
 
-def rate_residuals(state: State, group: Group, k: int) -> np.ndarray:
+def rate_residuals(state: State, group: Group, k: int,
+                   jacobian: np.ndarray | None = None) -> np.ndarray:
     """(N, rows): the k-th Taylor coefficient of the group's constraint residuals with the
     group's own k-th pose coefficients set to zero, the right-hand side −r_k of J·q⁽ᵏ⁾/k! = −r_k
     (all lower coefficients as they stand in Q). First order from the group's `PairTable`
     where it has one (the Jacobian's columns of the known links and inputs times their
-    rates), else on jets (`rate_residuals_jets`)."""
+    rates; `jacobian`: that Jacobian at the poses in Q[0], all its columns, if at hand), else
+    on jets (`rate_residuals_jets`)."""
     table = pair_table_of(state.mech, group) if k == 1 else None
     if table is None:
         return rate_residuals_jets(state, group, k)
-    _, J = table.evaluate(state.Q[0], {j: v[0] for j, v in state.inputs.items()})
+    J = jacobian
+    if J is None or J.shape[2] != table.cols:
+        _, J = table.evaluate(state.Q[0], {j: v[0] for j, v in state.inputs.items()})
     known = table.rows_q[group.size:]
     rates = [state.Q[1][:, known].reshape(J.shape[0], -1)]
     rates += [state.inputs[d[4]][1][:, None] for d in table.drivers]
