@@ -661,6 +661,9 @@ def _worse(top, v):
 # ---------------------------------------------------------------------------- the fused pass
 #: opcodes of `fused_positions` / `fused_rates` (the solution order as tables, `fused.Tables`)
 DRIVER, RRR, RRP = 0, 1, 2
+#: samples per pass of a group within the fused loops' block: the rows a group reads (written
+#: by the groups before it) and the error bounds stay in the CPU's L2 cache between the groups
+SUBBLOCK = 1024
 
 
 # The block loops of the fused pass, one per group kind and kind of work: every row they write
@@ -805,25 +808,29 @@ def fused_positions(ok, ops, fl, Q0, T, U, signs, R, lo, hi):
     vectorised arctan2."""
     for n in range(lo, hi):
         ok[n] = True
-    for g in range(ops.shape[0]):
-        op, i1, i2, i3, i4, row, c = (ops[g, 0], ops[g, 1], ops[g, 2], ops[g, 3], ops[g, 4],
-                                      ops[g, 5], ops[g, 6])
-        f0, f1, f2, f3, f4, f5, f6 = fl[g, 0], fl[g, 1], fl[g, 2], fl[g, 3], fl[g, 4], fl[g, 5], \
-            fl[g, 6]
-        f7, f8, f9, f10, f11 = fl[g, 7], fl[g, 8], fl[g, 9], fl[g, 10], fl[g, 11]
-        if op == DRIVER:
-            _driver_block_positions(Q0, T, i1, i2, f0, f1, U[i3, 0], f2, Q0[i2, 0], Q0[i2, 1],
-                                    Q0[i2, 2], T[i2, 0], T[i2, 1], ok, lo, hi)
-        elif op == RRR:
-            _rrr_block_positions(Q0, T, i1, f0, f1, i2, f2, f3, f4, f5, f6, signs[row], f8, f9,
-                                 f10, f11, Q0[i3, 0], Q0[i3, 1], T[i3, 0], T[i3, 1], Q0[i4, 0],
-                                 Q0[i4, 1], T[i4, 0], T[i4, 1], R[c], R[c + 1], R[c + 2],
-                                 R[c + 3], ok, lo, hi)
-        else:
-            _rrp_block_positions(Q0, T, i1, f0, f1, i2, f2, f3, f4, f5, f6, f7, signs[row], f9,
-                                 f10, Q0[i3, 0], Q0[i3, 1], T[i3, 0], T[i3, 1], Q0[i4, 0],
-                                 Q0[i4, 1], Q0[i4, 2], T[i4, 0], T[i4, 1], R[c], R[c + 1], ok,
-                                 lo, hi)
+    for lo2 in range(lo, hi, SUBBLOCK):  # each group's inputs still in the cache
+        hi2 = min(hi, lo2 + SUBBLOCK)
+        a, b = lo2 - lo, hi2 - lo
+        for g in range(ops.shape[0]):
+            op, i1, i2, i3, i4, row, c = (ops[g, 0], ops[g, 1], ops[g, 2], ops[g, 3], ops[g, 4],
+                                          ops[g, 5], ops[g, 6])
+            f0, f1, f2, f3, f4, f5, f6 = fl[g, 0], fl[g, 1], fl[g, 2], fl[g, 3], fl[g, 4], \
+                fl[g, 5], fl[g, 6]
+            f7, f8, f9, f10, f11 = fl[g, 7], fl[g, 8], fl[g, 9], fl[g, 10], fl[g, 11]
+            if op == DRIVER:
+                _driver_block_positions(Q0, T, i1, i2, f0, f1, U[i3, 0], f2, Q0[i2, 0],
+                                        Q0[i2, 1], Q0[i2, 2], T[i2, 0], T[i2, 1], ok, lo2, hi2)
+            elif op == RRR:
+                _rrr_block_positions(Q0, T, i1, f0, f1, i2, f2, f3, f4, f5, f6,
+                                     signs[row][a:b], f8, f9, f10, f11, Q0[i3, 0], Q0[i3, 1],
+                                     T[i3, 0], T[i3, 1], Q0[i4, 0], Q0[i4, 1], T[i4, 0],
+                                     T[i4, 1], R[c][a:b], R[c + 1][a:b], R[c + 2][a:b],
+                                     R[c + 3][a:b], ok, lo2, hi2)
+            else:
+                _rrp_block_positions(Q0, T, i1, f0, f1, i2, f2, f3, f4, f5, f6, f7,
+                                     signs[row][a:b], f9, f10, Q0[i3, 0], Q0[i3, 1], T[i3, 0],
+                                     T[i3, 1], Q0[i4, 0], Q0[i4, 1], Q0[i4, 2], T[i4, 0],
+                                     T[i4, 1], R[c][a:b], R[c + 1][a:b], ok, lo2, hi2)
 
 
 @_loop(0)
@@ -835,31 +842,37 @@ def fused_rates(cond, ops, fl, Q, T, U, per, L, eps, m0, unreliable, plain, weig
     m, E of the block's size; m0: the drawing's coordinates over L) and their relative values
     (`relative_errors` with the weights `plain` into err, `weighted` into serr); E0[n − lo]:
     the positions' bound."""
-    for d in range(U.shape[0]):  # 1/Ω in E0 until the end (`_rate_scale`)
-        _rate_scale_block(U[d, 1], U[d, 2], per[d], E0, d == 0, lo, hi)
-    _bounds_start_block(m0, E0, m[0], m[1], m[2], E[0], E[1], E[2], lo, hi)
-    for g in range(ops.shape[0]):
-        op, i1, i2, i3, i4 = ops[g, 0], ops[g, 1], ops[g, 2], ops[g, 3], ops[g, 4]
-        f0, f1, f2, f3, f4, f5 = fl[g, 0], fl[g, 1], fl[g, 2], fl[g, 3], fl[g, 4], fl[g, 5]
-        f11, f12, f13, f14, f15, f16, f17 = fl[g, 11], fl[g, 12], fl[g, 13], fl[g, 14], \
-            fl[g, 15], fl[g, 16], fl[g, 17]
-        if op == DRIVER:
-            _driver_block_rates(Q, T, i1, i2, f0, f1, U[i3, 1], U[i3, 2], f3, L, eps, E0, m[0],
-                                m[1], m[2], E[0], E[1], E[2], cond, Q[1, i2, 0], Q[1, i2, 1],
-                                Q[1, i2, 2], Q[2, i2, 0], Q[2, i2, 1], Q[2, i2, 2], lo, hi)
-        elif op == RRR:
-            _rrr_block_rates(Q, T, i1, f0, f1, i2, f2, f3, i3, i4, f12, f13, f14, f15, f16, f17,
-                             unreliable, L, eps, E0, m[0], m[1], m[2], E[0], E[1], E[2], cond,
-                             Q[1, i3, 0], Q[1, i3, 1], Q[1, i3, 2], Q[2, i3, 0], Q[2, i3, 1],
-                             Q[2, i3, 2], Q[1, i4, 0], Q[1, i4, 1], Q[1, i4, 2], Q[2, i4, 0],
-                             Q[2, i4, 1], Q[2, i4, 2], lo, hi)
-        else:
-            _rrp_block_rates(Q, T, i1, f0, f1, i2, f2, f3, f4, f5, f11, f12, f13, i3, i4,
-                             unreliable, L, eps, E0, m[0], m[1], m[2], E[0], E[1], E[2], cond,
-                             Q[1, i3, 0], Q[1, i3, 1], Q[1, i3, 2], Q[2, i3, 0], Q[2, i3, 1],
-                             Q[2, i3, 2], Q[1, i4, 0], Q[1, i4, 1], Q[1, i4, 2], Q[2, i4, 0],
-                             Q[2, i4, 1], Q[2, i4, 2], lo, hi)
-    _relative_block(m[1], m[2], E[0], E[1], E[2], eps, plain, weighted, err, serr, E0, lo, hi)
+    for lo2 in range(lo, hi, SUBBLOCK):  # the bounds and each group's inputs in the cache
+        hi2 = min(hi, lo2 + SUBBLOCK)
+        inv = E0[lo2 - lo:hi2 - lo]
+        m0r, m1r, m2r, E0r, E1r, E2r = m[0], m[1], m[2], E[0], E[1], E[2]
+        for d in range(U.shape[0]):  # 1/Ω in inv until the end (`_rate_scale`)
+            _rate_scale_block(U[d, 1], U[d, 2], per[d], inv, d == 0, lo2, hi2)
+        _bounds_start_block(m0, inv, m0r, m1r, m2r, E0r, E1r, E2r, lo2, hi2)
+        for g in range(ops.shape[0]):
+            op, i1, i2, i3, i4 = ops[g, 0], ops[g, 1], ops[g, 2], ops[g, 3], ops[g, 4]
+            f0, f1, f2, f3, f4, f5 = fl[g, 0], fl[g, 1], fl[g, 2], fl[g, 3], fl[g, 4], fl[g, 5]
+            f11, f12, f13, f14, f15, f16, f17 = fl[g, 11], fl[g, 12], fl[g, 13], fl[g, 14], \
+                fl[g, 15], fl[g, 16], fl[g, 17]
+            if op == DRIVER:
+                _driver_block_rates(Q, T, i1, i2, f0, f1, U[i3, 1], U[i3, 2], f3, L, eps, inv,
+                                    m0r, m1r, m2r, E0r, E1r, E2r, cond, Q[1, i2, 0],
+                                    Q[1, i2, 1], Q[1, i2, 2], Q[2, i2, 0], Q[2, i2, 1],
+                                    Q[2, i2, 2], lo2, hi2)
+            elif op == RRR:
+                _rrr_block_rates(Q, T, i1, f0, f1, i2, f2, f3, i3, i4, f12, f13, f14, f15, f16,
+                                 f17, unreliable, L, eps, inv, m0r, m1r, m2r, E0r, E1r, E2r,
+                                 cond, Q[1, i3, 0], Q[1, i3, 1], Q[1, i3, 2], Q[2, i3, 0],
+                                 Q[2, i3, 1], Q[2, i3, 2], Q[1, i4, 0], Q[1, i4, 1],
+                                 Q[1, i4, 2], Q[2, i4, 0], Q[2, i4, 1], Q[2, i4, 2], lo2, hi2)
+            else:
+                _rrp_block_rates(Q, T, i1, f0, f1, i2, f2, f3, f4, f5, f11, f12, f13, i3, i4,
+                                 unreliable, L, eps, inv, m0r, m1r, m2r, E0r, E1r, E2r, cond,
+                                 Q[1, i3, 0], Q[1, i3, 1], Q[1, i3, 2], Q[2, i3, 0],
+                                 Q[2, i3, 1], Q[2, i3, 2], Q[1, i4, 0], Q[1, i4, 1],
+                                 Q[1, i4, 2], Q[2, i4, 0], Q[2, i4, 1], Q[2, i4, 2], lo2, hi2)
+        _relative_block(m1r, m2r, E0r, E1r, E2r, eps, plain, weighted, err, serr, inv, lo2,
+                        hi2)
 
 
 @_rows
