@@ -88,10 +88,14 @@ def _loop(samples_axis: int | None = None):
 _ROWS: set[str] = set()
 
 
-def _rows(fn: types.FunctionType) -> types.FunctionType:
-    """Register a block loop of the fused pass (see `_ROWS`)."""
-    _ROWS.add(fn.__name__)
-    return _loop()(fn)
+def _rows(fn: types.FunctionType | None = None, *, samples_axis: int | None = None):
+    """Register a loop whose written rows are arguments of their own (see `_ROWS`): a block
+    loop of the fused pass, or with `samples_axis` an entry point as `_loop` makes them."""
+    def register(fn: types.FunctionType):
+        _ROWS.add(fn.__name__)
+        return _loop(samples_axis)(fn)
+
+    return register if fn is None else register(fn)
 
 
 def _at(n):
@@ -141,7 +145,7 @@ def _compiled() -> dict:
     ns = _bound(dict(globals()))
     ns["_at"] = np.uint64
     for name, (_, samples_axis) in _LOOPS.items():
-        if name in _ROWS:  # called by the fused loops, each on its own (not inlined)
+        if name in _ROWS:  # each compiled on its own (not inlined: its noalias would not hold)
             ns[name] = nb.njit(inline="never", pipeline_class=_NoAlias, **_FLAGS)(ns[name])
             continue
         # the per-sample helpers inlined into the loops by numba itself: LLVM leaves the calls
@@ -485,21 +489,44 @@ def point_motion(C, c, s, sx, sy, out):
     r = R(θ)s, v = ṫ + ω ⊥r, a = ẗ + α ⊥r − ω² r, j = ⃛t + (ω̈ − ω³) ⊥r − 3ωα r."""
     K = C.shape[0] - 1
     for n in range(C.shape[1]):
-        rx = c[n] * sx[n] - s[n] * sy[n]
-        ry = s[n] * sx[n] + c[n] * sy[n]
-        out[0, 0, n] = C[0, n, 0] + rx
-        out[0, 1, n] = C[0, n, 1] + ry
-        w = C[1, n, 2]
-        out[1, 0, n] = C[1, n, 0] - w * ry
-        out[1, 1, n] = C[1, n, 1] + w * rx
         if K >= 2:
-            a, ww = 2.0 * C[2, n, 2], w * w
-            out[2, 0, n] = 2.0 * C[2, n, 0] - a * ry - ww * rx
-            out[2, 1, n] = 2.0 * C[2, n, 1] + a * rx - ww * ry
-            if K >= 3:
-                jt, wa = 6.0 * C[3, n, 2] - w * w * w, 3.0 * w * a
-                out[3, 0, n] = 6.0 * C[3, n, 0] - jt * ry - wa * rx
-                out[3, 1, n] = 6.0 * C[3, n, 1] + jt * rx - wa * ry
+            (out[0, 0, n], out[0, 1, n], out[1, 0, n], out[1, 1, n], out[2, 0, n],
+             out[2, 1, n]) = _point_pva(c[n], s[n], sx[n], sy[n], C[0, n, 0], C[0, n, 1],
+                                        C[1, n, 0], C[1, n, 1], C[1, n, 2], C[2, n, 0],
+                                        C[2, n, 1], C[2, n, 2])
+        else:
+            out[0, 0, n], out[0, 1, n], out[1, 0, n], out[1, 1, n], _, _ = _point_pva(
+                c[n], s[n], sx[n], sy[n], C[0, n, 0], C[0, n, 1], C[1, n, 0], C[1, n, 1],
+                C[1, n, 2], 0.0, 0.0, 0.0)
+        if K >= 3:
+            rx = c[n] * sx[n] - s[n] * sy[n]
+            ry = s[n] * sx[n] + c[n] * sy[n]
+            w, a = C[1, n, 2], 2.0 * C[2, n, 2]
+            jt, wa = 6.0 * C[3, n, 2] - w * w * w, 3.0 * w * a
+            out[3, 0, n] = 6.0 * C[3, n, 0] - jt * ry - wa * rx
+            out[3, 1, n] = 6.0 * C[3, n, 1] + jt * rx - wa * ry
+
+
+@_rows(samples_axis=0)
+def point_motion_2(c, sn, sx, sy, x0, y0, x1, y1, w, x2, y2, t2, px, py, vx, vy, ax, ay):
+    """`point_motion` of the design point (sx, sy) at order 2 from the link's rows cos θ, sin θ
+    and Taylor coefficients (x0, y0), (x1, y1, ω), (x2, y2, t2), each row (of these and of the
+    answer) an array of its own: vectorised."""
+    for n in range(c.shape[0]):
+        k = _at(n)
+        px[k], py[k], vx[k], vy[k], ax[k], ay[k] = _point_pva(
+            c[k], sn[k], sx, sy, x0[k], y0[k], x1[k], y1[k], w[k], x2[k], y2[k], t2[k])
+
+
+@_loop()
+def _point_pva(c, sn, sx, sy, x0, y0, x1, y1, w, x2, y2, t2):
+    """Position, velocity and acceleration (x, y each) of the point s = (sx, sy) on a link at
+    angle (c, sn) whose origin's Taylor coefficients are (x0, y0), (x1, y1, ω), (x2, y2, t2)."""
+    rx = c * sx - sn * sy
+    ry = sn * sx + c * sy
+    a, ww = 2.0 * t2, w * w
+    return (x0 + rx, y0 + ry, x1 - w * ry, y1 + w * rx, 2.0 * x2 - a * ry - ww * rx,
+            2.0 * y2 + a * rx - ww * ry)
 
 
 @_loop(3)
