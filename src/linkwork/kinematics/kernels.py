@@ -698,16 +698,16 @@ SUBBLOCK = 1024
 # indexed unsigned (`_at`): LLVM then vectorises them (eight samples per instruction), which
 # it cannot where rows written and read are parts of one array.
 @_rows
-def _driver_block_positions(Q0, T, b, i, h0, h1, u, u0, x, y, th, c, s, ok, lo, hi):
-    """`driver_positions` on the block lo … hi − 1, link i's rows x, y, θ, cos θ, sin θ
+def _driver_block_positions(u, u0, h0, h1, x, y, th, c, s, ok, lo, hi):
+    """`driver_positions` of a driver on the frame on the block lo … hi − 1 (the frame's pose
+    is zero: θ = u − u0, the hinge H where it is drawn), link i's rows x, y, θ, cos θ, sin θ
     written; ok[n] false where the input is NaN or ∞."""
     for n in range(lo, hi):
         k = _at(n)
-        hx, hy = _world(Q0, T, b, h0, h1, k)
-        t = Q0[b, 2, k] + (u[k] - u0)
+        t = u[k] - u0
         cc, ss = math.cos(t), math.sin(t)
         th[k], c[k], s[k] = t, cc, ss
-        x[k], y[k] = _origin(cc, ss, h0, h1, hx, hy)
+        x[k], y[k] = _origin(cc, ss, h0, h1, h0, h1)
         ok[k] = ok[k] & (u[k] - u[k] == 0.0)
 
 
@@ -748,21 +748,20 @@ def _rrp_block_positions(Q0, T, iA, a0, a1, ig, p0, p1, e00, e01, rsq, tol, sign
 
 
 @_rows
-def _driver_block_rates(Q, T, b, i, h0, h1, u1, u2, kappa, L, eps, inv_omega, m0, m1, m2, E0,
-                        E1, E2, cond, vx, vy, vt, wx, wy, wt, lo, hi):
-    """`driver_rates` on the block lo … hi − 1: link i's rows of first (v…) and second (w…)
-    coefficients written, the bounds (m…, E…[n − lo]) and cond[n] carried on."""
+def _driver_block_rates(T, Q0, i, h0, h1, u1, u2, kappa, L, eps, inv_omega, m0, m1, m2, E0, E1,
+                        E2, cond, vx, vy, vt, wx, wy, wt, lo, hi):
+    """`driver_rates` of a driver on the frame on the block lo … hi − 1 (the hinge H stands
+    still: ω = u̇, α = ü): link i's rows of first (v…) and second (w…) coefficients written,
+    the bounds (m…, E…[n − lo]) and cond[n] carried on."""
     for n in range(lo, hi):
         k, j = _at(n), _at(n - lo)
-        hvx, hvy, hax, hay = _point_rates(Q, T, b, h0, h1, k)
-        v0, v1, v2, w0, w1, w2 = _origin_rates(
-            T[i, 0, k], T[i, 1, k], h0, h1, hvx, hvy, hax, hay, Q[1, b, 2, k] + u1[k],
-            2.0 * (Q[2, b, 2, k] + u2[k]))
+        v0, v1, v2, w0, w1, w2 = _origin_rates(T[i, 0, k], T[i, 1, k], h0, h1, 0.0, 0.0, 0.0,
+                                               0.0, u1[k], 2.0 * u2[k])
         vx[k], vy[k], vt[k], wx[k], wy[k], wt[k] = v0, v1, v2, w0, w1, w2
         inv = inv_omega[j]
         m0[j], m1[j], m2[j], E0[j], E1[j], E2[j] = _bound_2(
             kappa, eps, m0[j], m1[j], m2[j], E0[j], E1[j], E2[j],
-            abs(Q[0, i, 2, k]) * (1.0 / math.pi), _size3(v0, v1, v2, L) * inv,
+            abs(Q0[i, 2, k]) * (1.0 / math.pi), _size3(v0, v1, v2, L) * inv,
             _size3(w0, w1, w2, L) * inv * inv)
         cond[k] = kappa if kappa > cond[k] else cond[k]
 
@@ -845,8 +844,8 @@ def fused_positions(ok, ops, fl, Q0, T, U, signs, R, lo, hi):
                 fl[g, 5], fl[g, 6]
             f7, f8, f9, f10, f11 = fl[g, 7], fl[g, 8], fl[g, 9], fl[g, 10], fl[g, 11]
             if op == DRIVER:
-                _driver_block_positions(Q0, T, i1, i2, f0, f1, U[i3, 0], f2, Q0[i2, 0],
-                                        Q0[i2, 1], Q0[i2, 2], T[i2, 0], T[i2, 1], ok, lo2, hi2)
+                _driver_block_positions(U[i3, 0], f2, f0, f1, Q0[i2, 0], Q0[i2, 1], Q0[i2, 2],
+                                        T[i2, 0], T[i2, 1], ok, lo2, hi2)
             elif op == RRR:
                 _rrr_block_positions(Q0, T, i1, f0, f1, i2, f2, f3, f4, f5, f6,
                                      signs[row][a:b], f8, f9, f10, f11, Q0[i3, 0], Q0[i3, 1],
@@ -882,7 +881,7 @@ def fused_rates(cond, ops, fl, Q, T, U, per, L, eps, m0, unreliable, plain, weig
             f11, f12, f13, f14, f15, f16, f17 = fl[g, 11], fl[g, 12], fl[g, 13], fl[g, 14], \
                 fl[g, 15], fl[g, 16], fl[g, 17]
             if op == DRIVER:
-                _driver_block_rates(Q, T, i1, i2, f0, f1, U[i3, 1], U[i3, 2], f3, L, eps, inv,
+                _driver_block_rates(T, Q[0], i2, f0, f1, U[i3, 1], U[i3, 2], f3, L, eps, inv,
                                     m0r, m1r, m2r, E0r, E1r, E2r, cond, Q[1, i2, 0],
                                     Q[1, i2, 1], Q[1, i2, 2], Q[2, i2, 0], Q[2, i2, 1],
                                     Q[2, i2, 2], lo2, hi2)
