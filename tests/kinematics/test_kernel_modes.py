@@ -55,3 +55,33 @@ def test_the_switch_is_by_batch_size(monkeypatch):
     ran.clear()
     linkwork.solve(mech, np.radians(np.arange(6.0)))
     assert set(ran) == {"_compiled"}
+
+
+@pytest.mark.parametrize("name", ["crank-rocker", "jansen-linkage", "slider-crank-offset"])
+def test_point_rows_loop_matches_the_general_point_loop(name):
+    """A point of a link (`kernels.point_motion_2`, rows of their own) against the same point
+    given per sample (`kernels.point_motion`, the general loop), compiled both (equal but for
+    numba's contractions), and against
+    the link's pose derivatives in NumPy (r = R(θ)s, v = ṫ + ω ⊥r, a = ẗ + α ⊥r − ω² r)."""
+    mech = linkwork.load(f"library:{name}")
+    u = mech.driver_input_at_design(mech.drivers[0]) + np.linspace(-3.0, 3.0, 9001)
+    sol = linkwork.solve(mech, u, compiled=True)
+    L = mech.length_scale
+    for p, s in mech.points.items():
+        link = mech.point_owner[p]
+        with kernels.compiled_loops(True):
+            fast = sol.point_on(link, s)
+            general = sol.point_on(link, np.broadcast_to(s, (len(u), 2)).copy())
+        D = sol.pose_derivatives(link)
+        c, sn = np.cos(D[0, :, 2]), np.sin(D[0, :, 2])
+        r = np.stack([c * s[0] - sn * s[1], sn * s[0] + c * s[1]], axis=-1)
+        perp = np.stack([-r[:, 1], r[:, 0]], axis=-1)
+        w, al = D[1, :, 2][:, None], D[2, :, 2][:, None]
+        numpy = (D[0, :, :2] + r, D[1, :, :2] + w * perp, D[2, :, :2] + al * perp - w * w * r)
+        ok = sol.status == 0
+        for q, ref in zip(("position", "velocity", "acceleration"), numpy):
+            a, b = getattr(fast, q), getattr(general, q)
+            scale = L + np.abs(b)
+            np.testing.assert_array_less(np.abs(a - b)[ok] / scale[ok], 1e-13, err_msg=p)
+            np.testing.assert_array_less(np.abs(a - ref)[ok] / (L + np.abs(ref))[ok], 1e-12,
+                                         err_msg=p)

@@ -88,10 +88,14 @@ def _loop(samples_axis: int | None = None):
 _ROWS: set[str] = set()
 
 
-def _rows(fn: types.FunctionType) -> types.FunctionType:
-    """Register a block loop of the fused pass (see `_ROWS`)."""
-    _ROWS.add(fn.__name__)
-    return _loop()(fn)
+def _rows(fn: types.FunctionType | None = None, *, samples_axis: int | None = None):
+    """Register a loop whose written rows are arguments of their own (see `_ROWS`): a block
+    loop of the fused pass, or with `samples_axis` an entry point as `_loop` makes them."""
+    def register(fn: types.FunctionType):
+        _ROWS.add(fn.__name__)
+        return _loop(samples_axis)(fn)
+
+    return register if fn is None else register(fn)
 
 
 def _at(n):
@@ -141,7 +145,7 @@ def _compiled() -> dict:
     ns = _bound(dict(globals()))
     ns["_at"] = np.uint64
     for name, (_, samples_axis) in _LOOPS.items():
-        if name in _ROWS:  # called by the fused loops, each on its own (not inlined)
+        if name in _ROWS:  # each compiled on its own (not inlined: its noalias would not hold)
             ns[name] = nb.njit(inline="never", pipeline_class=_NoAlias, **_FLAGS)(ns[name])
             continue
         # the per-sample helpers inlined into the loops by numba itself: LLVM leaves the calls
@@ -485,21 +489,44 @@ def point_motion(C, c, s, sx, sy, out):
     r = R(θ)s, v = ṫ + ω ⊥r, a = ẗ + α ⊥r − ω² r, j = ⃛t + (ω̈ − ω³) ⊥r − 3ωα r."""
     K = C.shape[0] - 1
     for n in range(C.shape[1]):
-        rx = c[n] * sx[n] - s[n] * sy[n]
-        ry = s[n] * sx[n] + c[n] * sy[n]
-        out[0, 0, n] = C[0, n, 0] + rx
-        out[0, 1, n] = C[0, n, 1] + ry
-        w = C[1, n, 2]
-        out[1, 0, n] = C[1, n, 0] - w * ry
-        out[1, 1, n] = C[1, n, 1] + w * rx
         if K >= 2:
-            a, ww = 2.0 * C[2, n, 2], w * w
-            out[2, 0, n] = 2.0 * C[2, n, 0] - a * ry - ww * rx
-            out[2, 1, n] = 2.0 * C[2, n, 1] + a * rx - ww * ry
-            if K >= 3:
-                jt, wa = 6.0 * C[3, n, 2] - w * w * w, 3.0 * w * a
-                out[3, 0, n] = 6.0 * C[3, n, 0] - jt * ry - wa * rx
-                out[3, 1, n] = 6.0 * C[3, n, 1] + jt * rx - wa * ry
+            (out[0, 0, n], out[0, 1, n], out[1, 0, n], out[1, 1, n], out[2, 0, n],
+             out[2, 1, n]) = _point_pva(c[n], s[n], sx[n], sy[n], C[0, n, 0], C[0, n, 1],
+                                        C[1, n, 0], C[1, n, 1], C[1, n, 2], C[2, n, 0],
+                                        C[2, n, 1], C[2, n, 2])
+        else:
+            out[0, 0, n], out[0, 1, n], out[1, 0, n], out[1, 1, n], _, _ = _point_pva(
+                c[n], s[n], sx[n], sy[n], C[0, n, 0], C[0, n, 1], C[1, n, 0], C[1, n, 1],
+                C[1, n, 2], 0.0, 0.0, 0.0)
+        if K >= 3:
+            rx = c[n] * sx[n] - s[n] * sy[n]
+            ry = s[n] * sx[n] + c[n] * sy[n]
+            w, a = C[1, n, 2], 2.0 * C[2, n, 2]
+            jt, wa = 6.0 * C[3, n, 2] - w * w * w, 3.0 * w * a
+            out[3, 0, n] = 6.0 * C[3, n, 0] - jt * ry - wa * rx
+            out[3, 1, n] = 6.0 * C[3, n, 1] + jt * rx - wa * ry
+
+
+@_rows(samples_axis=0)
+def point_motion_2(c, sn, sx, sy, x0, y0, x1, y1, w, x2, y2, t2, px, py, vx, vy, ax, ay):
+    """`point_motion` of the design point (sx, sy) at order 2 from the link's rows cos θ, sin θ
+    and Taylor coefficients (x0, y0), (x1, y1, ω), (x2, y2, t2), each row (of these and of the
+    answer) an array of its own: vectorised."""
+    for n in range(c.shape[0]):
+        k = _at(n)
+        px[k], py[k], vx[k], vy[k], ax[k], ay[k] = _point_pva(
+            c[k], sn[k], sx, sy, x0[k], y0[k], x1[k], y1[k], w[k], x2[k], y2[k], t2[k])
+
+
+@_loop()
+def _point_pva(c, sn, sx, sy, x0, y0, x1, y1, w, x2, y2, t2):
+    """Position, velocity and acceleration (x, y each) of the point s = (sx, sy) on a link at
+    angle (c, sn) whose origin's Taylor coefficients are (x0, y0), (x1, y1, ω), (x2, y2, t2)."""
+    rx = c * sx - sn * sy
+    ry = sn * sx + c * sy
+    a, ww = 2.0 * t2, w * w
+    return (x0 + rx, y0 + ry, x1 - w * ry, y1 + w * rx, 2.0 * x2 - a * ry - ww * rx,
+            2.0 * y2 + a * rx - ww * ry)
 
 
 @_loop(3)
@@ -661,6 +688,9 @@ def _worse(top, v):
 # ---------------------------------------------------------------------------- the fused pass
 #: opcodes of `fused_positions` / `fused_rates` (the solution order as tables, `fused.Tables`)
 DRIVER, RRR, RRP = 0, 1, 2
+#: samples per pass of a group within the fused loops' block: the rows a group reads (written
+#: by the groups before it) and the error bounds stay in the CPU's L2 cache between the groups
+SUBBLOCK = 1024
 
 
 # The block loops of the fused pass, one per group kind and kind of work: every row they write
@@ -668,16 +698,16 @@ DRIVER, RRR, RRP = 0, 1, 2
 # indexed unsigned (`_at`): LLVM then vectorises them (eight samples per instruction), which
 # it cannot where rows written and read are parts of one array.
 @_rows
-def _driver_block_positions(Q0, T, b, i, h0, h1, u, u0, x, y, th, c, s, ok, lo, hi):
-    """`driver_positions` on the block lo … hi − 1, link i's rows x, y, θ, cos θ, sin θ
+def _driver_block_positions(u, u0, h0, h1, x, y, th, c, s, ok, lo, hi):
+    """`driver_positions` of a driver on the frame on the block lo … hi − 1 (the frame's pose
+    is zero: θ = u − u0, the hinge H where it is drawn), link i's rows x, y, θ, cos θ, sin θ
     written; ok[n] false where the input is NaN or ∞."""
     for n in range(lo, hi):
         k = _at(n)
-        hx, hy = _world(Q0, T, b, h0, h1, k)
-        t = Q0[b, 2, k] + (u[k] - u0)
+        t = u[k] - u0
         cc, ss = math.cos(t), math.sin(t)
         th[k], c[k], s[k] = t, cc, ss
-        x[k], y[k] = _origin(cc, ss, h0, h1, hx, hy)
+        x[k], y[k] = _origin(cc, ss, h0, h1, h0, h1)
         ok[k] = ok[k] & (u[k] - u[k] == 0.0)
 
 
@@ -718,21 +748,20 @@ def _rrp_block_positions(Q0, T, iA, a0, a1, ig, p0, p1, e00, e01, rsq, tol, sign
 
 
 @_rows
-def _driver_block_rates(Q, T, b, i, h0, h1, u1, u2, kappa, L, eps, inv_omega, m0, m1, m2, E0,
-                        E1, E2, cond, vx, vy, vt, wx, wy, wt, lo, hi):
-    """`driver_rates` on the block lo … hi − 1: link i's rows of first (v…) and second (w…)
-    coefficients written, the bounds (m…, E…[n − lo]) and cond[n] carried on."""
+def _driver_block_rates(T, Q0, i, h0, h1, u1, u2, kappa, L, eps, inv_omega, m0, m1, m2, E0, E1,
+                        E2, cond, vx, vy, vt, wx, wy, wt, lo, hi):
+    """`driver_rates` of a driver on the frame on the block lo … hi − 1 (the hinge H stands
+    still: ω = u̇, α = ü): link i's rows of first (v…) and second (w…) coefficients written,
+    the bounds (m…, E…[n − lo]) and cond[n] carried on."""
     for n in range(lo, hi):
         k, j = _at(n), _at(n - lo)
-        hvx, hvy, hax, hay = _point_rates(Q, T, b, h0, h1, k)
-        v0, v1, v2, w0, w1, w2 = _origin_rates(
-            T[i, 0, k], T[i, 1, k], h0, h1, hvx, hvy, hax, hay, Q[1, b, 2, k] + u1[k],
-            2.0 * (Q[2, b, 2, k] + u2[k]))
+        v0, v1, v2, w0, w1, w2 = _origin_rates(T[i, 0, k], T[i, 1, k], h0, h1, 0.0, 0.0, 0.0,
+                                               0.0, u1[k], 2.0 * u2[k])
         vx[k], vy[k], vt[k], wx[k], wy[k], wt[k] = v0, v1, v2, w0, w1, w2
         inv = inv_omega[j]
         m0[j], m1[j], m2[j], E0[j], E1[j], E2[j] = _bound_2(
             kappa, eps, m0[j], m1[j], m2[j], E0[j], E1[j], E2[j],
-            abs(Q[0, i, 2, k]) * (1.0 / math.pi), _size3(v0, v1, v2, L) * inv,
+            abs(Q0[i, 2, k]) * (1.0 / math.pi), _size3(v0, v1, v2, L) * inv,
             _size3(w0, w1, w2, L) * inv * inv)
         cond[k] = kappa if kappa > cond[k] else cond[k]
 
@@ -805,25 +834,29 @@ def fused_positions(ok, ops, fl, Q0, T, U, signs, R, lo, hi):
     vectorised arctan2."""
     for n in range(lo, hi):
         ok[n] = True
-    for g in range(ops.shape[0]):
-        op, i1, i2, i3, i4, row, c = (ops[g, 0], ops[g, 1], ops[g, 2], ops[g, 3], ops[g, 4],
-                                      ops[g, 5], ops[g, 6])
-        f0, f1, f2, f3, f4, f5, f6 = fl[g, 0], fl[g, 1], fl[g, 2], fl[g, 3], fl[g, 4], fl[g, 5], \
-            fl[g, 6]
-        f7, f8, f9, f10, f11 = fl[g, 7], fl[g, 8], fl[g, 9], fl[g, 10], fl[g, 11]
-        if op == DRIVER:
-            _driver_block_positions(Q0, T, i1, i2, f0, f1, U[i3, 0], f2, Q0[i2, 0], Q0[i2, 1],
-                                    Q0[i2, 2], T[i2, 0], T[i2, 1], ok, lo, hi)
-        elif op == RRR:
-            _rrr_block_positions(Q0, T, i1, f0, f1, i2, f2, f3, f4, f5, f6, signs[row], f8, f9,
-                                 f10, f11, Q0[i3, 0], Q0[i3, 1], T[i3, 0], T[i3, 1], Q0[i4, 0],
-                                 Q0[i4, 1], T[i4, 0], T[i4, 1], R[c], R[c + 1], R[c + 2],
-                                 R[c + 3], ok, lo, hi)
-        else:
-            _rrp_block_positions(Q0, T, i1, f0, f1, i2, f2, f3, f4, f5, f6, f7, signs[row], f9,
-                                 f10, Q0[i3, 0], Q0[i3, 1], T[i3, 0], T[i3, 1], Q0[i4, 0],
-                                 Q0[i4, 1], Q0[i4, 2], T[i4, 0], T[i4, 1], R[c], R[c + 1], ok,
-                                 lo, hi)
+    for lo2 in range(lo, hi, SUBBLOCK):  # each group's inputs still in the cache
+        hi2 = min(hi, lo2 + SUBBLOCK)
+        a, b = lo2 - lo, hi2 - lo
+        for g in range(ops.shape[0]):
+            op, i1, i2, i3, i4, row, c = (ops[g, 0], ops[g, 1], ops[g, 2], ops[g, 3], ops[g, 4],
+                                          ops[g, 5], ops[g, 6])
+            f0, f1, f2, f3, f4, f5, f6 = fl[g, 0], fl[g, 1], fl[g, 2], fl[g, 3], fl[g, 4], \
+                fl[g, 5], fl[g, 6]
+            f7, f8, f9, f10, f11 = fl[g, 7], fl[g, 8], fl[g, 9], fl[g, 10], fl[g, 11]
+            if op == DRIVER:
+                _driver_block_positions(U[i3, 0], f2, f0, f1, Q0[i2, 0], Q0[i2, 1], Q0[i2, 2],
+                                        T[i2, 0], T[i2, 1], ok, lo2, hi2)
+            elif op == RRR:
+                _rrr_block_positions(Q0, T, i1, f0, f1, i2, f2, f3, f4, f5, f6,
+                                     signs[row][a:b], f8, f9, f10, f11, Q0[i3, 0], Q0[i3, 1],
+                                     T[i3, 0], T[i3, 1], Q0[i4, 0], Q0[i4, 1], T[i4, 0],
+                                     T[i4, 1], R[c][a:b], R[c + 1][a:b], R[c + 2][a:b],
+                                     R[c + 3][a:b], ok, lo2, hi2)
+            else:
+                _rrp_block_positions(Q0, T, i1, f0, f1, i2, f2, f3, f4, f5, f6, f7,
+                                     signs[row][a:b], f9, f10, Q0[i3, 0], Q0[i3, 1], T[i3, 0],
+                                     T[i3, 1], Q0[i4, 0], Q0[i4, 1], Q0[i4, 2], T[i4, 0],
+                                     T[i4, 1], R[c][a:b], R[c + 1][a:b], ok, lo2, hi2)
 
 
 @_loop(0)
@@ -835,31 +868,37 @@ def fused_rates(cond, ops, fl, Q, T, U, per, L, eps, m0, unreliable, plain, weig
     m, E of the block's size; m0: the drawing's coordinates over L) and their relative values
     (`relative_errors` with the weights `plain` into err, `weighted` into serr); E0[n − lo]:
     the positions' bound."""
-    for d in range(U.shape[0]):  # 1/Ω in E0 until the end (`_rate_scale`)
-        _rate_scale_block(U[d, 1], U[d, 2], per[d], E0, d == 0, lo, hi)
-    _bounds_start_block(m0, E0, m[0], m[1], m[2], E[0], E[1], E[2], lo, hi)
-    for g in range(ops.shape[0]):
-        op, i1, i2, i3, i4 = ops[g, 0], ops[g, 1], ops[g, 2], ops[g, 3], ops[g, 4]
-        f0, f1, f2, f3, f4, f5 = fl[g, 0], fl[g, 1], fl[g, 2], fl[g, 3], fl[g, 4], fl[g, 5]
-        f11, f12, f13, f14, f15, f16, f17 = fl[g, 11], fl[g, 12], fl[g, 13], fl[g, 14], \
-            fl[g, 15], fl[g, 16], fl[g, 17]
-        if op == DRIVER:
-            _driver_block_rates(Q, T, i1, i2, f0, f1, U[i3, 1], U[i3, 2], f3, L, eps, E0, m[0],
-                                m[1], m[2], E[0], E[1], E[2], cond, Q[1, i2, 0], Q[1, i2, 1],
-                                Q[1, i2, 2], Q[2, i2, 0], Q[2, i2, 1], Q[2, i2, 2], lo, hi)
-        elif op == RRR:
-            _rrr_block_rates(Q, T, i1, f0, f1, i2, f2, f3, i3, i4, f12, f13, f14, f15, f16, f17,
-                             unreliable, L, eps, E0, m[0], m[1], m[2], E[0], E[1], E[2], cond,
-                             Q[1, i3, 0], Q[1, i3, 1], Q[1, i3, 2], Q[2, i3, 0], Q[2, i3, 1],
-                             Q[2, i3, 2], Q[1, i4, 0], Q[1, i4, 1], Q[1, i4, 2], Q[2, i4, 0],
-                             Q[2, i4, 1], Q[2, i4, 2], lo, hi)
-        else:
-            _rrp_block_rates(Q, T, i1, f0, f1, i2, f2, f3, f4, f5, f11, f12, f13, i3, i4,
-                             unreliable, L, eps, E0, m[0], m[1], m[2], E[0], E[1], E[2], cond,
-                             Q[1, i3, 0], Q[1, i3, 1], Q[1, i3, 2], Q[2, i3, 0], Q[2, i3, 1],
-                             Q[2, i3, 2], Q[1, i4, 0], Q[1, i4, 1], Q[1, i4, 2], Q[2, i4, 0],
-                             Q[2, i4, 1], Q[2, i4, 2], lo, hi)
-    _relative_block(m[1], m[2], E[0], E[1], E[2], eps, plain, weighted, err, serr, E0, lo, hi)
+    for lo2 in range(lo, hi, SUBBLOCK):  # the bounds and each group's inputs in the cache
+        hi2 = min(hi, lo2 + SUBBLOCK)
+        inv = E0[lo2 - lo:hi2 - lo]
+        m0r, m1r, m2r, E0r, E1r, E2r = m[0], m[1], m[2], E[0], E[1], E[2]
+        for d in range(U.shape[0]):  # 1/Ω in inv until the end (`_rate_scale`)
+            _rate_scale_block(U[d, 1], U[d, 2], per[d], inv, d == 0, lo2, hi2)
+        _bounds_start_block(m0, inv, m0r, m1r, m2r, E0r, E1r, E2r, lo2, hi2)
+        for g in range(ops.shape[0]):
+            op, i1, i2, i3, i4 = ops[g, 0], ops[g, 1], ops[g, 2], ops[g, 3], ops[g, 4]
+            f0, f1, f2, f3, f4, f5 = fl[g, 0], fl[g, 1], fl[g, 2], fl[g, 3], fl[g, 4], fl[g, 5]
+            f11, f12, f13, f14, f15, f16, f17 = fl[g, 11], fl[g, 12], fl[g, 13], fl[g, 14], \
+                fl[g, 15], fl[g, 16], fl[g, 17]
+            if op == DRIVER:
+                _driver_block_rates(T, Q[0], i2, f0, f1, U[i3, 1], U[i3, 2], f3, L, eps, inv,
+                                    m0r, m1r, m2r, E0r, E1r, E2r, cond, Q[1, i2, 0],
+                                    Q[1, i2, 1], Q[1, i2, 2], Q[2, i2, 0], Q[2, i2, 1],
+                                    Q[2, i2, 2], lo2, hi2)
+            elif op == RRR:
+                _rrr_block_rates(Q, T, i1, f0, f1, i2, f2, f3, i3, i4, f12, f13, f14, f15, f16,
+                                 f17, unreliable, L, eps, inv, m0r, m1r, m2r, E0r, E1r, E2r,
+                                 cond, Q[1, i3, 0], Q[1, i3, 1], Q[1, i3, 2], Q[2, i3, 0],
+                                 Q[2, i3, 1], Q[2, i3, 2], Q[1, i4, 0], Q[1, i4, 1],
+                                 Q[1, i4, 2], Q[2, i4, 0], Q[2, i4, 1], Q[2, i4, 2], lo2, hi2)
+            else:
+                _rrp_block_rates(Q, T, i1, f0, f1, i2, f2, f3, f4, f5, f11, f12, f13, i3, i4,
+                                 unreliable, L, eps, inv, m0r, m1r, m2r, E0r, E1r, E2r, cond,
+                                 Q[1, i3, 0], Q[1, i3, 1], Q[1, i3, 2], Q[2, i3, 0],
+                                 Q[2, i3, 1], Q[2, i3, 2], Q[1, i4, 0], Q[1, i4, 1],
+                                 Q[1, i4, 2], Q[2, i4, 0], Q[2, i4, 1], Q[2, i4, 2], lo2, hi2)
+        _relative_block(m1r, m2r, E0r, E1r, E2r, eps, plain, weighted, err, serr, inv, lo2,
+                        hi2)
 
 
 @_rows
