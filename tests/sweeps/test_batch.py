@@ -67,11 +67,18 @@ def test_slider_cranks_a_two_driver_five_bar_and_given_inputs_in_one_batch():
                     ["transmission-min:C", "C.x:range", "max-speed:C", "coupler_a.alpha:max"]),
         sweeps.plan(CR, ["O2-A=8:30:4"], ["A.y:max", "transmission-min:B"],
                     inputs=np.radians(np.arange(0.0, 360.0, 7.0))),
+        # the long cranks cannot reach the frame line beyond O2 at all: no sample ok
+        sweeps.plan(CR, ["O2-A=20:35:5"], ["A.y:max", "transmission-min:B", "time-ratio:B",
+                                           "stroke:C", "input-range"],
+                    inputs=np.radians([175.0, 180.0, 185.0])),
     ]
     for p in cases:
         alone = rows_of(p, batch=False)
         assert_same_rows(rows_of(p, batch=True), alone)
-    assert any(r[-2] < 1 for r in alone)  # some inputs unreachable for the long cranks
+        if p.inputs is not None and len(p.inputs) == 3:
+            assert [r[-1] for r in alone] == ["ok"] + ["unreachable"] * 3
+        elif p.inputs is not None:  # some inputs unreachable for the long cranks
+            assert any(r[-2] < 1 for r in alone)
 
 
 def test_a_resumed_batched_sweep_on_a_dask_cluster_equals_design_by_design(tmp_path):
