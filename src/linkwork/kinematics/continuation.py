@@ -994,10 +994,13 @@ def _correct(state: State, solver, guess: np.ndarray) -> tuple[np.ndarray, np.nd
         # (a pair table's Jacobian with all its columns: the tangent's rates take them)
         r, Jall = groups.residual_and_jacobian(state, group, all_columns=True)
         Jq = Jall[:, :, :m]
+        # a sample converged by a small step keeps the Jacobian a step before, as when the
+        # batch's evaluations end with it: its answer does not depend on the others in the batch
+        fresh = alive & ~converged
         converged |= alive & (np.abs(r).max(axis=1) <= tol)
         if J is None:
             J = np.full(Jall.shape, np.nan)
-        J[alive] = Jall[alive]
+        J[fresh] = Jall[fresh]
         todo = alive & ~converged
         if not todo.any():
             break
@@ -1016,6 +1019,8 @@ def _correct(state: State, solver, guess: np.ndarray) -> tuple[np.ndarray, np.nd
         # (quadratic convergence): close enough for a starting value and a tangent, and it
         # saves the evaluation that would confirm it
         converged[rows[~failing & np.isfinite(before) & (size <= STEP_TOL * L)]] = True
+        if not (alive & ~converged).any():
+            break  # (the Jacobian stays the one a step before: enough for the tangent)
     converged &= alive
     state.Q[0][:, idx, :] = np.where(converged[:, None, None], q, np.nan)
     state.forget_trig(idx)
