@@ -258,19 +258,9 @@ class PairTable:
         costs. Every product is of reals (NumPy's complex product fuses a·b − c·d in its
         vector loops and not in its scalar ones: a sample's digits would depend on its batch);
         sums, differences and products by ±i are exact in either."""
-        # gathers by `take`: C order whatever Q's layout, so that the complex arrays are pairs
-        P = Q0.take(self.rows_q, axis=1)
-        N = P.shape[0]
-        real = P.dtype
-        cplx = np.result_type(real, np.complex64)
-        c, sn = np.cos(P[..., 2]), np.sin(P[..., 2])
-        cp, sp = c.take(self.pt_link, axis=1), sn.take(self.pt_link, axis=1)
-        Rs = np.empty(cp.shape, dtype=cplx)  # R(θ)·s of every point the pairs name
-        Rs.real = cp * self.s0 - sp * self.s1
-        Rs.imag = sp * self.s0 + cp * self.s1
-        W = (P[..., 0] + 1j * P[..., 1]).take(self.pt_link, axis=1) + Rs
-        tR = Rs * 1j  # ∂W/∂θ
-        D = W.take(self.dB, axis=1) - W.take(self.dA, axis=1)
+        P, c, sn, Rs, tR, D = self._points(Q0)
+        N, real = P.shape[0], P.dtype
+        cplx = Rs.dtype
         r = np.empty((N, self.rows), dtype=real)
         vals = []
         if self.rev is not None:
@@ -323,6 +313,76 @@ class PairTable:
         if vals:
             J.reshape(N, -1)[:, self.var] = np.concatenate(vals, axis=1)
         return r, J
+
+    def _points(self, Q0: np.ndarray) -> tuple:
+        """The links' poses (N, links, 3), cos θ, sin θ, and of every point the pairs name
+        R(θ)·s and ∂/∂θ of it (i·R(θ)·s), and the pairs' point differences D, complex."""
+        # gathers by `take`: C order whatever Q's layout, so that the complex arrays are pairs
+        P = Q0.take(self.rows_q, axis=1)
+        cplx = np.result_type(P.dtype, np.complex64)
+        c, sn = np.cos(P[..., 2]), np.sin(P[..., 2])
+        cp, sp = c.take(self.pt_link, axis=1), sn.take(self.pt_link, axis=1)
+        Rs = np.empty(cp.shape, dtype=cplx)  # R(θ)·s of every point the pairs name
+        Rs.real = cp * self.s0 - sp * self.s1
+        Rs.imag = sp * self.s0 + cp * self.s1
+        W = _complex(P[..., 0], P[..., 1]).take(self.pt_link, axis=1) + Rs
+        D = W.take(self.dB, axis=1) - W.take(self.dA, axis=1)
+        return P, c, sn, Rs, Rs * 1j, D
+
+    def quadratic(self, Q0: np.ndarray, Q1: np.ndarray) -> np.ndarray:
+        """(N, rows): ½·q̇ᵀ·∇²r·q̇, the part of the residuals' second Taylor coefficient that
+        the Jacobian does not give (r₂ = J·q₂ + this), at the poses Q0 with the first
+        coefficients Q1 (N, Q rows, 3) of every link the pairs name; the inputs enter the
+        equations linearly. A point z + R(θ)·s moves with ż + θ̇·i·R(θ)·s and bends by
+        −½θ̇²·R(θ)·s; a guide's normal n turns with θ̇·i·n."""
+        P, c, sn, Rs, tR, D = self._points(Q0)
+        N, real = P.shape[0], P.dtype
+        V = Q1.take(self.rows_q, axis=1)
+        w = V[..., 2]  # θ̇ of every link
+        wp = w.take(self.pt_link, axis=1)
+        V1 = _complex(V[..., 0], V[..., 1]).take(self.pt_link, axis=1) + _times(tR, wp)
+        bend = _times(Rs, -0.5 * wp * wp)
+        D1 = V1.take(self.dB, axis=1) - V1.take(self.dA, axis=1)
+        B = bend.take(self.dB, axis=1) - bend.take(self.dA, axis=1)
+        out = np.zeros((N, self.rows), dtype=real)
+        if self.rev is not None:
+            rows, at, pa, _ = self.rev
+            out[:, rows] = B[:, at:at + pa.size].view(real)
+        if self.pri is not None:
+            r0, at, pa, _, ta, n0x, n0y = self.pri
+            sl = slice(at, at + pa.size)
+            ca, sa, wa = c.take(ta, axis=1), sn.take(ta, axis=1), w.take(ta, axis=1)
+            nx, ny = ca * n0x - sa * n0y, sa * n0x + ca * n0y
+            d, d1, b = D[:, sl], D1[:, sl], B[:, sl]
+            out[:, r0] = (nx * b.real + ny * b.imag + wa * (nx * d1.imag - ny * d1.real)
+                          - 0.5 * wa * wa * (nx * d.real + ny * d.imag))
+        if self.circ is not None:
+            r0, at, pk, _, R = self.circ
+            sl = slice(at, at + pk.size)
+            d, d1, b = D[:, sl], D1[:, sl], B[:, sl]
+            out[:, r0] = ((d.real * b.real + d.imag * b.imag) / R
+                          + (d1.real * d1.real + d1.imag * d1.imag) * (0.5 / R))
+        for row, kind, cd, cb, _, axis, _ in self.drivers:
+            if kind == "prismatic":
+                k, j = cb // 3, cd // 3
+                ux, uy = c[:, k] * axis[0] - sn[:, k] * axis[1], sn[:, k] * axis[0] + c[:, k] * axis[1]
+                dx, dy = P[:, j, 0] - P[:, k, 0], P[:, j, 1] - P[:, k, 1]
+                vx, vy = V[:, j, 0] - V[:, k, 0], V[:, j, 1] - V[:, k, 1]
+                wb = w[:, k]
+                out[:, row] = wb * (ux * vy - uy * vx) - 0.5 * wb * wb * (ux * dx + uy * dy)
+        return out
+
+
+def _complex(x: np.ndarray, y: np.ndarray) -> np.ndarray:
+    """x + iy (exact)."""
+    z = np.empty(x.shape, dtype=np.result_type(x.dtype, np.complex64))
+    z.real, z.imag = x, y
+    return z
+
+
+def _times(z: np.ndarray, a: np.ndarray) -> np.ndarray:
+    """z·a for real a, by real products (see `PairTable.evaluate`)."""
+    return _complex(z.real * a, z.imag * a)
 
 
 def pair_table(mech: Mechanism, links: tuple[str, ...], joints: tuple[str, ...],
