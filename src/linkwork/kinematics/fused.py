@@ -103,7 +103,9 @@ def solve_blocks(mech: Mechanism, tab: Tables, solvers, Q: np.ndarray, T: np.nda
     Qm = Q.transpose(0, 2, 3, 1)  # Qm[k, link, (x, y, θ), n]: the memory's order
     Q0 = Qm[0]
     if U is None:
-        U = np.stack([inputs[d.joint] for d in mech.drivers])  # (drivers, 3, N)
+        # (drivers, 3, N); one driver's coefficients as they are (no copy of the batch)
+        U = inputs[mech.drivers[0].joint][None] if len(mech.drivers) == 1 else \
+            np.stack([inputs[d.joint] for d in mech.drivers])
     per = np.array([mech.length_scale if mech.joint(d.joint).kind == "prismatic" else 1.0
                     for d in mech.drivers])
     B = max(1, min(N - start, block))

@@ -115,8 +115,22 @@ def _bound(namespace: dict) -> dict:
 
 #: `math` for the interpreted loops: NumPy's scalar functions, which give NaN and ±inf where
 #: Python's raise, as the compiled loops do (error_model="numpy")
-_NUMPY_MATH = types.SimpleNamespace(sqrt=np.sqrt, cos=np.cos, sin=np.sin, pi=math.pi,
-                                    inf=math.inf, nan=math.nan)
+_NUMPY_MATH = types.SimpleNamespace(sqrt=np.sqrt, cos=np.cos, sin=np.sin, floor=np.floor,
+                                    pi=math.pi, inf=math.inf, nan=math.nan)
+
+#: π/2 in three parts for the argument reduction of `_sincos` (rounded from 300 bits; the test
+#: checks them): the first two of 33 significant bits, so that q times them is exact for the
+#: quadrants q of |θ| ≤ `SINCOS_LIMIT`
+_PIO2_A = float.fromhex("0x1.921fb54400000p+0")
+_PIO2_B = float.fromhex("0x1.0b4611a600000p-34")
+_PIO2_C = float.fromhex("0x1.3198a2e037073p-69")
+SINCOS_LIMIT = 2.0 ** 19 * _PIO2_A
+#: the Taylor coefficients of sin r / r − 1 and (cos r − 1 + r²/2) / r⁴ in z = r² (|r| ≤ π/4:
+#: the first term left out is below 10⁻²² of the sum)
+_S1, _S2, _S3, _S4, _S5, _S6, _S7, _S8, _S9 = ((-1.0) ** k / math.factorial(2 * k + 1)
+                                               for k in range(1, 10))
+_C2, _C3, _C4, _C5, _C6, _C7, _C8, _C9, _C10 = ((-1.0) ** k / math.factorial(2 * k)
+                                                for k in range(2, 11))
 
 
 @lru_cache(maxsize=1)
@@ -456,8 +470,48 @@ def _driver_position(Q0, T, b, i, h0, h1, u, u0, n):
     """`driver_positions` at sample n (input u)."""
     hx, hy = _world(Q0, T, b, h0, h1, n)
     th = Q0[b, 2, n] + (u - u0)
-    _place(Q0, T, i, math.cos(th), math.sin(th), h0, h1, hx, hy, n)
+    c, sn = _cos_sin(th)
+    _place(Q0, T, i, c, sn, h0, h1, hx, hy, n)
     Q0[i, 2, n] = th
+
+
+@_loop()
+def _sincos(t):
+    """cos t, sin t for |t| ≤ `SINCOS_LIMIT` without a library call, so that the driver's loop
+    vectorises (the C library's sincos, a call per sample, cost more than a dyad): t = q·π/2 +
+    r by a three-part reduction, |r| ≤ π/4, the Taylor polynomials of sin r and cos r, the
+    quadrant q mod 4 choosing and signing them. Within about an ulp of the C library's
+    (test_kernel_modes)."""
+    q = math.floor(t * (2.0 / math.pi) + 0.5)
+    r = ((t - q * _PIO2_A) - q * _PIO2_B) - q * _PIO2_C
+    z = r * r
+    sr = r + r * z * (_S1 + z * (_S2 + z * (_S3 + z * (_S4 + z * (_S5 + z * (_S6 + z * (
+        _S7 + z * (_S8 + z * _S9))))))))
+    hz = 0.5 * z
+    w = 1.0 - hz  # 1 − z/2 and its rounding carried on: cos r to the last bit near |r| = π/4
+    cr = w + (((1.0 - w) - hz) + z * z * (_C2 + z * (_C3 + z * (_C4 + z * (_C5 + z * (
+        _C6 + z * (_C7 + z * (_C8 + z * (_C9 + z * _C10)))))))))
+    j = q - 4.0 * math.floor(q * 0.25)  # the quadrant, 0 … 3
+    odd = (j == 1.0) | (j == 3.0)
+    a, b = (cr if odd else sr), (sr if odd else cr)
+    return (-b if (j == 1.0) | (j == 2.0) else b), (-a if j >= 2.0 else a)
+
+
+@_loop()
+def _cos_sin(t):
+    """cos t, sin t: `_sincos` within its range, the C library's beyond (many turns)."""
+    if abs(t) <= SINCOS_LIMIT:
+        return _sincos(t)
+    return math.cos(t), math.sin(t)
+
+
+@_loop()
+def _within(u, u0, lo, hi):
+    """|u[n] − u0| ≤ `SINCOS_LIMIT` at every sample of the block lo … hi − 1 (NaN: no)."""
+    top = 0.0
+    for n in range(lo, hi):
+        top = _worse(top, abs(u[_at(n)] - u0))
+    return top <= SINCOS_LIMIT
 
 
 @_loop(3)
@@ -700,12 +754,12 @@ SUBBLOCK = 1024
 @_rows
 def _driver_block_positions(u, u0, h0, h1, x, y, th, c, s, ok, lo, hi):
     """`driver_positions` of a driver on the frame on the block lo … hi − 1 (the frame's pose
-    is zero: θ = u − u0, the hinge H where it is drawn), link i's rows x, y, θ, cos θ, sin θ
-    written; ok[n] false where the input is NaN or ∞."""
+    is zero: θ = u − u0, the hinge H where it is drawn; |θ| ≤ `SINCOS_LIMIT`, `_within`), link
+    i's rows x, y, θ, cos θ, sin θ written; ok[n] false where the input is NaN or ∞."""
     for n in range(lo, hi):
         k = _at(n)
         t = u[k] - u0
-        cc, ss = math.cos(t), math.sin(t)
+        cc, ss = _sincos(t)
         th[k], c[k], s[k] = t, cc, ss
         x[k], y[k] = _origin(cc, ss, h0, h1, h0, h1)
         ok[k] = ok[k] & (u[k] - u[k] == 0.0)
@@ -843,9 +897,14 @@ def fused_positions(ok, ops, fl, Q0, T, U, signs, R, lo, hi):
             f0, f1, f2, f3, f4, f5, f6 = fl[g, 0], fl[g, 1], fl[g, 2], fl[g, 3], fl[g, 4], \
                 fl[g, 5], fl[g, 6]
             f7, f8, f9, f10, f11 = fl[g, 7], fl[g, 8], fl[g, 9], fl[g, 10], fl[g, 11]
-            if op == DRIVER:
+            if op == DRIVER and _within(U[i3, 0], f2, lo2, hi2):
                 _driver_block_positions(U[i3, 0], f2, f0, f1, Q0[i2, 0], Q0[i2, 1], Q0[i2, 2],
                                         T[i2, 0], T[i2, 1], ok, lo2, hi2)
+            elif op == DRIVER:  # inputs of many turns (or NaN): sample by sample, `_cos_sin`
+                for n in range(lo2, hi2):
+                    u = U[i3, 0, n]
+                    _driver_position(Q0, T, i1, i2, f0, f1, u, f2, n)
+                    ok[n] = ok[n] & (u - u == 0.0)
             elif op == RRR:
                 _rrr_block_positions(Q0, T, i1, f0, f1, i2, f2, f3, f4, f5, f6,
                                      signs[row][a:b], f8, f9, f10, f11, Q0[i3, 0], Q0[i3, 1],
