@@ -99,3 +99,212 @@ def driver_residual(mech: Mechanism, d: Driver, pose: PoseFn, value: Jet) -> Jet
         return ux * (xb - xa) + uy * (yb - ya) - value
     rel = pose(d.driven)[2] - pose(d.base)[2]
     return (rel - (value - mech.driver_input_at_design(d))) * mech.length_scale
+
+
+# ---------------------------------------------------------------------------- as arrays
+class PairTable:
+    """The residuals and Jacobian of a group of lower pairs (revolute, prismatic, slot,
+    circular slot, gear pairs of two wheels) and drivers, as NumPy array operations on tables
+    built once per group: the same equations as `joint_residuals` and `driver_residual`, with
+    their derivatives written out, for Newton's method and the continuation's tangents, which
+    evaluate a group hundreds of times on a handful of samples (where the jets' per-call
+    Python work is most of the time). The jets stay the reference
+    (tests/kinematics/test_pair_tables.py holds the two to each other and to finite
+    differences).
+
+    Columns: (x, y, θ) of `links` (Q rows: the group's unknown links first, then the known
+    links its pairs reach), then one per driver input of the group. Rows: as `groups`
+    stacks them (each pair's rows in the group's order, a wedge pair's first row only, then the
+    drivers in the mechanism's order)."""
+
+    def __init__(self, mech: Mechanism, group_links: tuple[str, ...], joints: tuple[str, ...],
+                 drivers: tuple[str, ...], wedge_pairs: tuple[str, ...], row_of) -> None:
+        self.L = mech.length_scale
+        slot: dict[str, int] = {}
+        for ln in group_links:
+            slot.setdefault(ln, len(slot))
+        self.k = len(group_links)
+
+        def col(link: str, c: int) -> int:
+            return 3 * slot.setdefault(link, len(slot)) + c
+
+        points: dict[tuple, int] = {}
+
+        def pt(link: str, s) -> int:
+            key = (link, float(s[0]), float(s[1]))
+            if key not in points:
+                col(link, 0)
+                points[key] = len(points)
+            return points[key]
+
+        # per kind: (row, point/link indices …); constant Jacobian entries (row, col, value)
+        rev, pri, circ, rows_const = [], [], [], []
+        fixed: list[tuple[int, int, float]] = []
+        gears: list[tuple[int, tuple, tuple]] = []
+        row = 0
+        for jn in joints:
+            j = mech.joint(jn)
+            a, b = j.links
+            if isinstance(j, Revolute):
+                P = mech.points[j.point]
+                rev.append((row, pt(a, P), pt(b, P), col(a, 0), col(b, 0)))
+                fixed += [(row, col(b, 0), 1.0), (row, col(a, 0), -1.0),
+                          (row + 1, col(b, 1), 1.0), (row + 1, col(a, 1), -1.0)]
+                row += 2
+            elif isinstance(j, (Prismatic, Slot)):
+                P = mech.points[j.point]
+                n0 = (-float(j.axis[1]), float(j.axis[0]))
+                pri.append((row, pt(a, P), pt(b, P), col(a, 0), col(b, 0), n0))
+                row += 1
+                if isinstance(j, Prismatic) and jn not in wedge_pairs:
+                    rows_const.append((row, col(b, 2), col(a, 2)))
+                    fixed += [(row, col(b, 2), self.L), (row, col(a, 2), -self.L)]
+                    row += 1
+            elif isinstance(j, CircularSlot):
+                R = j.radius(mech)
+                circ.append((row, pt(a, mech.points[j.center]), pt(b, mech.points[j.point]),
+                             col(a, 0), col(b, 0), R))
+                row += 1
+            else:  # a gear pair of two wheels: linear in the angles
+                r1, r2 = j.radii
+                r2 = r2 if j.gear_kind == "external" else -r2
+                gears.append((row, (col(a, 2), col(b, 2), col(j.carrier, 2)), (r1, r2)))
+                fixed += [(row, col(a, 2), r1), (row, col(b, 2), r2),
+                          (row, col(j.carrier, 2), -(r1 + r2))]
+                row += 1
+        self.drivers: list[tuple] = []
+        for d in drivers:
+            col(d.driven, 0), col(d.base, 0)
+        n_links = len(slot)  # the inputs' columns follow the links'
+        for i, d in enumerate(drivers):
+            dj = mech.joint(d.joint)
+            u_col = 3 * n_links + i
+            if isinstance(dj, Prismatic):
+                self.drivers.append((row, "prismatic", col(d.driven, 0), col(d.base, 0), d.joint,
+                                     (float(dj.axis[0]), float(dj.axis[1])), 0.0))
+                fixed.append((row, u_col, -1.0))
+            else:
+                self.drivers.append((row, "revolute", col(d.driven, 0), col(d.base, 0), d.joint,
+                                     None, mech.driver_input_at_design(d)))
+                fixed += [(row, col(d.driven, 2), self.L), (row, col(d.base, 2), -self.L),
+                          (row, u_col, -self.L)]
+            row += 1
+        self.rows = row
+        self.links = [None] * len(slot)
+        for ln, i in slot.items():
+            self.links[i] = ln
+        self.rows_q = np.array([row_of[ln] for ln in self.links], dtype=np.intp)
+        self.cols = 3 * len(slot) + len(drivers)
+        pts = sorted(points.items(), key=lambda kv: kv[1])
+        self.pt_link = np.array([slot[k[0]] for k, _ in pts], dtype=np.intp)
+        self.pt_s = np.array([[k[1], k[2]] for k, _ in pts]).reshape(-1, 2)
+        self.J0 = np.zeros((self.rows, self.cols))
+        for r, c, v in fixed:
+            self.J0[r, c] += v
+        # the entries that change with the poses, in the order `evaluate` lists their values
+        var: list[tuple[int, int]] = []
+
+        def arr(items, i):
+            return np.array([it[i] for it in items], dtype=np.intp)
+
+        self.rev = None
+        if rev:
+            r0, pa, pb, ca, cb = (arr(rev, i) for i in range(5))
+            self.rev = (r0, pa, pb)
+            var += list(zip(r0, cb + 2)) + list(zip(r0 + 1, cb + 2)) + \
+                list(zip(r0, ca + 2)) + list(zip(r0 + 1, ca + 2))
+        self.pri = None
+        if pri:
+            r0, pa, pb, ca, cb = (arr(pri, i) for i in range(5))
+            n0 = np.array([it[5] for it in pri])
+            self.pri = (r0, pa, pb, ca // 3, n0[:, 0], n0[:, 1])
+            var += list(zip(r0, cb)) + list(zip(r0, cb + 1)) + list(zip(r0, ca)) + \
+                list(zip(r0, ca + 1)) + list(zip(r0, cb + 2)) + list(zip(r0, ca + 2))
+        self.circ = None
+        if circ:
+            r0, pk, pp, ca, cb = (arr(circ, i) for i in range(5))
+            R = np.array([it[5] for it in circ])
+            self.circ = (r0, pk, pp, R)
+            var += list(zip(r0, cb)) + list(zip(r0, cb + 1)) + list(zip(r0, ca)) + \
+                list(zip(r0, ca + 1)) + list(zip(r0, cb + 2)) + list(zip(r0, ca + 2))
+        self.gears = gears
+        self.prismatic_angles = rows_const
+        dvar = []
+        for r, kind, cd, cb, _, axis, _ in self.drivers:
+            if kind == "prismatic":
+                dvar += [(r, cd), (r, cd + 1), (r, cb), (r, cb + 1), (r, cb + 2)]
+        var += dvar
+        if len(set(var)) != len(var) or any(self.J0[r, c] != 0 for r, c in var):
+            raise ValueError("two terms of one equation on one coordinate")  # pragma: no cover
+        self.var = np.array([r * self.cols + c for r, c in var], dtype=np.intp)
+
+    def evaluate(self, Q0: np.ndarray, inputs: dict) -> tuple[np.ndarray, np.ndarray]:
+        """Residuals (N, rows) and Jacobian (N, rows, cols) at the poses Q0 (N, Q rows, 3) and
+        the driver inputs (joint -> (N,) values)."""
+        P = Q0[:, self.rows_q]
+        N = P.shape[0]
+        c, s = np.cos(P[..., 2]), np.sin(P[..., 2])
+        cp, sp = c[:, self.pt_link], s[:, self.pt_link]
+        s0, s1 = self.pt_s[:, 0], self.pt_s[:, 1]
+        Rx = cp * s0 - sp * s1  # R(θ)·s of every point the pairs name
+        Ry = sp * s0 + cp * s1
+        Wx = P[:, self.pt_link, 0] + Rx
+        Wy = P[:, self.pt_link, 1] + Ry
+        r = np.empty((N, self.rows), dtype=P.dtype)
+        vals = []
+        if self.rev is not None:
+            r0, pa, pb = self.rev
+            r[:, r0] = Wx[:, pb] - Wx[:, pa]
+            r[:, r0 + 1] = Wy[:, pb] - Wy[:, pa]
+            vals += [-Ry[:, pb], Rx[:, pb], Ry[:, pa], -Rx[:, pa]]
+        if self.pri is not None:
+            r0, pa, pb, ta, n0x, n0y = self.pri
+            ca, sa = c[:, ta], s[:, ta]
+            nx, ny = ca * n0x - sa * n0y, sa * n0x + ca * n0y
+            dx, dy = Wx[:, pb] - Wx[:, pa], Wy[:, pb] - Wy[:, pa]
+            r[:, r0] = nx * dx + ny * dy
+            vals += [nx, ny, -nx, -ny, ny * Rx[:, pb] - nx * Ry[:, pb],
+                     nx * dy - ny * dx + nx * Ry[:, pa] - ny * Rx[:, pa]]
+        for row, cb, ca in self.prismatic_angles:
+            r[:, row] = (P[:, cb // 3, 2] - P[:, ca // 3, 2]) * self.L
+        if self.circ is not None:
+            r0, pk, pp, R = self.circ
+            dx, dy = Wx[:, pp] - Wx[:, pk], Wy[:, pp] - Wy[:, pk]
+            r[:, r0] = (dx * dx + dy * dy - R * R) * (0.5 / R)
+            ex, ey = dx / R, dy / R
+            vals += [ex, ey, -ex, -ey, ey * Rx[:, pp] - ex * Ry[:, pp],
+                     ex * Ry[:, pk] - ey * Rx[:, pk]]
+        for row, (c1, c2, cc), (r1, r2) in self.gears:
+            th1, th2, thc = P[:, c1 // 3, 2], P[:, c2 // 3, 2], P[:, cc // 3, 2]
+            r[:, row] = (th1 - thc) * r1 + (th2 - thc) * r2
+        for row, kind, cd, cb, joint, axis, u0 in self.drivers:
+            u = inputs[joint]
+            qd, qb = P[:, cd // 3], P[:, cb // 3]
+            if kind == "revolute":
+                r[:, row] = (qd[:, 2] - qb[:, 2] - (u - u0)) * self.L
+            else:
+                cb_, sb = c[:, cb // 3], s[:, cb // 3]
+                ux, uy = cb_ * axis[0] - sb * axis[1], sb * axis[0] + cb_ * axis[1]
+                dx, dy = qd[:, 0] - qb[:, 0], qd[:, 1] - qb[:, 1]
+                r[:, row] = ux * dx + uy * dy - u
+                vals += [ux[:, None], uy[:, None], -ux[:, None], -uy[:, None],
+                         (ux * dy - uy * dx)[:, None]]
+        J = np.empty((N, self.rows, self.cols), dtype=P.dtype)
+        J[:] = self.J0
+        if vals:
+            J.reshape(N, -1)[:, self.var] = np.concatenate(vals, axis=1)
+        return r, J
+
+
+def pair_table(mech: Mechanism, links: tuple[str, ...], joints: tuple[str, ...],
+               drivers: tuple[str, ...], wedge_pairs: tuple[str, ...], row_of) -> PairTable | None:
+    """The `PairTable` of a group, or None where one of its pairs is not a lower pair or a
+    gear pair of two wheels (higher pairs, intermittent pairs, racks: the jets serve those)."""
+    for jn in joints:
+        j = mech.joint(jn)
+        if contact.is_higher(j) or intermittent.is_intermittent(j) or \
+                not isinstance(j, (Revolute, Prismatic, Slot, CircularSlot, Gear)) or \
+                (isinstance(j, Gear) and j.gear_kind == "rack"):
+            return None
+    drv = tuple(d for d in mech.drivers if d.joint in drivers)
+    return PairTable(mech, links, joints, drv, wedge_pairs, row_of)
