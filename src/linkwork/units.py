@@ -43,6 +43,17 @@ def registry() -> pint.UnitRegistry:
     """pint's registry, made on first use (a bare number needs none). Its parsed definitions
     are cached in the user's cache folder, which makes it ten times faster to build; where
     that folder cannot be written, it is built from the definitions."""
+    import sys
+
+    if "pint" not in sys.modules and "dask" not in sys.modules:
+        # pint imports dask whenever it is installed (it is, for the sweeps), which doubles
+        # pint's import time; linkwork hands pint no dask arrays, so its dask support is left
+        # out (a None entry makes dask look absent; dask itself imports normally afterwards)
+        sys.modules["dask"] = None
+        try:
+            import pint
+        finally:
+            del sys.modules["dask"]
     import pint
 
     try:
@@ -236,8 +247,18 @@ def unit_dimension(text: str, what: str = "quantity") -> str | None:
     return "other"
 
 
+#: length units written without asking pint (whose import and registry cost a few tenths of a
+#: second, more than a command's whole solve): the names mechanism files use. Any other name
+#: is looked up in pint's registry (tests/test_units.py checks these against it)
+COMMON_LENGTH_UNITS = frozenset({
+    "mm", "cm", "dm", "m", "km", "um", "µm", "nm", "in", "inch", "ft", "foot", "yd",
+    "millimeter", "millimetre", "centimeter", "centimetre", "meter", "metre"})
+
+
 def check_length_unit(unit: str) -> str:
     """Validate a length unit name ('mm', 'm', 'in'); return it unchanged."""
+    if unit in COMMON_LENGTH_UNITS:
+        return unit
     ureg = registry()
     try:
         if not re.fullmatch(r"[^\W\d]\w*", unit) or unit not in ureg:

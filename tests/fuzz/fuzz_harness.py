@@ -31,6 +31,7 @@ import numpy as np
 
 import linkwork
 from linkwork.errors import LinkworkError
+from linkwork.kinematics import solve_at
 
 CLOSURE_TOL = 1e-6  # of the drawing's size: an ok sample's revolute pairs close to this
 
@@ -222,11 +223,10 @@ def run_file_case(data: bytes, rng: random.Random, seconds: float = 20.0) -> Out
             with deadline(seconds):
                 try:
                     mech = linkwork.load(path)
-                    if mech.given and not mech.drivers:  # a chain moved by given velocities
-                        from linkwork.kinematics.point_inputs import solve_given
-                        sols = (solve_given(mech),)
-                    else:
-                        sols = (linkwork.solve(mech), linkwork.solve(mech, _inputs(mech, rng)))
+                    # the design position, then random inputs (a chain moved by given
+                    # velocities has its drawn position only)
+                    sols = (solve_at(mech),) if mech.given else (
+                        solve_at(mech), solve_at(mech, _inputs(mech, rng)))
                     for sol in sols:
                         why = check_ok_samples(sol)
                         if why:

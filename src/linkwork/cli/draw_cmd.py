@@ -59,7 +59,7 @@ def register(app: typer.Typer) -> None:
         from ..drawing.force_layers import draw_forces
         from ..io import load_dynamics
         from ..drawing.layers import Scene
-        from ..kinematics import solve
+        from ..kinematics import solve, solve_at
         from .inputs import input_values
 
         with user_errors():
@@ -74,11 +74,7 @@ def register(app: typer.Typer) -> None:
             if animate is not None and out.suffix.lower() != ".svg":
                 raise InputError("--animate writes an animated SVG: give -o FILE.svg")
             if mech.given:  # a chain driven by given point velocities: at its drawn position
-                if at is not None:
-                    raise InputError(f"mechanism '{mech.name}' is driven by given point velocities: "
-                                     "it is drawn at its drawn position, so --at does not apply")
-                from ..kinematics.point_inputs import solve_given
-                sol = solve_given(mech)
+                sol = solve_at(mech, at, asked="--at")
             elif at is None:
                 value = np.array([mech.driver_input_at_design(d) for d in mech.drivers])[None, :]
                 sol = solve(mech, value)

@@ -19,7 +19,7 @@ from ..instant.export import (circle_doc as _circle_doc, curvature_document, cur
                               point_doc as _point_doc, poles_document)
 from ..instant import (agreement, kennedy_poles, pole_line_count, pole_schedule,
                        poles)
-from ..kinematics import Solution, Status, solve
+from ..kinematics import Solution, Status, solve, solve_at
 from ..model import Mechanism
 from .common import load_mechanism, output_format, recording_console, user_errors, write_output
 from .inputs import input_values
@@ -55,12 +55,7 @@ def _circle_text(c: Circle, n: int) -> str:
 
 def _solve(mech: Mechanism, at: Optional[list[str]], order: int) -> Solution:
     if mech.given:  # driven by given point velocities: at its drawn position only
-        from ..errors import InputError
-        from ..kinematics.point_inputs import solve_given
-        if at:
-            raise InputError(f"mechanism '{mech.name}' is driven by given point velocities: it is "
-                             "solved at its drawn position, so --at does not apply")
-        return solve_given(mech, order=min(order, 2) if order > 1 else 1)
+        return solve_at(mech, at or None, order=order, asked="--at")
     asked = input_values(mech, at, None)
     if asked is None:
         return solve(mech, order=order)

@@ -146,7 +146,7 @@ def analyze(
     import numpy as np
 
     from ..errors import InputError
-    from ..kinematics import solve, whole_motion
+    from ..kinematics import solve, solve_at, whole_motion
     from . import streams
     from .common import load_mechanism
     from .inputs import input_speeds, input_values
@@ -157,11 +157,8 @@ def analyze(
         fmt = Format.table if parquet else Format(chosen)
         mech = load_mechanism(mechanism)
         if mech.given:  # driven by given point velocities: its drawn position only
-            if at or sweep or speed:
-                raise InputError(f"mechanism '{mech.name}' is driven by given point velocities: it is "
-                                 "solved at its drawn position, so --at, --sweep and --speed do not apply")
-            from ..kinematics.point_inputs import solve_given
-            sol = solve_given(mech)
+            sol = solve_at(mech, at or sweep or speed or None,
+                           asked="--at, --sweep or --speed")
             if parquet:
                 return sol.to_parquet(output)
             write_output(_table(sol) if fmt is Format.table else streams.whole(sol, fmt.value), output)

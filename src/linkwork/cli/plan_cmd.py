@@ -52,12 +52,9 @@ def _plan_command(mechanism: str, at: Optional[list[str]], explain: bool, mode: 
             lines.append("Construction script (o: the pole of the plan; x \u27c2 XY: the line "
                          "through x perpendicular to XY):")
             lines.extend(script.script())
-        if mech.given and at is not None:
-            raise InputError(f"mechanism '{mech.name}' is driven by given point velocities: it is "
-                             "drawn at its drawn position, so --at does not apply")
         if mech.given:  # no input: the construction at the drawn position, from the given data
-            from ..kinematics.point_inputs import solve_given
-            values = solve_given(mech)  # too few or too many conditions are reported here
+            from ..kinematics import solve_at
+            values = solve_at(mech, at, asked="--at")  # too few or too many conditions: reported here
             if script.direct or script.by_two_trials:
                 at = []  # by the rule, or by similar point rows (two trials; `draw_given`)
             else:

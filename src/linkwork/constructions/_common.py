@@ -24,7 +24,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import InputError
-from ..kinematics import Solution, solve
+from ..kinematics import Solution, solve_at
 from ..model import Mechanism, Prismatic, Revolute, Slot
 
 
@@ -93,14 +93,8 @@ def as_solution(mech: Mechanism, inputs) -> Solution:
     """A solution at ``inputs`` (radians or length; an existing Solution is passed through)."""
     if isinstance(inputs, Solution):
         return inputs
-    if mech.given:
-        # a chain driven by given point velocities: solved at its drawn position from them
-        if inputs is not None and np.size(inputs):
-            raise InputError(f"mechanism '{mech.name}' is driven by given point velocities at its drawn "
-                             "position: it takes no input values (pass None, or its solve_given Solution)")
-        from ..kinematics.point_inputs import solve_given
-        return solve_given(mech)
-    return solve(mech, np.atleast_1d(np.asarray(inputs, float)))
+    return solve_at(mech, None if inputs is None else np.atleast_1d(np.asarray(inputs, float)),
+                    asked="input values (pass None, or its solve_given Solution)")
 
 
 # ---------------------------------------------------------------------------- recognisers

@@ -64,9 +64,28 @@ class _SlidingGroups:
     the intersection of the line about the hinge with the line along the guide, the images on
     the block — so it is written once here; a construction supplies the words of its steps
     (`SLIDING_STEPS`, `_sliding_words`), the intersection (`_sliding_image`) and what it keeps
-    of the sliding (`_slid`)."""
+    of the sliding (`_slid`). The walk through the groups (`_walk`) is theirs in common too."""
 
     SLIDING_STEPS: dict[str, str]
+
+    def _walk(self, groups, fallback, measured) -> None:
+        """Each group in solution order by the construction's own step for its kind
+        (`_g_<kind>`) or, without one, by `fallback(group, links solved so far)`; then the image
+        of every remaining point and the measured rate (`measured`) of every link."""
+        solved = {self.mech.frame}
+        for gs in groups:
+            fn = getattr(self, "_g_" + gs.kind.replace("-", "_"), None)
+            if fn is not None:
+                fn(gs)
+            else:
+                fallback(gs.group, solved)
+            solved.update(gs.group.links)
+        for link in self.mech.links:
+            if link.name == self.mech.frame:
+                continue
+            for p in link.points:
+                self.image(link.name, p)
+            measured(link.name)
 
     def _other(self, j, link: str) -> str:
         return j.links[1] if j.links[0] == link else j.links[0]
@@ -248,30 +267,16 @@ class VelocityConstruction(_SlidingGroups):
 
     # ------------------------------------------------------------------ groups
     def run(self) -> None:
-        solved = {self.mech.frame}
+        from ._direct import draw_given, draw_group
+
         self.scripts = []
         given = bool(self.mech.given or getattr(self.sol, "given", ()))
         if given:
             # no driver: the whole chain from its given point velocities by Rosenauer's rule
-            from ._direct import draw_given
             self.scripts.append(draw_given(self))
-        for gs in (() if given else group_plan(self.mech)):
-            fn = getattr(self, "_g_" + gs.kind.replace("-", "_"), None)
-            if fn is not None:
-                fn(gs)
-            else:
-                # triads and larger groups, gears: Rosenauer's auxiliary points (`_direct`)
-                from ._direct import draw_group
-                self.scripts.append(draw_group(self, gs.group.links, gs.group.joints, solved,
-                                               gs.group.drivers))
-            solved.update(gs.group.links)
-        # every remaining point of every link
-        for link in self.mech.links:
-            if link.name == self.mech.frame:
-                continue
-            for p in link.points:
-                self.image(link.name, p)
-            self.measured_omega(link.name)
+        # triads and larger groups, gears: Rosenauer's auxiliary points (`_direct`)
+        self._walk((() if given else group_plan(self.mech)), lambda g, solved: self.scripts.append(
+            draw_group(self, g.links, g.joints, solved, g.drivers)), self.measured_omega)
 
     def _g_driver(self, gs) -> None:
         mech, sol = self.mech, self.sol
@@ -471,27 +476,16 @@ class AccelerationConstruction(_SlidingGroups):
         return img
 
     def run(self) -> None:
-        solved = {self.mech.frame}
+        from ._direct import draw_group_acceleration
+
         if self.mech.given or getattr(self.sol, "given", ()):
             raise InputError(f"the acceleration plan of '{self.mech.name}', a chain driven by given "
                              "point velocities, is not drawn (its accelerations are solved: "
                              "kinematics.point_inputs.solve_given)")
-        for gs in group_plan(self.mech):
-            fn = getattr(self, "_g_" + gs.kind.replace("-", "_"), None)
-            if fn is not None:
-                fn(gs)
-            else:
-                # the groups the velocity plan drew with auxiliary points: the same script on
-                # the plan of relative normal accelerations (`_direct`)
-                from ._direct import draw_group_acceleration
-                draw_group_acceleration(self, gs.group.links, gs.group.joints, solved, gs.group.drivers)
-            solved.update(gs.group.links)
-        for link in self.mech.links:
-            if link.name == self.mech.frame:
-                continue
-            for p in link.points:
-                self.image(link.name, p)
-            self.measured_alpha(link.name)
+        # the groups the velocity plan drew with auxiliary points: the same script on the plan
+        # of relative normal accelerations (`_direct`)
+        self._walk(group_plan(self.mech), lambda g, solved: draw_group_acceleration(
+            self, g.links, g.joints, solved, g.drivers), self.measured_alpha)
 
     def _g_driver(self, gs) -> None:
         mech, sol = self.mech, self.sol

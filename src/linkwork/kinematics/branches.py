@@ -150,8 +150,10 @@ def branch_schedule(mech: Mechanism) -> dict:
         n = SCAN * (int(round(span / (2 * np.pi))) if revolute else 1)
         grid = u0 - span / 2 + span * np.arange(n + 1) / n
 
+        placed_at = _scan_once(lambda u: _positions(mech, solvers, s, u, found))
+
         def h2(u: np.ndarray) -> np.ndarray:
-            return s.discriminant(_positions(mech, solvers, s, u, found))
+            return s.discriminant(placed_at(u))
 
         if abs(h2(np.array([u0]))[0]) < CHANGE:
             warnings.warn(
@@ -160,7 +162,7 @@ def branch_schedule(mech: Mechanism) -> dict:
                 "assembly branch there; linkwork takes one side and follows it continuously",
                 LinkworkWarning, stacklevel=2)
         def gap(u: np.ndarray) -> np.ndarray:
-            return s.pivot_gap(_positions(mech, solvers, s, u, found))
+            return s.pivot_gap(placed_at(u))
 
         points: list[float] = []
         # where h² touches zero (a change point), and for a dyad where its outer hinges meet
@@ -200,6 +202,23 @@ def near_change_point(mech: Mechanism, u: np.ndarray, tol: float) -> np.ndarray:
                 d = (d + s.period / 2) % s.period - s.period / 2
             near |= np.abs(d) <= tol
     return near
+
+
+def _scan_once(place):
+    """`place` (inputs → a `State` with the groups placed), solved once for the scan's grid:
+    a dyad's discriminant and pivot gap are read from the same poses (the refinements' few
+    inputs are placed anew)."""
+    kept: dict = {}
+
+    def at(u: np.ndarray) -> State:
+        if kept.get("u") is u:
+            return kept["state"]
+        state = place(u)
+        if not kept:  # the first is the grid
+            kept["u"], kept["state"] = u, state
+        return state
+
+    return at
 
 
 def _touches(fn, grid: np.ndarray, first: int, points: list, merge: float) -> None:
@@ -265,13 +284,7 @@ def path_schedule(mech: Mechanism, solvers: tuple[GroupSolver, ...], values: np.
 
     def inputs(lam: np.ndarray) -> np.ndarray:
         """Inputs at λ on the path (its vertices exactly at their knots)."""
-        last = len(path.vertices) - 1
-        j = np.clip(np.searchsorted(path.knots, lam, side="right") - 1, 0, max(last - 1, 0))
-        out = path.points(lam, j)
-        k = np.minimum(np.searchsorted(path.knots, lam), last)
-        at = path.knots[k] == lam
-        out[at] = path.vertices[k[at]]
-        return out / w
+        return path.at(lam) / w
 
     generic_above = False
     for s in solvers:
@@ -299,8 +312,9 @@ def path_schedule(mech: Mechanism, solvers: tuple[GroupSolver, ...], values: np.
 
             merge = 2 * np.pi / SCAN
             new: list = []
-            for fn in ((lambda x: s.discriminant(state(x))),
-                       (lambda x: s.pivot_gap(state(x))))[:2 if s.kind == "RRR" else 1]:
+            at = _scan_once(state)
+            for fn in ((lambda x: s.discriminant(at(x))),
+                       (lambda x: s.pivot_gap(at(x))))[:2 if s.kind == "RRR" else 1]:
                 _touches(fn, grid, first_new, new, merge)
             points += [c for c in new if not any(abs(c - p) < merge for p in points)]
         found[s.group] = PathSchedule(sign, tuple(sorted(points)))

@@ -440,15 +440,17 @@ def _carry_points(mech: Mechanism, solvers, gen: "_Generic", lanes: list) -> Car
     schedule = gen.schedule
     if schedule is None:
         schedule = branch_schedule(mech) if len(mech.drivers) == 1 else {}
-    new_of = [lanes[r[0]][1] for r in rows]
     lams = np.array([r[1] for r in rows])
-    u = np.array([ln.point(x) for ln, x in zip(new_of, lams)]) / gen.weights
-    arrive = np.array([ln.direction(x, True) for ln, x in zip(new_of, lams)]) / gen.weights
-    leave = np.array([ln.direction(x, False) for ln, x in zip(new_of, lams)]) / gen.weights
+    lane_of = np.array([r[0] for r in rows])
+    u, arrive, leave = (np.empty((lams.size, gen.weights.size)) for _ in range(3))
+    for n, (_, new, _, _, _) in enumerate(lanes):
+        on = lane_of == n
+        u[on] = new.at(lams[on]) / gen.weights
+        arrive[on] = new.directions(lams[on], True) / gen.weights
+        leave[on] = new.directions(lams[on], False) / gen.weights
     pred = np.array([r[2] for r in rows])
     ok, q, t_arrive, t_leave, jacobians = _attempt(mech, solvers, gen, schedule, u, lams,
                                                    arrive, leave, pred)
-    lane_of = np.array([r[0] for r in rows])
     taken, failed = 0, None
     for n, (old, new, _, _, after) in enumerate(lanes):
         idx = np.flatnonzero(lane_of == n)
@@ -517,6 +519,8 @@ class _Generic:
         self.schedule = schedule
         self.solvers = [s for s in solvers if s.kind == "generic"]
         self.last = max((i for i, s in enumerate(solvers) if s.kind == "generic"), default=-1)
+        # the closed-form groups ahead of every Newton-solved one depend on the inputs alone
+        self.first = min((i for i, s in enumerate(solvers) if s.kind == "generic"), default=0)
         self.slices, start = {}, 0
         for s in self.solvers:
             self.slices[s.group] = slice(start, start + s.group.size)
@@ -568,24 +572,26 @@ class InputPath:
 
     def point(self, lam: float) -> np.ndarray:
         """Input at λ (a vertex exactly, at its knot)."""
-        j = np.searchsorted(self.knots, lam)
-        if j < self.knots.size and self.knots[j] == lam and j < len(self.vertices):
-            return self.vertices[j]
-        seg = j - 1
-        return self.vertices[seg] + (lam - self.knots[seg]) * self.dirs[seg]
+        return self.at(np.array([lam]))[0]
 
-    def points(self, lam: np.ndarray, seg: np.ndarray) -> np.ndarray:
-        """Inputs (M, drivers) at λ on the given segments (vertices exactly at their knots)."""
-        at = self.knots[seg] == lam
+    def at(self, lam: np.ndarray) -> np.ndarray:
+        """Inputs (M, drivers) at λ ≥ the first knot (vertices exactly at their knots)."""
+        j = np.searchsorted(self.knots, lam)
+        seg = np.clip(j - 1, 0, len(self.dirs) - 1)
         out = self.vertices[seg] + (lam - self.knots[seg])[:, None] * self.dirs[seg]
-        out[at] = self.vertices[seg[at]]
+        hit = (j < len(self.vertices)) & (self.knots[np.minimum(j, self.knots.size - 1)] == lam)
+        out[hit] = self.vertices[j[hit]]
         return out
 
     def direction(self, lam: float, arriving: bool) -> np.ndarray:
         """Unit direction (in λ) of the segment a step arrives at λ along, or leaves λ along
         (they differ at a sample of several drivers)."""
+        return self.directions(np.array([lam]), arriving)[0]
+
+    def directions(self, lam: np.ndarray, arriving: bool) -> np.ndarray:
+        """`direction` at each λ (M, drivers)."""
         seg = np.searchsorted(self.knots, lam, side="left" if arriving else "right") - 1
-        return self.dirs[min(max(seg, 0), len(self.dirs) - 1)]
+        return self.dirs[np.clip(seg, 0, len(self.dirs) - 1)]
 
     def grid(self, spacing: float) -> tuple[np.ndarray, np.ndarray]:
         """λ of points along the path at most `spacing` apart, every vertex among them, and the
@@ -623,6 +629,18 @@ class _Lane(InputPath):
         self._arrays = None
         self.last = None  # (arriving direction, {group: Jacobian}) of the last accepted point
         self.pending = None  # (an earlier march, the index of its next point to carry over)
+        self._ahead = None  # `_Ahead` of a path of several drivers, made when first wanted
+        self.ray = ray
+
+    def ahead(self, mech: Mechanism, solvers, gen: _Generic, schedule: dict,
+              lams: np.ndarray) -> tuple | None:
+        """The closed-form groups ahead of the Newton-solved ones at λ `lams`, if all are
+        vertices of this path of several drivers (`_Ahead`), else None."""
+        if self.ray or gen.first == 0:
+            return None
+        if self._ahead is None:
+            self._ahead = _Ahead(mech, solvers, gen, schedule, self)
+        return self._ahead.at(lams)
 
     # ------------------------------------------------------------------ going on
     def tail(self) -> LaneTail | None:
@@ -803,8 +821,9 @@ def _march(mech: Mechanism, solvers: tuple, gen: _Generic, lanes: list[_Lane], r
         arrive = np.array([ln.direction(p[1], True) for ln, p in zip(todo, props)]) / gen.weights
         leave = np.array([ln.direction(p[1], False) for ln, p in zip(todo, props)]) / gen.weights
         pred = np.array([p[2] for p in props])
+        known = todo[0].ahead(mech, solvers, gen, schedule, lams) if len(todo) == 1 else None
         ok, q, t_arrive, t_leave, jacobians = _attempt(mech, solvers, gen, schedule, u, lams,
-                                                       arrive, leave, pred)
+                                                       arrive, leave, pred, known=known)
         for k, (ln, (h, lam, p)) in enumerate(zip(todo, props)):
             n = len(ln.lam)
             ln.settle(gen, h, lam, p, bool(ok[k]), q[k].copy(), t_arrive[k].copy(),
@@ -816,22 +835,28 @@ def _march(mech: Mechanism, solvers: tuple, gen: _Generic, lanes: list[_Lane], r
 
 def _attempt(mech: Mechanism, solvers, gen: _Generic, schedule: dict, u: np.ndarray,
              lams: np.ndarray, arrive: np.ndarray, leave: np.ndarray, pred: np.ndarray,
-             fixed: tuple | None = None) -> tuple:
+             fixed: tuple | None = None, known: tuple | None = None) -> tuple:
     """One round of the march: all groups solved in order at the inputs u (N, drivers) at λ
     `lams` — the generic ones by `_correct` from `pred`, or, with `fixed` = (poses, {group:
     Jacobian}), set to known poses — then the tangents at unit input rate along the direction
-    arriving and leaving. (ok, generic poses, tangents arriving, leaving, Jacobians)."""
+    arriving and leaving. (ok, generic poses, tangents arriving, leaving, Jacobians).
+    `known`: the closed-form groups ahead of the first generic one, solved at these samples
+    before (`_Ahead.at`), taken instead of solved again."""
     N = u.shape[0]
-    n_links = len(row_index(mech))  # links and contact rows
-    # second order, so that the driver and RRR dyads take their closed-form velocities;
-    # the sample axis last in memory, as `solve` lays out Q for the compiled kernels
-    state = State(mech, np.zeros((3, n_links, 3, N)).transpose(0, 3, 1, 2),
-                  input_coefficients(mech, u, arrive, None, None, 2),
-                  branches={g: sch.at(u, lams) for g, sch in schedule.items()})
+    # second order, so that the driver and RRR dyads take their closed-form velocities
+    state = _march_state(mech, u, arrive, lams, schedule)
     ok = np.ones(N, dtype=bool)
     jacobians = {}
+    start = 0
+    if known is not None:
+        rows, Q, T, ok_known, _ = known
+        state.Q[:, :, rows] = Q
+        state.T[rows] = T
+        state.placed(*rows)
+        ok &= ok_known
+        start = gen.first
     with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
-        for s in solvers:
+        for s in solvers[start:]:
             if s.kind != "generic":
                 ok &= s.positions(state)
             elif fixed is None:
@@ -844,11 +869,13 @@ def _attempt(mech: Mechanism, solvers, gen: _Generic, schedule: dict, u: np.ndar
                 jacobians[s.group] = fixed[1][s.group]
         t_arrive = t_leave = np.full((N, gen.size, 3), np.nan)
         if ok.any():  # (all failed: nothing to settle with them)
-            t_arrive = t_leave = _tangents(state, solvers, gen, jacobians, ok)
+            t_arrive = t_leave = _tangents(state, solvers, gen, jacobians, ok, start)
             if not np.allclose(arrive, leave, rtol=1e-12, atol=0.0):  # a sample turns
                 for i, d in enumerate(mech.drivers):
                     state.inputs[d.joint][1] = leave[:, i]
-                t_leave = _tangents(state, solvers, gen, jacobians, ok)
+                if known is not None:
+                    state.Q[1:, :, known[0]] = known[4]
+                t_leave = _tangents(state, solvers, gen, jacobians, ok, start)
     return ok, state.Q[0][:, gen.links], t_arrive, t_leave, jacobians
 
 
@@ -881,10 +908,62 @@ def _crawls(trail: list, left: int, target: float) -> bool:
     return trail[-1] + CRAWL_MARGIN * pace * left < target
 
 
-def _tangents(state: State, solvers, gen: _Generic, jacobians: dict, ok: np.ndarray) -> np.ndarray:
+def _march_state(mech: Mechanism, u: np.ndarray, rates: np.ndarray, lams: np.ndarray,
+                 schedule: dict) -> State:
+    """The work arrays of an attempt at the inputs u (N, drivers), λ `lams`, to second order
+    with input rates `rates` (the sample axis last in memory, as `solve` lays out Q for the
+    compiled kernels), the closed-form groups on their scheduled assemblies."""
+    n_links = len(row_index(mech))  # links and contact rows
+    return State(mech, np.zeros((3, n_links, 3, u.shape[0])).transpose(0, 3, 1, 2),
+                 input_coefficients(mech, u, rates, None, None, 2),
+                 branches={g: sch.at(u, lams) for g, sch in schedule.items()})
+
+
+class _Ahead:
+    """The closed-form groups ahead of the first Newton-solved one, solved once at every vertex
+    of a path of several drivers (one batch), where most attempts of its march land: their
+    poses (with cos θ, sin θ) and their rates along the segments arriving at and leaving each
+    vertex. Each sample is solved as an attempt solves it (the same operations, sample by
+    sample), so taking them changes no digit of the march."""
+
+    def __init__(self, mech: Mechanism, solvers, gen: _Generic, schedule: dict,
+                 path: "InputPath") -> None:
+        V = len(path.vertices)
+        self.lams = path.knots[:V]
+        u = path.vertices / gen.weights
+        arrive = path.directions(self.lams, True) / gen.weights
+        leave = path.directions(self.lams, False) / gen.weights
+        state = _march_state(mech, u, arrive, self.lams, schedule)
+        ahead = solvers[:gen.first]
+        self.ok = np.ones(V, dtype=bool)
+        with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+            for s in ahead:
+                self.ok &= s.positions(state)
+            for s in ahead:
+                s.derivatives(state, self.ok)
+            self.rows = sorted({state.li(ln) for s in ahead for ln in s.group.links})
+            self.Q = state.Q[:, :, self.rows].copy()
+            self.T = state.T[self.rows].copy()
+            for i, d in enumerate(mech.drivers):
+                state.inputs[d.joint][1] = leave[:, i]
+            for s in ahead:
+                s.derivatives(state, self.ok)
+            self.Q_leave = state.Q[1:, :, self.rows].copy()
+
+    def at(self, lams: np.ndarray) -> tuple | None:
+        """(rows, Q, T, ok, Q[1:] leaving) at λ `lams`, all vertices (else None)."""
+        j = np.searchsorted(self.lams, lams)
+        if not (j < self.lams.size).all() or (self.lams[np.minimum(j, self.lams.size - 1)] != lams).any():
+            return None
+        return self.rows, self.Q[:, j], self.T[:, :, j], self.ok[j], self.Q_leave[:, j]
+
+
+def _tangents(state: State, solvers, gen: _Generic, jacobians: dict, ok: np.ndarray,
+              start: int = 0) -> np.ndarray:
     """Velocities (N, G, 3) of the generic groups' links at the state's input rates, from the
-    velocities of all groups up to the last generic one."""
-    for s in solvers[:gen.last + 1]:
+    velocities of all groups up to the last generic one (from `start`: those before it are
+    in Q already)."""
+    for s in solvers[start:gen.last + 1]:
         if s.kind == "generic":
             _tangent(state, s, jacobians[s.group], ok)
         else:
@@ -895,7 +974,8 @@ def _tangents(state: State, solvers, gen: _Generic, jacobians: dict, ok: np.ndar
 def _correct(state: State, solver, guess: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Newton's method on one generic group from the predicted poses `guess` (N, k, 3); fills
     the group's poses in Q[0] (NaN where it failed). Returns the convergence mask and the last
-    Jacobian (at the final poses, or one Newton step before them).
+    Jacobian (at the final poses, or one Newton step before them; with the columns of the known
+    links and inputs after the group's own where a pair table gave it).
 
     An iteration whose step is not at most `CONTRACTION` times the one before fails the sample:
     near a regular solution Newton's method contracts fast, so slow or growing steps mean that
@@ -912,13 +992,19 @@ def _correct(state: State, solver, guess: np.ndarray) -> tuple[np.ndarray, np.nd
     converged = np.zeros(N, dtype=bool)
     last = np.full(N, np.inf)
     J = None
+    m = 3 * group.size
     for _ in range(CORRECTOR_ITERATIONS):
         state.Q[0][:, idx, :] = q
-        r, Jq = groups.residual_and_jacobian(state, group)
+        # (a pair table's Jacobian with all its columns: the tangent's rates take them)
+        r, Jall = groups.residual_and_jacobian(state, group, all_columns=True)
+        Jq = Jall[:, :, :m]
+        # a sample converged by a small step keeps the Jacobian a step before, as when the
+        # batch's evaluations end with it: its answer does not depend on the others in the batch
+        fresh = alive & ~converged
         converged |= alive & (np.abs(r).max(axis=1) <= tol)
         if J is None:
-            J = np.full(Jq.shape, np.nan)
-        J[alive] = Jq[alive]
+            J = np.full(Jall.shape, np.nan)
+        J[fresh] = Jall[fresh]
         todo = alive & ~converged
         if not todo.any():
             break
@@ -937,6 +1023,8 @@ def _correct(state: State, solver, guess: np.ndarray) -> tuple[np.ndarray, np.nd
         # (quadratic convergence): close enough for a starting value and a tangent, and it
         # saves the evaluation that would confirm it
         converged[rows[~failing & np.isfinite(before) & (size <= STEP_TOL * L)]] = True
+        if not (alive & ~converged).any():
+            break  # (the Jacobian stays the one a step before: enough for the tangent)
     converged &= alive
     state.Q[0][:, idx, :] = np.where(converged[:, None, None], q, np.nan)
     state.forget_trig(idx)
@@ -949,9 +1037,12 @@ def _tangent(state: State, solver, J: np.ndarray, ok: np.ndarray) -> None:
     jets of the residuals with the unknown velocities zero), J the corrector's last Jacobian."""
     group = solver.group
     idx = [state.li(ln) for ln in group.links]
-    r = groups.rate_residuals(state, group, 1)
+    m = 3 * group.size
+    # the corrector's Jacobian is at the poses in Q[0]: its other columns give the rates
+    r = groups.rate_residuals(state, group, 1, jacobian=J)
+    J = J[:, :, :m]
     good = ok & np.isfinite(J).all(axis=(1, 2))
-    v = np.full((r.shape[0], J.shape[2]), np.nan)
+    v = np.full((r.shape[0], m), np.nan)
     if good.any():
         v[good] = groups.least_squares(J[good], -r[good])
     state.Q[1][:, idx, :] = v.reshape(-1, group.size, 3)

@@ -17,7 +17,7 @@ order 2. Every link's cos θ and sin θ are kept once in `State.T`.
 from __future__ import annotations
 
 from dataclasses import dataclass, field, replace
-from functools import cached_property
+from functools import cached_property, lru_cache
 from math import factorial
 
 import numpy as np
@@ -25,14 +25,34 @@ import numpy as np
 from ..model import ConstantSpeed, Driver, Mechanism, Prismatic, Revolute, Slot
 from ..topology import Group
 from . import cam_group, contact, intermittent
-from .constraints import driver_residual, joint_residuals
+from .constraints import PairTable, driver_residual, joint_residuals, pair_table
 from .jet import Jet
 
 NEWTON_TOL = 1e-12  # relative to the mechanism's length scale
 LIMIT_RESIDUAL = 1e-8  # … a pose closed this well at a limit position is returned (singular)
+#: a Newton residual at most this many times ε·(the drawing's coordinates) is the rounding of
+#: the equations themselves (polished samples of the library: up to 6.5; `backward_error`)
+ROUNDING_RESIDUAL = 8.0
 # above this the linear solve for the rates loses every digit (condition × ε ~ 1): the rates of
 # such samples are NaN, not invented (the sample is singular either way)
 UNRELIABLE_CONDITION = 1e14
+
+
+def backward_error(mech: Mechanism, residual: np.ndarray) -> np.ndarray:
+    """Newton's final residual (a length, per sample) as the error budget takes it
+    (`precision.ErrorBudget`, the group's backward error over L). A residual at the level of
+    the equations' rounding (`ROUNDING_RESIDUAL`·ε·the drawing's coordinates) counts as none:
+    Newton's last step leaves the exact poses rounded, as a closed form does, and the budget
+    counts that rounding for every group alike (ε·m₀). The residual measured there is rounding
+    noise that differs with the path Newton came along (a march carried over from a drag's
+    previous frame or marched afresh, 0.3 … 3 ε·m₀ at the same sample): added to the bound it
+    moved samples whose bound lies near the tolerance between ok and singular. A larger
+    residual (a limit position, an over-closed group's least squares) is counted in full."""
+    from .precision import EPS, coordinate_size  # (precision imports this module)
+
+    r = residual / mech.length_scale
+    with np.errstate(invalid="ignore"):
+        return np.where(r <= ROUNDING_RESIDUAL * EPS * coordinate_size(mech), 0.0, r)
 
 
 def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
@@ -161,6 +181,24 @@ def input_coefficients(mech: Mechanism, values: np.ndarray, rates: np.ndarray | 
 
 
 # ---------------------------------------------------------------------------- jets of poses
+#: groups of lower pairs evaluate their residuals, Jacobian and first rates from
+#: `constraints.PairTable` (off: on jets everywhere; tests/kinematics/test_pair_tables.py and
+#: bench/bench_newton.py compare the two)
+PAIR_TABLES = True
+
+
+def pair_table_of(mech: Mechanism, group: Group) -> PairTable | None:
+    """The group's `PairTable` (built once per mechanism and group), or None: it has pairs
+    the tables do not cover, or `PAIR_TABLES` is off."""
+    return _pair_table(mech, group) if PAIR_TABLES else None
+
+
+@lru_cache(maxsize=256)
+def _pair_table(mech: Mechanism, group: Group) -> PairTable | None:
+    return pair_table(mech, group.links, group.joints, group.drivers, group.wedge_pairs,
+                      contact.row_index(mech))
+
+
 def _pose_fn(state: State, group_links: tuple[str, ...], U: np.ndarray | None, order: int):
     """pose(link) over jets of batch shape (N, M). Unknown links read U (order+1, N, M, k, 3);
     known links read Q, broadcast over M."""
@@ -197,10 +235,23 @@ def _residuals(state: State, group: Group, U: np.ndarray, order: int) -> list[Je
     return res
 
 
-def residual_and_jacobian(state: State, group: Group) -> tuple[np.ndarray, np.ndarray]:
+def residual_and_jacobian(state: State, group: Group, *,
+                          all_columns: bool = False) -> tuple[np.ndarray, np.ndarray]:
     """Residuals (N, rows) of the group's constraints at the poses in Q[0] and their Jacobian
-    (N, rows, 3k) with respect to its link poses, from one evaluation on first-order jets (the
-    residuals are the jets' values). rows = 3k, less one per wedge pair."""
+    (N, rows, 3k) with respect to its link poses. rows = 3k, less one per wedge pair. From the
+    group's `PairTable` where it has one (lower pairs and drivers), else from one evaluation on
+    first-order jets (`residual_and_jacobian_jets`). `all_columns`: from a table, the
+    Jacobian's columns of the known links and inputs follow (`rate_residuals` takes them)."""
+    table = pair_table_of(state.mech, group)
+    if table is None:
+        return residual_and_jacobian_jets(state, group)
+    r, J = table.evaluate(state.Q[0], {j: v[0] for j, v in state.inputs.items()})
+    return r, (J if all_columns else J[:, :, :3 * group.size])
+
+
+def residual_and_jacobian_jets(state: State, group: Group) -> tuple[np.ndarray, np.ndarray]:
+    """`residual_and_jacobian` on first-order jets (the residuals are the jets' values): every
+    pair kind, and the reference the pair tables are tested against."""
     N, k = state.Q.shape[1], group.size
     m = 3 * k
     U = np.zeros((2, N, m, k, 3), dtype=state.Q.dtype)  # extended precision stays so
@@ -221,10 +272,32 @@ def group_jacobian(state: State, group: Group) -> np.ndarray:
     return residual_and_jacobian(state, group)[1]
 
 
-def rate_residuals(state: State, group: Group, k: int) -> np.ndarray:
+def rate_residuals(state: State, group: Group, k: int,
+                   jacobian: np.ndarray | None = None) -> np.ndarray:
     """(N, rows): the k-th Taylor coefficient of the group's constraint residuals with the
     group's own k-th pose coefficients set to zero, the right-hand side −r_k of J·q⁽ᵏ⁾/k! = −r_k
-    (all lower coefficients as they stand in Q)."""
+    (all lower coefficients as they stand in Q). First and second order from the group's
+    `PairTable` where it has one (the Jacobian's columns of the known links and inputs times
+    their k-th coefficients, at second order plus the velocities' quadratic part,
+    `PairTable.quadratic`; `jacobian`: that Jacobian at the poses in Q[0], all its columns, if
+    at hand), else on jets (`rate_residuals_jets`)."""
+    table = pair_table_of(state.mech, group) if k <= 2 else None
+    if table is None:
+        return rate_residuals_jets(state, group, k)
+    J = jacobian
+    if J is None or J.shape[2] != table.cols:
+        _, J = table.evaluate(state.Q[0], {j: v[0] for j, v in state.inputs.items()})
+    known = table.rows_q[group.size:]
+    rates = [state.Q[k][:, known].reshape(J.shape[0], -1)]
+    rates += [state.inputs[d[4]][k][:, None] for d in table.drivers]
+    r = np.einsum("nij,nj->ni", J[:, :, 3 * group.size:], np.concatenate(rates, axis=1))
+    if k == 2:  # the velocities' part (the group's own included)
+        r += table.quadratic(state.Q[0], state.Q[1])
+    return r
+
+
+def rate_residuals_jets(state: State, group: Group, k: int) -> np.ndarray:
+    """`rate_residuals` on jets: any order, every pair kind."""
     idx = [state.li(ln) for ln in group.links]
     U = state.Q[: k + 1, :, idx, :][:, :, None].copy()
     U[k] = 0.0
@@ -635,7 +708,7 @@ class GroupSolver:
         """Newton's method on the group alone, from `guess` (N, k, 3) poses."""
         if self.cam is not None:
             ok, err = cam_group.positions(self.cam, state, guess, NEWTON_TOL * self.mech.length_scale)
-            state.residuals[self.group] = err / self.mech.length_scale
+            state.residuals[self.group] = backward_error(self.mech, err)
             return ok
         idx = [state.li(ln) for ln in self.group.links]
         N = state.Q.shape[1]
@@ -674,7 +747,7 @@ class GroupSolver:
         state.Q[0][:, idx, :] = q
         state.forget_trig(idx)
         # the backward error of the poses, for the forward error estimate (`precision`)
-        state.residuals[self.group] = err / scale
+        state.residuals[self.group] = backward_error(self.mech, err)
         return converged
 
     # ------------------------------------------------------------------ derivatives

@@ -1,5 +1,9 @@
 """Metrics of one design over its motion: one number (or a class name) per design.
 
+`evaluate` reduces one design's solution; `evaluate_designs` a chunk of designs at once, each
+metric over arrays of (designs, samples) (the designs' samples padded to the longest), with the
+same values to rounding.
+
 Each metric is named on the command line as `KIND[:ARGUMENT]` (see `METRICS`) or, for any
 quantity of the JSON output, `POINT.QUANTITY:REDUCTION` / `LINK.QUANTITY:REDUCTION` with the
 quantities x, y, vx, vy, ax, ay, speed, acceleration of a point and angle, omega, alpha of a
@@ -153,9 +157,7 @@ def evaluate(mech: Mechanism, sol: Solution, metrics: list[Metric]) -> list:
 
 def _value(mech: Mechanism, sol: Solution, ok: np.ndarray, m: Metric):
     if m.kind == "grashof":
-        from ..structure.grashof import loops
-        rep = next(iter(loops(mech)), None)
-        return "" if rep is None else " ".join(x for x in (rep.grashof, rep.type) if x)
+        return _grashof(mech)
     if m.kind == "input-range":
         return math.degrees(float(np.ptp(sol.inputs[:, 0]))) if len(sol) else math.nan
     if not ok.any():
@@ -188,6 +190,17 @@ def _value(mech: Mechanism, sol: Solution, ok: np.ndarray, m: Metric):
     raise AssertionError(m.kind)
 
 
+def _grashof(mech: Mechanism, cycles: list | None = None) -> str:
+    """Grashof class and type of the first four-link loop ("" if none); `cycles`: the
+    structure's loops (`grashof.loop_cycles`), if known."""
+    from ..structure.grashof import loops
+    try:
+        rep = next(iter(loops(mech, cycles)), None)
+    except LinkworkError:
+        return ""
+    return "" if rep is None else " ".join(x for x in (rep.grashof, rep.type) if x)
+
+
 def _quantity(sol: Solution, m: Metric) -> np.ndarray:
     if m.kind == "link":
         lm = sol.link(m.arg)
@@ -197,3 +210,128 @@ def _quantity(sol: Solution, m: Metric) -> np.ndarray:
     return {"x": pm.position[:, 0], "y": pm.position[:, 1], "vx": pm.velocity[:, 0],
             "vy": pm.velocity[:, 1], "ax": pm.acceleration[:, 0], "ay": pm.acceleration[:, 1],
             "speed": np.hypot(*pm.velocity.T), "acceleration": np.hypot(*pm.acceleration.T)}[m.quantity]
+
+
+# ------------------------------------------------------------------ many designs at once
+def _padded(parts: list[np.ndarray], N: int, fill=np.nan) -> np.ndarray:
+    """(designs, N, …) from per-design arrays of at most N samples, padded with `fill`."""
+    out = np.full((len(parts), N) + parts[0].shape[1:], fill, dtype=np.result_type(parts[0], fill))
+    for d, a in enumerate(parts):
+        out[d, :len(a)] = a
+    return out
+
+
+def _masked(v: np.ndarray, mask: np.ndarray, how: str) -> np.ndarray:
+    """`how` (min, max, range, rms) of each row of v (designs, samples) over `mask`; NaN for a
+    row without any."""
+    n = mask.sum(axis=1)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        if how == "rms":
+            r = np.sqrt(np.where(mask, v * v, 0.0).sum(axis=1) / n)
+        else:
+            lo, hi = np.where(mask, v, np.inf).min(axis=1), np.where(mask, v, -np.inf).max(axis=1)
+            r = {"min": lo, "max": hi, "range": hi - lo}[how]
+    return np.where(n > 0, r, np.nan)
+
+
+def _axes(xy: np.ndarray, mask: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Per design, its path's samples `xy` (designs, samples, 2) over `mask` centred on their
+    mean (zero elsewhere), and the right singular vectors (designs, 2, 2) of those: the path's
+    main axis first (`_main_axis` of each design)."""
+    n = np.maximum(mask.sum(axis=1), 1)[:, None]
+    mean = np.where(mask[..., None], xy, 0.0).sum(axis=1) / n
+    c = np.where(mask[..., None], xy - mean[:, None], 0.0)
+    return c, np.linalg.svd(c, full_matrices=False)[2]
+
+
+def _time_ratios(u: np.ndarray, s_dot: np.ndarray, n: np.ndarray) -> np.ndarray:
+    """`_time_ratio` of every design (rows of u, s_dot; n samples each, NaN beyond)."""
+    sgn = np.sign(s_dot)
+    cross = sgn[:, :-1] * sgn[:, 1:] < 0
+    last = u[np.arange(len(u)), np.maximum(n - 1, 0)]
+    good = (cross.sum(axis=1) == 2) & ~(np.abs(last - u[:, 0]) < 2 * math.pi - 1e-6)
+    out = np.full(len(u), np.nan)
+    if not good.any():
+        return out
+    rows, k = np.nonzero(cross[good])
+    k = k.reshape(-1, 2)
+    uu, ss = u[good], s_dot[good]
+    r = np.arange(len(uu))[:, None]
+    t = uu[r, k] + (uu[r, k + 1] - uu[r, k]) * ss[r, k] / (ss[r, k] - ss[r, k + 1])
+    a = np.abs(t[:, 1] - t[:, 0])
+    b = 2 * math.pi - a
+    out[good] = np.maximum(a, b) / np.minimum(a, b)
+    return out
+
+
+def evaluate_designs(mechs: list[Mechanism], sols: list[Solution], metrics: list[Metric]) -> list[list]:
+    """`evaluate` of each design (mechs[d] solved as sols[d]): its row of metric values. Each
+    metric is reduced over arrays of (designs, samples); the Grashof class and the
+    circularity's circle fit are taken design by design."""
+    D = len(sols)
+    if D == 0:
+        return []
+    n = np.array([len(s) for s in sols])
+    N = max(int(n.max()), 1)
+    ok = _padded([s.status == Status.OK for s in sols], N, False)
+    count = ok.sum(axis=1)
+    cache: dict = {}
+
+    def point(name: str, what: str) -> np.ndarray:
+        if (name, what) not in cache:
+            cache[name, what] = _padded([getattr(s.point(name), what) for s in sols], N)
+        return cache[name, what]
+
+    cols = []
+    for m in metrics:
+        try:
+            cols.append(_column(mechs, sols, ok, count, n, N, point, m))
+        except LinkworkError:  # as `evaluate`: design by design, NaN where it fails
+            cols.append([evaluate(mech, s, [m])[0] for mech, s in zip(mechs, sols)])
+    return [list(r) for r in zip(*cols)]
+
+
+def _column(mechs, sols, ok, count, n, N, point, m: Metric) -> list:
+    """One metric of every design (see `evaluate_designs`)."""
+    if m.kind == "grashof":  # the loops of the structure found once, classified per design
+        from ..structure.grashof import loop_cycles
+        cycles = loop_cycles(mechs[0])
+        return [_grashof(mech, cycles) for mech in mechs]
+    if m.kind == "input-range":
+        return [math.degrees(float(np.ptp(s.inputs[:, 0]))) if len(s) else math.nan for s in sols]
+    none = count == 0
+    if m.kind in ("transmission-min", "transmission-max"):
+        j = mechs[0].joint(m.arg)
+        p, q = _arms(mechs[0], j)
+        J, P, Q = (point(x, "position") for x in (j.point, p, q))
+        a, b = P - J, Q - J
+        mu = np.degrees(np.arctan2(np.abs(a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0]),
+                                   (a * b).sum(-1)))
+        v = _masked(mu, ok, "min" if m.kind == "transmission-min" else "max")
+    elif m.kind in ("point", "link"):
+        q = _padded([_quantity(s, m) for s in sols], N)
+        v = _masked(q, ok & np.isfinite(q), m.reduction)
+    elif m.kind == "stroke":
+        xy = point(m.arg, "position")
+        _, vh = _axes(xy, ok)
+        s = (xy * vh[:, None, 0]).sum(-1)
+        v = np.where(count > 1, _masked(s, ok, "range"), 0.0)
+    elif m.kind == "straightness":
+        c, vh = _axes(point(m.arg, "position"), ok)
+        v = np.where(count > 2, _masked(np.abs((c * vh[:, None, 1]).sum(-1)), ok, "max"), np.nan)
+    elif m.kind == "circularity":
+        xy = point(m.arg, "position")
+        v = np.array([_circularity(xy[d][ok[d]]) if count[d] > 3 else math.nan
+                      for d in range(len(sols))])
+    elif m.kind in ("max-speed", "max-acceleration"):
+        w = point(m.arg, "velocity" if m.kind == "max-speed" else "acceleration")
+        v = _masked(np.hypot(w[..., 0], w[..., 1]), ok, "max")
+    elif m.kind == "time-ratio":
+        full = count == n  # every sample ok
+        xy, vel = point(m.arg, "position"), point(m.arg, "velocity")
+        _, vh = _axes(xy, ok)
+        u = _padded([np.unwrap(s.inputs[:, 0]) for s in sols], N)
+        v = np.where(full, _time_ratios(u, (vel * vh[:, None, 0]).sum(-1), n), np.nan)
+    else:
+        raise AssertionError(m.kind)
+    return [math.nan if e else float(x) for e, x in zip(none, v)]

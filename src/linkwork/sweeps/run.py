@@ -23,17 +23,21 @@ import numpy as np
 
 from ..errors import InputError, LinkworkError
 from ..io.files import load, load_text, resolve
-from ..kinematics import solve, whole_motion
+from ..kinematics import kernels, solve, whole_motion
+from ..kinematics.designs import solve_designs, whole_motions
 from ..kinematics.export import with_unit
 from ..kinematics.warmup import loaded_compiled_loops
 from ..model import Mechanism
 from . import designs as D
-from .metrics import Metric, evaluate, parse_metric
+from .metrics import Metric, evaluate, evaluate_designs, parse_metric
 
 
 #: designs per process from which a sweep loads the kinematics' compiled loops first: about a
 #: second (CPU) of loading against some 60 ms a four-bar design saves (2 ms instead of 60)
 COMPILED_FROM = 40
+#: least designs per chunk on a Dask cluster (unless the sweep has fewer): a chunk is one batch
+#: (`run_designs`), and a task's own cost (some milliseconds) wants several designs
+DASK_CHUNK = 16
 
 
 @dataclass
@@ -99,16 +103,62 @@ def _load(spec: str, text: str, base_dir: str | None) -> Mechanism:
 
 def run_designs(spec: str, params: list[D.Parameter], rows: np.ndarray, metrics: list[Metric],
                 inputs: np.ndarray | None, text: str = "", base_dir: str | None = None,
-                compiled: bool = False) -> list[list]:
+                compiled: bool = False, batch: bool = True) -> list[list]:
     """Rows of [metric values…, ok fraction, status] for the designs `rows` (one process) of
-    the mechanism `text` (read from `spec` if empty); `compiled`: this process solves enough
-    designs to load the compiled loops first (`warmup.compile_kernels`, once per process)."""
-    with loaded_compiled_loops() if compiled else nullcontext():
-        return _rows(spec, params, rows, metrics, inputs, text, base_dir)
+    the mechanism `text` (read from `spec` if empty): all designs solved in one batch
+    (`kinematics.designs`: their whole motions, or `inputs`) and their metrics reduced over
+    arrays of designs × samples; `batch=False` solves and reduces them one by one (the same
+    rows, to rounding: the reference the tests and bench/bench_sweep.py hold the batch to).
+    `compiled`: this process solves enough designs to load the compiled loops first
+    (`warmup.compile_kernels`, once per process); else the loops run interpreted."""
+    with loaded_compiled_loops() if compiled else kernels.compiled_loops(False):
+        rows_of = _rows if batch else _rows_one_by_one
+        return rows_of(spec, params, rows, metrics, inputs, text, base_dir, compiled)
 
 
-def _rows(spec, params, rows, metrics, inputs, text, base_dir) -> list[list]:
-    """`run_designs`, with the loops as they are set."""
+def _failed(metrics: list[Metric], exc: LinkworkError) -> list:
+    """The row of a design that cannot be built or solved: marked, not fatal."""
+    return ([math.nan if m.kind != "grashof" else "" for m in metrics]
+            + [0.0, f"error: {str(exc).splitlines()[0]}"])
+
+
+def _finished(sol, values: list) -> list:
+    ok = float(np.mean(sol.status == 0)) if len(sol) else 0.0
+    return values + [ok, "ok" if ok > 0 else "unreachable"]
+
+
+def _rows(spec, params, rows, metrics, inputs, text, base_dir, compiled) -> list[list]:
+    """`run_designs` in one batch: every design built, solved by one `whole_motions` (or
+    `solve_designs`) call and reduced by `evaluate_designs`; a design that cannot be built or
+    solved gets its error in its row, the others go on."""
+    import warnings
+    base = _load(spec, text, base_dir) if text else load(spec)
+    out: list = [None] * len(rows)
+    built: list[tuple[int, Mechanism]] = []
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # an over-closed design warns once per solve
+        for k, values in enumerate(rows):
+            try:
+                built.append((k, D.apply(base, params, values)))
+            except LinkworkError as exc:
+                out[k] = _failed(metrics, exc)
+        mechs = [m for _, m in built]
+        sols = (whole_motions(mechs, compiled=compiled, isolate=True) if inputs is None else
+                solve_designs(mechs, inputs, compiled=compiled, isolate=True))
+    solved = []
+    for (k, m), sol in zip(built, sols):
+        if isinstance(sol, LinkworkError):
+            out[k] = _failed(metrics, sol)
+        else:
+            solved.append((k, m, sol))
+    values = evaluate_designs([m for _, m, _ in solved], [s for *_, s in solved], metrics)
+    for (k, _, sol), v in zip(solved, values):
+        out[k] = _finished(sol, v)
+    return out
+
+
+def _rows_one_by_one(spec, params, rows, metrics, inputs, text, base_dir, compiled) -> list[list]:
+    """`run_designs` design by design (`whole_motion` or `solve`, then `evaluate`)."""
     import warnings
     base = _load(spec, text, base_dir) if text else load(spec)
     out = []
@@ -118,11 +168,9 @@ def _rows(spec, params, rows, metrics, inputs, text, base_dir) -> list[list]:
                 warnings.simplefilter("ignore")  # an over-closed design warns once per solve
                 mech = D.apply(base, params, values)
                 sol = whole_motion(mech, order=2) if inputs is None else solve(mech, inputs, order=2)
-            ok = float(np.mean(sol.status == 0)) if len(sol) else 0.0
-            out.append(evaluate(mech, sol, metrics) + [ok, "ok" if ok > 0 else "unreachable"])
+            out.append(_finished(sol, evaluate(mech, sol, metrics)))
         except LinkworkError as exc:  # a design that cannot be built or solved is marked, not fatal
-            out.append([math.nan if m.kind != "grashof" else "" for m in metrics]
-                       + [0.0, f"error: {str(exc).splitlines()[0]}"])
+            out.append(_failed(metrics, exc))
     return out
 
 
@@ -132,16 +180,18 @@ def _chunks(n: int, size: int) -> list[range]:
 
 def execute(p: SweepPlan, *, workers: int | None = None, chunk: int | None = None,
             resume: Path | None = None, progress: Callable[[int, int], None] | None = None,
-            scheduler=None) -> list[list]:
+            scheduler=None, batch: bool = True) -> list[list]:
     """Every design's row (parameters, metrics, ok, status), in design order. `workers`
     processes (default: all cores; 1 runs here), or the workers of the Dask cluster whose
     scheduler is at `scheduler` (an address such as tcp://host:8786, or a `distributed.Client`);
     `resume` is a side file of finished chunks (JSON Lines), read first and appended to, so
-    that a sweep cut off resumes where it stopped."""
+    that a sweep cut off resumes where it stopped. Each chunk of designs is solved in one batch
+    (`run_designs`; `batch=False`: design by design)."""
     n = len(p.designs)
     workers = max(1, workers or os.cpu_count() or 1)
     if scheduler is not None and chunk is None:
-        chunk = max(1, min(200, math.ceil(n / 64)))
+        # some 64 chunks (for any number of workers), but a batch of at least DASK_CHUNK
+        chunk = max(1, min(200, max(DASK_CHUNK, math.ceil(n / 64))))
     chunk = chunk or max(1, min(200, math.ceil(n / (4 * workers))))
     parts = _chunks(n, chunk)
     done: dict[int, list] = {}
@@ -175,24 +225,28 @@ def execute(p: SweepPlan, *, workers: int | None = None, chunk: int | None = Non
         if progress:
             progress(finished, n)
 
-    # enough designs per process to pay for loading the compiled loops? (on a cluster: per
-    # chunk, each worker loading them once; local processes are forked from this one after it
-    # loaded them, where processes start by fork, so they load them once here)
-    processes = 1 if workers == 1 or len(todo) <= 1 else min(workers, len(todo))
-    compiled = chunk >= COMPILED_FROM if scheduler is not None else \
-        (n - finished) / processes >= COMPILED_FROM
-    args = lambda i: (p.spec, p.params, p.designs[parts[i].start:parts[i].stop], p.metrics, p.inputs,
-                      p.text, p.base_dir, compiled)
+    def compiled_for(processes: int) -> bool:
+        """Enough designs per process to pay for loading the compiled loops (once per process:
+        a cluster's worker keeps them for its next chunks; local processes are forked from
+        this one after it loaded them, where processes start by fork), or inputs enough per
+        design for the compiled loops on their own?"""
+        return (n - finished) / processes >= COMPILED_FROM or \
+            (p.inputs is not None and len(p.inputs) > kernels.INTERPRETED_UP_TO)
+
+    args = lambda i, compiled: (p.spec, p.params, p.designs[parts[i].start:parts[i].stop], p.metrics,
+                                p.inputs, p.text, p.base_dir, compiled, batch)
     if scheduler is not None:
-        _on_cluster(scheduler, todo, args, record)
+        _on_cluster(scheduler, todo, compiled_for, args, record)
     else:
+        processes = 1 if workers == 1 or len(todo) <= 1 else min(workers, len(todo))
+        compiled = compiled_for(processes)
         with loaded_compiled_loops() if compiled else nullcontext():
             if processes == 1:
                 for i in todo:
-                    record(i, run_designs(*args(i)))
+                    record(i, run_designs(*args(i, compiled)))
             else:
                 with ProcessPoolExecutor(max_workers=processes) as pool:
-                    futures = {pool.submit(run_designs, *args(i)): i for i in todo}
+                    futures = {pool.submit(run_designs, *args(i, compiled)): i for i in todo}
                     for f in as_completed(futures):
                         record(futures[f], f.result())
     rows = []
@@ -202,8 +256,9 @@ def execute(p: SweepPlan, *, workers: int | None = None, chunk: int | None = Non
     return rows
 
 
-def _on_cluster(scheduler, todo: list[int], args, record) -> None:
-    """Run the chunks `todo` on a Dask cluster (dask.distributed), recording each as it ends."""
+def _on_cluster(scheduler, todo: list[int], compiled_for, args, record) -> None:
+    """Run the chunks `todo` on a Dask cluster (dask.distributed), recording each as it ends;
+    the compiled loops if its workers have designs enough each (`compiled_for`)."""
     try:
         from distributed import Client, as_completed as finished
     except ImportError:  # pragma: no cover - distributed is a dependency
@@ -217,7 +272,8 @@ def _on_cluster(scheduler, todo: list[int], args, record) -> None:
     else:
         client = scheduler
     try:
-        futures = {client.submit(run_designs, *args(i), pure=False): i for i in todo}
+        compiled = compiled_for(max(1, len(client.scheduler_info().get("workers", {}))))
+        futures = {client.submit(run_designs, *args(i, compiled), pure=False): i for i in todo}
         for f in finished(list(futures), loop=client.loop):
             record(futures[f], f.result())
     finally:

@@ -26,7 +26,7 @@ from fastapi.responses import FileResponse, JSONResponse, Response
 from fastapi.staticfiles import StaticFiles
 
 from ..errors import LinkworkError, LinkworkWarning, InputError, UnknownMechanismError
-from ..kinematics import Solution, Status, compiled_loops, solve, whole_motion
+from ..kinematics import Solution, Status, compiled_loops, solve, solve_at, whole_motion
 from ..kinematics.export import to_document
 from ..kinematics import warmup
 from ..kinematics.warmup import compile_kernels
@@ -157,37 +157,26 @@ def _finite(x) -> float | None:
     return x if np.isfinite(x) else None
 
 
-def _design_inputs(mech: Mechanism) -> np.ndarray:
-    return np.array([mech.driver_input_at_design(d) for d in mech.drivers])
-
-
-def solve_at(mech: Mechanism, req: m.At, order: int = 2, previous: Mechanism | None = None) -> Solution:
-    """Solve where the request says: its inputs, its times, or the design position.
-    `previous`: the mechanism of the drag's previous frame (`Loaded.previous`), whose march
-    the Newton-solved groups carry over (`solve(..., previous=)`)."""
-    if mech.given:  # driven by given point velocities: its drawn position only
-        if req.times is not None or req.at is not None:
-            raise InputError(f"mechanism '{mech.name}' is driven by given point velocities: it is "
-                             "solved at its drawn position only (no at, no times)")
-        from ..kinematics.point_inputs import solve_given
-        return solve_given(mech)
-    if req.times is not None:
-        return solve(mech, times=np.asarray(req.times, float), order=order, previous=previous)
-    if req.at is None:
-        return solve(mech, _design_inputs(mech)[None, :], order=order, previous=previous)
+def solve_request(mech: Mechanism, req: m.At, order: int | None = None,
+                  previous: Mechanism | None = None) -> Solution:
+    """Solve where the request says: its inputs, its times, or the design position
+    (`kinematics.solve_at`). `previous`: the mechanism of the drag's previous frame
+    (`Loaded.previous`), whose march the Newton-solved groups carry over."""
+    values = req.at
     n = len(mech.drivers)
-    if isinstance(req.at[0], list):
-        bad = [len(v) for v in req.at if len(v) != n]
+    if values is not None and n and isinstance(values[0], list):
+        bad = [len(v) for v in values if len(v) != n]
         if bad:
             raise InputError(f"at: every sample needs one value per driver ({n}: "
                              f"{', '.join(d.joint for d in mech.drivers)}), got {bad[0]}")
-        values = np.asarray(req.at, float)
-    else:
+        values = np.asarray(values, float)
+    elif values is not None and n:
         if n != 1:
             raise InputError(f"mechanism '{mech.name}' has {n} drivers: give at as one list "
                              f"of {n} values per sample")
-        values = np.asarray(req.at, float)[:, None]
-    return solve(mech, values, order=order, previous=previous)
+        values = np.asarray(values, float)[:, None]
+    times = None if req.times is None else np.asarray(req.times, float)
+    return solve_at(mech, values, times=times, order=order, previous=previous, asked="at or times")
 
 
 def mechanism_info(loaded, warned: list[str]) -> dict:
@@ -215,13 +204,13 @@ def mechanism_info(loaded, warned: list[str]) -> dict:
 def drawing(mech: Mechanism, req: m.DrawingRequest, previous: Mechanism | None = None,
             stage: Stages | None = None) -> dict:
     """The drawing of `linkwork draw` for the request, with what the page needs beside it
-    (`previous`: the drag's previous frame, see `solve_at`; `stage`: times the solve, the
+    (`previous`: the drag's previous frame, see `solve_request`; `stage`: times the solve, the
     scene and the SVG)."""
     from ..kinematics.continuation import carried
 
     stage = stage or Stages()
     with stage("solve"):
-        sol = solve_at(mech, req, order=2, previous=previous)
+        sol = solve_request(mech, req, previous=previous)
     if len(sol) != 1:
         raise InputError(f"a drawing shows one position; got {len(sol)} samples")
     where = "the design position" if req.at is None and req.times is None else (
@@ -362,7 +351,7 @@ def create_app(workdir: str | Path | None = None, *, compiled: bool = False) -> 
         """`linkwork.solve` at the given inputs or times (`analyze --at … --format json`)."""
         with _warnings(compiled) as warned:
             loaded = load(req.source)
-            sol = solve_at(loaded.mechanism, req, req.order, loaded.previous)
+            sol = solve_request(loaded.mechanism, req, req.order, loaded.previous)
             doc = to_document(sol)
         return respond({**doc, "warnings": warned})
 
@@ -389,7 +378,7 @@ def create_app(workdir: str | Path | None = None, *, compiled: bool = False) -> 
         """All relative poles (`linkwork poles --format json`)."""
         from ..instant.export import poles_document
         with _warnings(compiled) as warned:
-            doc = poles_document(solve_at(load(req.source).mechanism, req, 1), req.schedule)
+            doc = poles_document(solve_request(load(req.source).mechanism, req, 1), req.schedule)
         return respond({**doc, "warnings": warned})
 
     @app.post("/api/curvature", response_model=m.Document, responses=errors)
@@ -408,7 +397,7 @@ def create_app(workdir: str | Path | None = None, *, compiled: bool = False) -> 
                     asked.append((p, p))
                 else:
                     asked.append((f"{p[0]:g},{p[1]:g}", np.asarray(p, float)))
-            doc = curvature_document(solve_at(mech, req, 3), req.link, req.relative_to, asked)
+            doc = curvature_document(solve_request(mech, req, 3), req.link, req.relative_to, asked)
         return respond({**doc, "warnings": warned})
 
     @app.post("/api/structure", response_model=m.Document, responses=errors)
@@ -426,7 +415,7 @@ def create_app(workdir: str | Path | None = None, *, compiled: bool = False) -> 
         from ..constructions import construct
         with _warnings(compiled) as warned:
             mech = load(req.source).mechanism
-            sol = solve_at(mech, req, 2)
+            sol = solve_request(mech, req)
             if len(sol) != 1:
                 raise InputError(f"a construction is drawn at one position; got {len(sol)}")
             opts = {k: v for k, v in (("point", req.point), ("link", req.link)) if v is not None}

@@ -70,7 +70,7 @@ class At(Strict):
 
 class SolveRequest(At):
     source: Source
-    order: int = Field(2, ge=1, le=4, description="highest time derivative (2: accelerations)")
+    order: int | None = Field(None, ge=1, le=4, description="highest time derivative (default 2, accelerations; a chain driven by given point velocities: as far as its data go)")
 
 
 class MotionRequest(Strict):
