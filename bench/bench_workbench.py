@@ -4,14 +4,28 @@ A server (the application of `linkwork serve`, its kinematics loops compiled bef
 listens) runs in its own process; the page opens a mechanism, moves the slider to a sample of
 the whole motion (the design position, or a quarter of the motion on), enters *Drag design
 points*, presses the mouse on a point and moves it in small steps round a circle, each step once
-the frame of the previous one has been painted. The page records, per drawing of the drag, the
-time from the pointer's move to the first paint after the new drawing (`window.linkworkFrames`);
-p50 and p95 are printed, with `uptime` (the machine may be shared). Then the server's part is
-timed in this process, split into the moved mechanism's build, the solve at the drawn input
-(carrying the previous frame's march over, as the server does) and the scene and its SVG.
+the frame of the previous one has been painted. The page records each frame of the drag
+(`window.linkworkFrames`): the pointer event's time stamp, its handler, the request sent, the
+answer's headers and body, the drawing in the page, the first paint after it, and the server's
+stages from the answer's Server-Timing header.
+
+Two browsers are driven, one after the other:
+
+- *unthrottled*: Chromium without its frame-rate limit and vsync (`UNTHROTTLED`): the paint
+  follows the drawing without waiting for a display's frame clock; this measures what the
+  software costs;
+- *60 Hz*: Chromium as it starts, where the pointer event waits for the next display frame
+  (16.7 ms) and so does the paint: what a user of a 60 Hz screen sees (up to two frames more).
+
+Printed per case: p50 and p95 of the whole frame (pointer event → painted), and the median of
+each stage: input (event → handler), the server's (load: the moved mechanism built; solve;
+scene: the layers' figure; svg: the SVG text and transforms; encode: the JSON; app: the request
+in the server from routing to the answer; cpu: the server thread's CPU time, which other
+processes do not stretch), transfer (the round trip less `app`), parse (the answer's body),
+dom (the drawing and the numbers into the page) and paint (to the first paint after it).
 
     uv run python bench/bench_workbench.py                 # four-bar and Heusinger valve gear
-    uv run python bench/bench_workbench.py --frames 200 --warmup 40
+    uv run python bench/bench_workbench.py --frames 200 --warmup 40 --mode unthrottled
 
 Targets (issue 12): p95 under 20 ms for the four-bar, under 50 ms for the 12-link valve gear.
 """
@@ -31,21 +45,27 @@ from pathlib import Path
 
 import numpy as np
 
-import linkwork
 
 CHROMIUM = shutil.which("chromium") or "/usr/bin/chromium"
 #: (library name, the point dragged, the radius of the circle it is moved round (mm), the
 #: slider's place as a fraction of the whole motion's samples)
 CASES = [("crank-rocker", "C", 0.6, 0.0), ("heusinger-valve-gear", "P45", 4.0, 0.0),
          ("heusinger-valve-gear", "P45", 4.0, 0.25)]
-# the loops compiled (or loaded from numba's cache) before the server listens: the frames timed
-# are those of a warm server, not of one compiling in the background
+#: Chromium's switches for the unthrottled browser (both accepted by Debian's Chromium headless;
+#: --run-all-compositor-stages-before-draw would also shorten the input's wait, but it keeps the
+#: idle page drawing frames at 125 % CPU, on the cores the server needs)
+UNTHROTTLED = ["--disable-frame-rate-limit", "--disable-gpu-vsync"]
+MODES = {"unthrottled": UNTHROTTLED, "60Hz": []}
+#: the server's stages (Server-Timing) printed, in order
+SERVER_STAGES = ("load", "solve", "scene", "svg", "encode", "app", "cpu")
+# the loops compiled (or loaded from numba's cache) before the server listens, and used for every
+# solve as `linkwork serve` does: the frames timed are those of a warm server
 SERVER = """
 import sys, uvicorn
 from linkwork.web import create_app
 from linkwork.web.app import compile_kernels
 compile_kernels()
-uvicorn.run(create_app(None), host="127.0.0.1", port=int(sys.argv[1]), log_level="warning")
+uvicorn.run(create_app(None, compiled=True), host="127.0.0.1", port=int(sys.argv[1]), log_level="warning")
 """
 
 
@@ -97,7 +117,7 @@ def screen_of(page, xy) -> tuple[float, float]:
 
 
 def drag_frames(page, url: str, name: str, point: str, radius: float, place: float,
-                frames: int, warmup: int) -> np.ndarray:
+                frames: int, warmup: int) -> dict[str, np.ndarray]:
     page.goto(f"{url}/?library={name}")
     page.wait_for_selector("body[data-ready=true]", timeout=120_000)
     if place:  # the slider to that sample, and its drawing shown
@@ -119,70 +139,41 @@ def drag_frames(page, url: str, name: str, point: str, radius: float, place: flo
     centre = np.asarray(xy, float)
     targets = [screen_of(page, centre + radius * np.array([math.cos(a), math.sin(a)]))
                for a in np.linspace(0, 2 * math.pi * (frames + warmup) / 24, frames + warmup)]
-    for k, target in enumerate(targets):
+    for target in targets:
         n = page.evaluate("window.linkworkFrames.length")
         page.mouse.move(*target)
-        page.wait_for_function(f"window.linkworkFrames.length > {n}", timeout=60_000)
+        # polled by a timer, not by animation frames: those would keep an unthrottled browser
+        # drawing frames all the time, on the cores the server needs
+        page.evaluate(WAIT_FRAME, n)
     page.mouse.up()
-    took = np.array(page.evaluate("window.linkworkFrames"))
-    fetched = np.array(page.evaluate("window.linkworkFetches"))
-    return took[-frames:], fetched[-frames:]
+    return stages(page.evaluate("window.linkworkFrames")[-frames:])
 
 
-def server_parts(name: str, point: str, radius: float, place: float,
-                 frames: int) -> dict[str, np.ndarray]:
-    """The server's work per drag frame, timed in this process with the compiled loops: each
-    frame a new mechanism (the point moved on round its circle, never to a place it had), solved
-    carrying the previous frame's march over, as the server solves it."""
-    from linkwork.web.app import _warnings, compile_kernels
-    from linkwork.web.sources import Sources
-
-    compile_kernels()
-    with _warnings():  # as the server runs a request (its loops compiled)
-        return _server_parts(name, point, radius, place, frames, Sources(None))
+WAIT_FRAME = """n => new Promise((done, fail) => {
+    const until = performance.now() + 60000;
+    const poll = () => window.linkworkFrames.length > n ? done()
+        : performance.now() > until ? fail(new Error("no frame drawn")) : setTimeout(poll, 2);
+    poll(); })"""
 
 
-def _server_parts(name, point, radius, place, frames, sources) -> dict[str, np.ndarray]:
-    from linkwork.drawing import Scene, scene_figure
-    from linkwork.web import models as m
-    from linkwork.web.app import drawing, solve_at
-
-    base = linkwork.load(f"library:{name}")
-    motion = linkwork.whole_motion(base)
-    u = motion.inputs[int(round(place * (len(motion) - 1)))]
-    at = [float(u[0])] if len(u) == 1 else [[float(v) for v in u]]
-    req = m.DrawingRequest(source=m.Source(library=name), at=at, layers=["mechanism"], motion=False)
-    drawing(sources.load(library=name).mechanism, req)  # the page shows it before the drag
-    parts = {"build": [], "solve": [], "draw": [], "total": [], "cpu": []}
-    x0 = base.points[point]
-    for k in range(2 * frames + 6):  # two loads a frame, each a point of its own
-        a = 2 * math.pi * k / (2 * frames + 6)
-        moved = {point: (x0[0] + radius * math.cos(a), x0[1] + radius * math.sin(a))}
-        t0, c0 = time.perf_counter(), time.thread_time()
-        loaded = sources.load(library=name, points=moved)
-        t1 = time.perf_counter()
-        if k % 2 == 0:
-            sol = solve_at(loaded.mechanism, req, 2, loaded.previous)
-            t2 = time.perf_counter()
-            sc = Scene(loaded.mechanism, sol)
-            sc.motion = None
-            scene_figure(sc, ["mechanism"]).to_svg()
-            t3 = time.perf_counter()
-            if k >= 6:
-                for key, v in (("build", t1 - t0), ("solve", t2 - t1), ("draw", t3 - t2)):
-                    parts[key].append(v * 1e3)
-        else:  # the whole request's work, as the server does it
-            drawing(loaded.mechanism, req, loaded.previous)
-            if k >= 6:
-                parts["total"].append((time.perf_counter() - t0) * 1e3)
-                parts["cpu"].append((time.thread_time() - c0) * 1e3)
-    return {k: np.array(v) for k, v in parts.items()}
+def stages(frames: list[dict]) -> dict[str, np.ndarray]:
+    """Per frame (ms): the whole frame, and its stages in the order they happen."""
+    f = {k: np.array([fr[k] for fr in frames], float)
+         for k in ("event", "handler", "sent", "headers", "parsed", "shown", "painted")}
+    server = {k: np.array([fr["server"].get(k, np.nan) for fr in frames], float)
+              for k in SERVER_STAGES}
+    return {"frame": f["painted"] - f["event"], "input": f["handler"] - f["event"], **server,
+            "transfer": f["headers"] - f["sent"] - server["app"],
+            "parse": f["parsed"] - f["headers"], "dom": f["shown"] - f["parsed"],
+            "paint": f["painted"] - f["shown"]}
 
 
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--frames", type=int, default=120, help="drag frames timed per mechanism")
     ap.add_argument("--warmup", type=int, default=20, help="drag frames before the timed ones")
+    ap.add_argument("--mode", choices=list(MODES), action="append",
+                    help="the browser's frame clock (default: both, unthrottled first)")
     ap.add_argument("--compile-wait", type=float, default=120.0,
                     help="seconds to wait at most for the server's compiled loops")
     args = ap.parse_args()
@@ -192,31 +183,27 @@ def main() -> None:
 
     print("uptime:", subprocess.run(["uptime"], capture_output=True, text=True).stdout.strip())
     proc, url = start_server()
+    cols = ("input", *SERVER_STAGES, "transfer", "parse", "dom", "paint")
     try:
         wait_compiled(url, args.compile_wait)
         with sync_playwright() as p:
-            browser = p.chromium.launch(executable_path=CHROMIUM, args=["--no-sandbox"])
-            page = browser.new_page(viewport={"width": 1280, "height": 900})
-            print("drag → painted frame in Chromium, and of it the request's round trip (ms):")
-            print(f"{'mechanism':24} {'point':6} {'at':>5} {'frames':>6} {'p50':>7} {'p95':>7} "
-                  f"{'fetch p50':>10} {'p95':>7}")
-            for name, point, radius, place in CASES:
-                t, f = drag_frames(page, url, name, point, radius, place, args.frames, args.warmup)
-                print(f"{name:24} {point:6} {place:5.2f} {len(t):6d} {np.percentile(t, 50):7.1f} "
-                      f"{np.percentile(t, 95):7.1f} {np.percentile(f, 50):10.1f} {np.percentile(f, 95):7.1f}")
-            browser.close()
+            for mode in args.mode or list(MODES):
+                browser = p.chromium.launch(executable_path=CHROMIUM,
+                                            args=["--no-sandbox", *MODES[mode]])
+                page = browser.new_page(viewport={"width": 1280, "height": 900})
+                print(f"\n{mode}: drag → painted frame (ms), p50 and p95, and the median of each stage")
+                print(f"{'mechanism':21} {'at':>4} {'p50':>6} {'p95':>6} |"
+                      + "".join(f"{c:>8}" for c in cols))
+                for name, point, radius, place in CASES:
+                    t = drag_frames(page, url, name, point, radius, place, args.frames, args.warmup)
+                    print(f"{name:21} {place:4.2f} {np.percentile(t['frame'], 50):6.1f} "
+                          f"{np.percentile(t['frame'], 95):6.1f} |"
+                          + "".join(f"{np.nanmedian(t[c]):8.1f}" for c in cols))
+                browser.close()
     finally:
         proc.terminate()
         proc.wait(10)
-    print("\nthe server's part of a drag frame (this process, compiled loops), median ms (and the "
-          "request's CPU time, which a shared machine does not stretch):")
-    print(f"{'mechanism':24} {'at':>5} {'build':>7} {'solve':>7} {'draw':>7} {'request':>8} {'cpu':>6}")
-    for name, point, radius, place in CASES:
-        parts = server_parts(name, point, radius, place, min(args.frames, 60))
-        print(f"{name:24} {place:5.2f} " + " ".join(f"{np.median(parts[k]):7.1f}"
-                                                     for k in ("build", "solve", "draw"))
-              + f" {np.median(parts['total']):8.1f} {np.median(parts['cpu']):6.1f}")
-    print("uptime:", subprocess.run(["uptime"], capture_output=True, text=True).stdout.strip())
+    print("\nuptime:", subprocess.run(["uptime"], capture_output=True, text=True).stdout.strip())
 
 
 if __name__ == "__main__":

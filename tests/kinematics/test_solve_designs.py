@@ -1,7 +1,8 @@
 """`designs.solve_designs`: D designs × N inputs in one batch give, design by design, the
 solution `solve` gives each design on its own (statuses, poses, rates, condition numbers,
 error bounds), designs that cannot assemble at some inputs and designs past a change of their
-Grashof type included."""
+Grashof type included; `designs.whole_motions` gives each design's `whole_motion` (its limit
+positions and change points searched for all designs at once), errors isolated per design."""
 
 from __future__ import annotations
 
@@ -9,8 +10,11 @@ import numpy as np
 import pytest
 
 import linkwork
-from linkwork.kinematics import kernels
-from linkwork.kinematics.designs import solve_designs
+from linkwork.errors import InputError, LinkworkError
+from linkwork.kinematics import designs as KD, kernels
+from linkwork.kinematics.branches import branch_schedule
+from linkwork.kinematics.designs import solve_designs, whole_motions
+from linkwork.kinematics.motion import whole_motion
 from linkwork.kinematics.solution import Status
 from linkwork.sweeps import designs as D
 
@@ -81,3 +85,92 @@ def test_a_large_batch_of_designs_runs_compiled(monkeypatch):
     monkeypatch.setattr(kernels, "INTERPRETED_UP_TO", 1000)
     solve_designs(mechs, np.linspace(0.0, 6.0, 400))
     assert ran
+
+
+def test_whole_motions_are_each_designs_whole_motion_with_errors_isolated():
+    """Crank and rocker designs, a slider-crank and the two-driver five-bar, a chain without a
+    driver and a Newton-solved chain in one call: each the `whole_motion` of its own (samples,
+    statuses, poses), the chain without a driver its error in its place, not raised."""
+    base = linkwork.load("library:crank-rocker")
+    prm = [D.parameter(base, "O2-A")]
+    mechs = [D.apply(base, prm, [a]) for a in (10.0, 30.0, 20.0)]
+    mechs += [linkwork.load("library:slider-crank-offset"), linkwork.load("library:five-bar"),
+              linkwork.load("library:rosenauer-free-triad"), linkwork.load("library:double-rocker")]
+    sols = whole_motions(mechs, compiled=False, isolate=True)
+    for m, s in zip(mechs, sols):
+        try:
+            alone = whole_motion(m)
+        except LinkworkError as exc:
+            assert isinstance(s, LinkworkError) and str(s) == str(exc)
+            continue
+        np.testing.assert_array_equal(s.inputs, alone.inputs)
+        np.testing.assert_array_equal(s.status, alone.status)
+        np.testing.assert_allclose(np.nan_to_num(s._C), np.nan_to_num(alone._C), rtol=0,
+                                   atol=1e-12 * m.length_scale)
+    assert isinstance(sols[5], InputError) and "has no driver" in str(sols[5])
+    assert len(sols[1]) != len(sols[0])  # a rocker's own input range
+    with pytest.raises(InputError, match="has no driver"):
+        whole_motions(mechs, compiled=False)
+
+
+def test_solve_designs_per_design_inputs_drivers_and_solution_orders():
+    """Inputs of each design's own length, designs of another solution order (a slider-crank
+    among four-bars: the same number of links, other tables) in the same batch, the five-bar's
+    two drivers per sample; each the `solve` of its own. A bad input of one design is its error,
+    the others are solved."""
+    cr, sc, fb = (linkwork.load(f"library:{n}") for n in ("crank-rocker", "slider-crank-offset",
+                                                           "five-bar"))
+    mechs = [cr, sc, cr, fb]
+    u = [np.linspace(0.0, 6.0, 50), np.linspace(1.0, 2.0, 7), np.linspace(-1.0, 0.0, 3),
+         np.column_stack([np.linspace(0.5, 1.5, 20), np.linspace(1.4, 0.9, 20)])]
+    v = [2.0, None, np.linspace(1.0, 3.0, 3), None]
+    sols = solve_designs(mechs, u, velocities=v, per_design=True, compiled=False)
+    for m, s, ui, vi in zip(mechs, sols, u, v):
+        alone = linkwork.solve(m, ui, velocities=vi, compiled=False)
+        np.testing.assert_array_equal(s.status, alone.status)
+        np.testing.assert_array_equal(s._C, alone._C)
+    bad = solve_designs([cr, sc], [np.zeros(3), np.zeros((3, 2))], per_design=True, isolate=True)
+    assert isinstance(bad[1], InputError) and "1 driver(s), got 2" in str(bad[1])
+    assert len(bad[0]) == 3
+    with pytest.raises(InputError, match="2 inputs for 3 designs"):
+        solve_designs([cr, cr, cr], u[:2], per_design=True)
+
+
+
+def test_the_batched_branch_scan_leaves_change_points_to_branch_schedule():
+    """Designs whose batched scans meet no touching minimum are those for which
+    `branch_schedule` finds no change point; the parallelogram and antiparallelogram (change
+    points half a turn apart), the Galloway kite (its fold) and a crank-rocker drawn on
+    Grashof's limit (s + l = p + q: a change point) are left to it, and their whole motions
+    (the kite's over two turns) are each design's own."""
+    base = linkwork.load("library:crank-rocker")
+    prm = [D.parameter(base, "O2-A")]
+    # crank a (A at (0, a)), coupler |AB| = √(30² + (30 − a)²), rocker |O4B| = √1000, frame 40:
+    # s + l = p + q between a = 20 and 25, found here by bisection on the lengths alone
+    def excess(a):
+        L = sorted([40.0, a, np.hypot(30.0, 30.0 - a), np.hypot(10.0, 30.0)])
+        return L[0] + L[3] - L[1] - L[2]
+    lo, hi = 20.0, 25.0
+    for _ in range(80):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if excess(mid) < 0 else (lo, mid)
+    mechs = [D.apply(base, prm, [a]) for a in (8.0, 12.0, 25.0, lo)]
+    mechs += [linkwork.load(f"library:{n}") for n in ("parallelogram", "antiparallelogram",
+                                                       "galloway-kite", "watt-i-six-bar",
+                                                       "jansen-linkage")]
+    search = []
+    for k, m in enumerate(mechs):
+        solvers, tab = KD._fused(m)
+        search.append(KD._Search(k, m, solvers, tab, m.driver_input_at_design(m.drivers[0]),
+                                 False, {}))
+    with kernels.compiled_loops(False):
+        clear = KD._no_change_points(search)
+    has = [bool(branch_schedule(m)) for m in mechs]
+    assert has == [False, False, False, True, True, True, True, False, False]
+    assert clear == [not h for h in has]
+    for m, s in zip(mechs, whole_motions(mechs, compiled=False)):
+        alone = whole_motion(m)
+        np.testing.assert_array_equal(s.inputs, alone.inputs)
+        np.testing.assert_array_equal(s.status, alone.status)
+        np.testing.assert_allclose(np.nan_to_num(s._C), np.nan_to_num(alone._C), rtol=0,
+                                   atol=1e-12 * m.length_scale)

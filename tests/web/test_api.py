@@ -228,6 +228,17 @@ def test_drawing_without_the_whole_motion(client):
     assert "path-C" in post(client, "/api/drawing", source=SRC, at=[0.7], layers=["mechanism", "paths"]).json()["svg"]
 
 
+def test_a_drawing_says_where_its_time_went(client):
+    """The Server-Timing header of a drawing (the bench and the browser's tools read it): each
+    stage once, in the order the work happens, the whole request (`app`) last."""
+    r = post(client, "/api/drawing", source=SRC, at=[0.7], layers=["mechanism"], motion=False)
+    parts = [p.strip().split(";dur=") for p in r.headers["server-timing"].split(",")]
+    assert [name for name, _ in parts] == ["load", "solve", "scene", "svg", "encode", "cpu", "app"]
+    ms = {name: float(v) for name, v in parts}
+    assert all(v >= 0 for v in ms.values())
+    assert ms["app"] >= ms["load"] + ms["solve"] + ms["scene"] + ms["svg"]
+
+
 def test_drawing_with_a_construction_and_its_steps(client):
     r = post(client, "/api/drawing", source=SRC, at=[0.4], layers=["mechanism"],
              construction="velocity-plan", step=1)

@@ -148,6 +148,31 @@ export async function post<T>(path: string, body: unknown): Promise<T> {
   }));
 }
 
+/** When a POST's answer came (performance.now(), ms): its headers, its body parsed; and the
+ * server's stages (its Server-Timing header: name → ms). */
+export interface Timed<T> {
+  body: T;
+  headers: number;
+  parsed: number;
+  server: Record<string, number>;
+}
+
+export async function postTimed<T>(path: string, body: unknown): Promise<Timed<T>> {
+  const r = await fetch(path, {
+    method: "POST",
+    headers: { "content-type": "application/json" },
+    body: JSON.stringify(body),
+  });
+  const headers = performance.now();
+  const out = await answer<T>(r);
+  const server: Record<string, number> = {};
+  for (const part of (r.headers.get("server-timing") ?? "").split(",")) {
+    const m = /^\s*([\w-]+)\s*;\s*dur=([\d.]+)/.exec(part);
+    if (m) server[m[1]] = Number(m[2]);
+  }
+  return { body: out, headers, parsed: performance.now(), server };
+}
+
 /** A POST whose answer is a file (PNG, CSV); errors come as JSON like every other answer. */
 export async function postFile(path: string, body: unknown): Promise<Blob> {
   const r = await fetch(path, {

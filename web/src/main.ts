@@ -4,7 +4,7 @@
 
 import {
   ApiError, Drawing, DrawingRequest, FullMotion, FullSample, LibraryList, MechanismInfo, Motion,
-  Source, Transform, XY, get, post, postFile, toSvg, toWorld,
+  Source, Transform, XY, get, post, postFile, postTimed, toSvg, toWorld,
 } from "./api";
 import { EditError, addEntry, addToLink, removeEntry, removeFromLinks } from "./edit";
 import { plotSvg } from "./plot";
@@ -87,13 +87,24 @@ const state: State = {
   layers: new Set(), plan: null, construction: null, drawn: null, busy: false, again: false, generation: 0,
 };
 
-// drag → redrawn frame: for each drawing of a drag, the time from the pointer's move it follows to
-// the first paint after it (ms); bench/bench_workbench.py reads them
-// (and of that, the request's round trip: linkworkFetches)
-const frames: number[] = [];
-const fetches: number[] = [];
-Object.assign(window, { linkworkFrames: frames, linkworkFetches: fetches });
-let movedAt = 0; // when the pointer moved last during a drag (performance.now())
+/** A drag's frame as it went (performance.now(), ms): the pointer's move (the event's own time
+ * stamp, and when its handler ran), the request sent, its answer's headers and body, the drawing
+ * in the page, the first paint after it; and the server's stages (its Server-Timing, ms). */
+interface Frame {
+  event: number;
+  handler: number;
+  sent: number;
+  headers: number;
+  parsed: number;
+  shown: number;
+  painted: number;
+  server: Record<string, number>;
+}
+
+// every drawing of a drag, as it went; bench/bench_workbench.py reads them
+const frames: Frame[] = [];
+Object.assign(window, { linkworkFrames: frames });
+let movedAt: { event: number; handler: number } | null = null; // the pointer's last move of a drag
 
 function source(): Source {
   const s: Source = { ...(state.base as Source) };
@@ -171,15 +182,21 @@ async function redraw(): Promise<void> {
       state.again = false;
       const generation = state.generation;
       const req = drawingRequest();
-      const asked = req.motion === false ? movedAt : 0;
+      const asked = req.motion === false ? movedAt : null;
+      movedAt = null;
       try {
         const sent = performance.now();
-        const d = await post<Drawing>("/api/drawing", req);
+        const answer = await postTimed<Drawing>("/api/drawing", req);
         if (generation !== state.generation) continue;
-        if (asked) fetches.push(performance.now() - sent);
-        show(d, req);
-        if (asked) { // after the next paint: a task queued in the frame callback runs after it
-          requestAnimationFrame(() => window.setTimeout(() => frames.push(performance.now() - asked), 0));
+        show(answer.body, req);
+        if (asked) {
+          const frame: Frame = { ...asked, sent, headers: answer.headers, parsed: answer.parsed,
+            shown: performance.now(), painted: NaN, server: answer.server };
+          // after the next paint: a task queued in the frame callback runs after it
+          requestAnimationFrame(() => window.setTimeout(() => {
+            frame.painted = performance.now();
+            frames.push(frame);
+          }, 0));
         }
         clearError();
       } catch (e) {
@@ -747,7 +764,7 @@ ui.drawing.addEventListener("pointerdown", (ev) => {
 
 ui.drawing.addEventListener("pointermove", (ev) => {
   if (!dragging) return;
-  movedAt = performance.now();
+  movedAt = { event: ev.timeStamp, handler: performance.now() };
   const w = toWorld(dragging.transform, svgPoint(ev, dragging.screen));
   const [x, y, th] = dragging.pose;
   const c = Math.cos(th), s = Math.sin(th);

@@ -473,9 +473,12 @@ def whole_motions(mechs, *, compiled: bool | None = None, isolate: bool = False)
         # the change points: none, as the batched scans show for most designs, or
         # `branch_schedule`'s (Brent's method on each touching minimum)
         from .branches import branch_schedule
-        for s, clear in zip(search, _no_change_points(search) if search else []):
-            if not clear:
-                s.schedule = branch_schedule(s.mech)
+        for s, clear in zip(list(search), _no_change_points(search) if search else []):
+            try:
+                s.schedule = {} if clear else branch_schedule(s.mech)
+            except LinkworkError:
+                search.remove(s)
+                alone.append(s.index)  # to whole_motion's error
         limits = _limits(search) if search else []
         for s, lim in zip(search, limits):
             if lim is False:

@@ -40,7 +40,9 @@ from .precision import (_PLAIN, _STATUS_WEIGHTS, EPS, POLISH_LIMIT, TOLERANCE, c
 class Tables:
     """A mechanism's solution order for the fused loops (see `kernels.fused_positions`)."""
 
-    ops: np.ndarray  # (groups, 7) int64: opcode, link indices, sign row, hinge-vector row
+    #: (groups, 8) int64: opcode, link indices, sign row, hinge-vector row, and which pivot
+    #: link is the frame (1: the first, A; 2: the second, C or the guide; 0: neither)
+    ops: np.ndarray
     fl: np.ndarray  # (groups, 18) float64: the group's constants (`GroupSolver.fast`)
     #: in order: (hinge-vector row, link, φ): the link's angle is arctan2 of the row's vector
     #: less φ; (−1, block, guide): the block keeps the guide's angle
@@ -62,7 +64,7 @@ def tables(mech: Mechanism, solvers: tuple[GroupSolver, ...]) -> Tables | None:
         f = s.fast
         if f is None or (s.kind == "driver" and f["b"] != frame):
             return None
-        o, c = np.full(7, -1, dtype=np.int64), np.zeros(18)
+        o, c = np.full(8, -1, dtype=np.int64), np.zeros(18)
         if s.kind == "driver":
             o[:4] = kernels.DRIVER, f["b"], f["i"], joints[f["joint"]]
             c[:4] = *f["H"], f["u0"], f["cond"]
@@ -82,6 +84,7 @@ def tables(mech: Mechanism, solvers: tuple[GroupSolver, ...]) -> Tables | None:
             return None
         if s.kind != "driver":
             signs.append((s.group, s.design_sign))
+            o[7] = 1 if o[1] == frame else 2 if o[2] == frame else 0
         ops.append(o)
         fl.append(c)
     return Tables(np.array(ops), np.array(fl), tuple(angles), vectors, tuple(signs))
@@ -103,7 +106,9 @@ def solve_blocks(mech: Mechanism, tab: Tables, solvers, Q: np.ndarray, T: np.nda
     Qm = Q.transpose(0, 2, 3, 1)  # Qm[k, link, (x, y, θ), n]: the memory's order
     Q0 = Qm[0]
     if U is None:
-        U = np.stack([inputs[d.joint] for d in mech.drivers])  # (drivers, 3, N)
+        # (drivers, 3, N); one driver's coefficients as they are (no copy of the batch)
+        U = inputs[mech.drivers[0].joint][None] if len(mech.drivers) == 1 else \
+            np.stack([inputs[d.joint] for d in mech.drivers])
     per = np.array([mech.length_scale if mech.joint(d.joint).kind == "prismatic" else 1.0
                     for d in mech.drivers])
     B = max(1, min(N - start, block))

@@ -88,10 +88,14 @@ def _loop(samples_axis: int | None = None):
 _ROWS: set[str] = set()
 
 
-def _rows(fn: types.FunctionType) -> types.FunctionType:
-    """Register a block loop of the fused pass (see `_ROWS`)."""
-    _ROWS.add(fn.__name__)
-    return _loop()(fn)
+def _rows(fn: types.FunctionType | None = None, *, samples_axis: int | None = None):
+    """Register a loop whose written rows are arguments of their own (see `_ROWS`): a block
+    loop of the fused pass, or with `samples_axis` an entry point as `_loop` makes them."""
+    def register(fn: types.FunctionType):
+        _ROWS.add(fn.__name__)
+        return _loop(samples_axis)(fn)
+
+    return register if fn is None else register(fn)
 
 
 def _at(n):
@@ -111,8 +115,22 @@ def _bound(namespace: dict) -> dict:
 
 #: `math` for the interpreted loops: NumPy's scalar functions, which give NaN and ±inf where
 #: Python's raise, as the compiled loops do (error_model="numpy")
-_NUMPY_MATH = types.SimpleNamespace(sqrt=np.sqrt, cos=np.cos, sin=np.sin, pi=math.pi,
-                                    inf=math.inf, nan=math.nan)
+_NUMPY_MATH = types.SimpleNamespace(sqrt=np.sqrt, cos=np.cos, sin=np.sin, floor=np.floor,
+                                    pi=math.pi, inf=math.inf, nan=math.nan)
+
+#: π/2 in three parts for the argument reduction of `_sincos` (rounded from 300 bits; the test
+#: checks them): the first two of 33 significant bits, so that q times them is exact for the
+#: quadrants q of |θ| ≤ `SINCOS_LIMIT`
+_PIO2_A = float.fromhex("0x1.921fb54400000p+0")
+_PIO2_B = float.fromhex("0x1.0b4611a600000p-34")
+_PIO2_C = float.fromhex("0x1.3198a2e037073p-69")
+SINCOS_LIMIT = 2.0 ** 19 * _PIO2_A
+#: the Taylor coefficients of sin r / r − 1 and (cos r − 1 + r²/2) / r⁴ in z = r² (|r| ≤ π/4:
+#: the first term left out is below 10⁻²² of the sum)
+_S1, _S2, _S3, _S4, _S5, _S6, _S7, _S8, _S9 = ((-1.0) ** k / math.factorial(2 * k + 1)
+                                               for k in range(1, 10))
+_C2, _C3, _C4, _C5, _C6, _C7, _C8, _C9, _C10 = ((-1.0) ** k / math.factorial(2 * k)
+                                                for k in range(2, 11))
 
 
 @lru_cache(maxsize=1)
@@ -141,7 +159,7 @@ def _compiled() -> dict:
     ns = _bound(dict(globals()))
     ns["_at"] = np.uint64
     for name, (_, samples_axis) in _LOOPS.items():
-        if name in _ROWS:  # called by the fused loops, each on its own (not inlined)
+        if name in _ROWS:  # each compiled on its own (not inlined: its noalias would not hold)
             ns[name] = nb.njit(inline="never", pipeline_class=_NoAlias, **_FLAGS)(ns[name])
             continue
         # the per-sample helpers inlined into the loops by numba itself: LLVM leaves the calls
@@ -452,8 +470,48 @@ def _driver_position(Q0, T, b, i, h0, h1, u, u0, n):
     """`driver_positions` at sample n (input u)."""
     hx, hy = _world(Q0, T, b, h0, h1, n)
     th = Q0[b, 2, n] + (u - u0)
-    _place(Q0, T, i, math.cos(th), math.sin(th), h0, h1, hx, hy, n)
+    c, sn = _cos_sin(th)
+    _place(Q0, T, i, c, sn, h0, h1, hx, hy, n)
     Q0[i, 2, n] = th
+
+
+@_loop()
+def _sincos(t):
+    """cos t, sin t for |t| ≤ `SINCOS_LIMIT` without a library call, so that the driver's loop
+    vectorises (the C library's sincos, a call per sample, cost more than a dyad): t = q·π/2 +
+    r by a three-part reduction, |r| ≤ π/4, the Taylor polynomials of sin r and cos r, the
+    quadrant q mod 4 choosing and signing them. Within about an ulp of the C library's
+    (test_kernel_modes)."""
+    q = math.floor(t * (2.0 / math.pi) + 0.5)
+    r = ((t - q * _PIO2_A) - q * _PIO2_B) - q * _PIO2_C
+    z = r * r
+    sr = r + r * z * (_S1 + z * (_S2 + z * (_S3 + z * (_S4 + z * (_S5 + z * (_S6 + z * (
+        _S7 + z * (_S8 + z * _S9))))))))
+    hz = 0.5 * z
+    w = 1.0 - hz  # 1 − z/2 and its rounding carried on: cos r to the last bit near |r| = π/4
+    cr = w + (((1.0 - w) - hz) + z * z * (_C2 + z * (_C3 + z * (_C4 + z * (_C5 + z * (
+        _C6 + z * (_C7 + z * (_C8 + z * (_C9 + z * _C10)))))))))
+    j = q - 4.0 * math.floor(q * 0.25)  # the quadrant, 0 … 3
+    odd = (j == 1.0) | (j == 3.0)
+    a, b = (cr if odd else sr), (sr if odd else cr)
+    return (-b if (j == 1.0) | (j == 2.0) else b), (-a if j >= 2.0 else a)
+
+
+@_loop()
+def _cos_sin(t):
+    """cos t, sin t: `_sincos` within its range, the C library's beyond (many turns)."""
+    if abs(t) <= SINCOS_LIMIT:
+        return _sincos(t)
+    return math.cos(t), math.sin(t)
+
+
+@_loop()
+def _within(u, u0, lo, hi):
+    """|u[n] − u0| ≤ `SINCOS_LIMIT` at every sample of the block lo … hi − 1 (NaN: no)."""
+    top = 0.0
+    for n in range(lo, hi):
+        top = _worse(top, abs(u[_at(n)] - u0))
+    return top <= SINCOS_LIMIT
 
 
 @_loop(3)
@@ -485,21 +543,44 @@ def point_motion(C, c, s, sx, sy, out):
     r = R(θ)s, v = ṫ + ω ⊥r, a = ẗ + α ⊥r − ω² r, j = ⃛t + (ω̈ − ω³) ⊥r − 3ωα r."""
     K = C.shape[0] - 1
     for n in range(C.shape[1]):
-        rx = c[n] * sx[n] - s[n] * sy[n]
-        ry = s[n] * sx[n] + c[n] * sy[n]
-        out[0, 0, n] = C[0, n, 0] + rx
-        out[0, 1, n] = C[0, n, 1] + ry
-        w = C[1, n, 2]
-        out[1, 0, n] = C[1, n, 0] - w * ry
-        out[1, 1, n] = C[1, n, 1] + w * rx
         if K >= 2:
-            a, ww = 2.0 * C[2, n, 2], w * w
-            out[2, 0, n] = 2.0 * C[2, n, 0] - a * ry - ww * rx
-            out[2, 1, n] = 2.0 * C[2, n, 1] + a * rx - ww * ry
-            if K >= 3:
-                jt, wa = 6.0 * C[3, n, 2] - w * w * w, 3.0 * w * a
-                out[3, 0, n] = 6.0 * C[3, n, 0] - jt * ry - wa * rx
-                out[3, 1, n] = 6.0 * C[3, n, 1] + jt * rx - wa * ry
+            (out[0, 0, n], out[0, 1, n], out[1, 0, n], out[1, 1, n], out[2, 0, n],
+             out[2, 1, n]) = _point_pva(c[n], s[n], sx[n], sy[n], C[0, n, 0], C[0, n, 1],
+                                        C[1, n, 0], C[1, n, 1], C[1, n, 2], C[2, n, 0],
+                                        C[2, n, 1], C[2, n, 2])
+        else:
+            out[0, 0, n], out[0, 1, n], out[1, 0, n], out[1, 1, n], _, _ = _point_pva(
+                c[n], s[n], sx[n], sy[n], C[0, n, 0], C[0, n, 1], C[1, n, 0], C[1, n, 1],
+                C[1, n, 2], 0.0, 0.0, 0.0)
+        if K >= 3:
+            rx = c[n] * sx[n] - s[n] * sy[n]
+            ry = s[n] * sx[n] + c[n] * sy[n]
+            w, a = C[1, n, 2], 2.0 * C[2, n, 2]
+            jt, wa = 6.0 * C[3, n, 2] - w * w * w, 3.0 * w * a
+            out[3, 0, n] = 6.0 * C[3, n, 0] - jt * ry - wa * rx
+            out[3, 1, n] = 6.0 * C[3, n, 1] + jt * rx - wa * ry
+
+
+@_rows(samples_axis=0)
+def point_motion_2(c, sn, sx, sy, x0, y0, x1, y1, w, x2, y2, t2, px, py, vx, vy, ax, ay):
+    """`point_motion` of the design point (sx, sy) at order 2 from the link's rows cos θ, sin θ
+    and Taylor coefficients (x0, y0), (x1, y1, ω), (x2, y2, t2), each row (of these and of the
+    answer) an array of its own: vectorised."""
+    for n in range(c.shape[0]):
+        k = _at(n)
+        px[k], py[k], vx[k], vy[k], ax[k], ay[k] = _point_pva(
+            c[k], sn[k], sx, sy, x0[k], y0[k], x1[k], y1[k], w[k], x2[k], y2[k], t2[k])
+
+
+@_loop()
+def _point_pva(c, sn, sx, sy, x0, y0, x1, y1, w, x2, y2, t2):
+    """Position, velocity and acceleration (x, y each) of the point s = (sx, sy) on a link at
+    angle (c, sn) whose origin's Taylor coefficients are (x0, y0), (x1, y1, ω), (x2, y2, t2)."""
+    rx = c * sx - sn * sy
+    ry = sn * sx + c * sy
+    a, ww = 2.0 * t2, w * w
+    return (x0 + rx, y0 + ry, x1 - w * ry, y1 + w * rx, 2.0 * x2 - a * ry - ww * rx,
+            2.0 * y2 + a * rx - ww * ry)
 
 
 @_loop(3)
@@ -661,6 +742,9 @@ def _worse(top, v):
 # ---------------------------------------------------------------------------- the fused pass
 #: opcodes of `fused_positions` / `fused_rates` (the solution order as tables, `fused.Tables`)
 DRIVER, RRR, RRP = 0, 1, 2
+#: samples per pass of a group within the fused loops' block: the rows a group reads (written
+#: by the groups before it) and the error bounds stay in the CPU's L2 cache between the groups
+SUBBLOCK = 1024
 
 
 # The block loops of the fused pass, one per group kind and kind of work: every row they write
@@ -668,29 +752,37 @@ DRIVER, RRR, RRP = 0, 1, 2
 # indexed unsigned (`_at`): LLVM then vectorises them (eight samples per instruction), which
 # it cannot where rows written and read are parts of one array.
 @_rows
-def _driver_block_positions(Q0, T, b, i, h0, h1, u, u0, x, y, th, c, s, ok, lo, hi):
-    """`driver_positions` on the block lo … hi − 1, link i's rows x, y, θ, cos θ, sin θ
-    written; ok[n] false where the input is NaN or ∞."""
+def _driver_block_positions(u, u0, h0, h1, x, y, th, c, s, ok, lo, hi):
+    """`driver_positions` of a driver on the frame on the block lo … hi − 1 (the frame's pose
+    is zero: θ = u − u0, the hinge H where it is drawn; |θ| ≤ `SINCOS_LIMIT`, `_within`), link
+    i's rows x, y, θ, cos θ, sin θ written; ok[n] false where the input is NaN or ∞."""
     for n in range(lo, hi):
         k = _at(n)
-        hx, hy = _world(Q0, T, b, h0, h1, k)
-        t = Q0[b, 2, k] + (u[k] - u0)
-        cc, ss = math.cos(t), math.sin(t)
+        t = u[k] - u0
+        cc, ss = _sincos(t)
         th[k], c[k], s[k] = t, cc, ss
-        x[k], y[k] = _origin(cc, ss, h0, h1, hx, hy)
+        x[k], y[k] = _origin(cc, ss, h0, h1, h0, h1)
         ok[k] = ok[k] & (u[k] - u[k] == 0.0)
 
 
 @_rows
-def _rrr_block_positions(Q0, T, iA, pa0, pa1, iC, pc0, pc1, diff, L1sq, tol, sign, k10, k11,
-                         k20, k21, x1, y1, c1, s1, x2, y2, c2, s2, r1x, r1y, r2x, r2y, ok, lo,
-                         hi):
+def _rrr_block_positions(QA, QC, T, iA, pa0, pa1, iC, pc0, pc1, diff, L1sq, tol, sign, k10,
+                         k11, k20, k21, x1, y1, c1, s1, x2, y2, c2, s2, r1x, r1y, r2x, r2y, ok,
+                         lo, hi):
     """`rrr_positions` on the block lo … hi − 1: the rows x, y, cos θ, sin θ of both links
-    written, the hinge vectors to r1x … r2y[n − lo] (sign[n − lo]: the assembly signs)."""
+    written, the hinge vectors to r1x … r2y[n − lo] (sign[n − lo]: the assembly signs). QA, QC:
+    the positions Q0 the pivots' links are read from, None for a pivot on the frame (it stands
+    where it is drawn: numba compiles that case without the reads)."""
     for n in range(lo, hi):
         k, j = _at(n), _at(n - lo)
-        ax, ay = _world(Q0, T, iA, pa0, pa1, k)
-        cx, cy = _world(Q0, T, iC, pc0, pc1, k)
+        if QA is None:
+            ax, ay = pa0, pa1
+        else:
+            ax, ay = _world(QA, T, iA, pa0, pa1, k)
+        if QC is None:
+            cx, cy = pc0, pc1
+        else:
+            cx, cy = _world(QC, T, iC, pc0, pc1, k)
         good, r1x[j], r1y[j], r2x[j], r2y[j], cc1, ss1, cc2, ss2 = _rrr_solve(
             ax, ay, cx, cy, diff, L1sq, tol, sign[j], k10, k11, k20, k21)
         c1[k], s1[k], c2[k], s2[k] = cc1, ss1, cc2, ss2
@@ -700,53 +792,66 @@ def _rrr_block_positions(Q0, T, iA, pa0, pa1, iC, pc0, pc1, diff, L1sq, tol, sig
 
 
 @_rows
-def _rrp_block_positions(Q0, T, iA, a0, a1, ig, p0, p1, e00, e01, rsq, tol, sign, k0, k1, xr,
-                         yr, cr, sr, xb, yb, tb, cb, sb, rx, ry, ok, lo, hi):
+def _rrp_block_positions(QA, QG, T, iA, a0, a1, ig, p0, p1, e00, e01, rsq, tol, sign, k0, k1,
+                         xr, yr, cr, sr, xb, yb, tb, cb, sb, rx, ry, ok, lo, hi):
     """`rrp_positions` on the block lo … hi − 1: the rod's rows x, y, cos θ, sin θ and the
-    block's x, y, θ, cos θ, sin θ written, the rod's vector to rx, ry[n − lo]."""
+    block's x, y, θ, cos θ, sin θ written, the rod's vector to rx, ry[n − lo]. QA, QG: the
+    positions Q0 the pivot's and the guide's links are read from, None for the frame."""
     for n in range(lo, hi):
         k, j = _at(n), _at(n - lo)
-        cg, sg = T[ig, 0, k], T[ig, 1, k]
-        ax, ay = _world(Q0, T, iA, a0, a1, k)
-        qx, qy = _world(Q0, T, ig, p0, p1, k)
+        if QA is None:
+            ax, ay = a0, a1
+        else:
+            ax, ay = _world(QA, T, iA, a0, a1, k)
+        if QG is None:
+            cg, sg, qx, qy, tg = 1.0, 0.0, p0, p1, 0.0
+        else:
+            cg, sg, tg = T[ig, 0, k], T[ig, 1, k], QG[ig, 2, k]
+            qx, qy = _world(QG, T, ig, p0, p1, k)
         good, rx[j], ry[j], c, sn, px, py = _rrp_solve(ax, ay, qx, qy, cg, sg, e00, e01, rsq,
                                                        tol, sign[j], k0, k1)
-        cr[k], sr[k], cb[k], sb[k], tb[k] = c, sn, cg, sg, Q0[ig, 2, k]
+        cr[k], sr[k], cb[k], sb[k], tb[k] = c, sn, cg, sg, tg
         xr[k], yr[k] = _origin(c, sn, a0, a1, ax, ay)
         xb[k], yb[k] = _origin(cg, sg, p0, p1, px, py)
         ok[k] = ok[k] & good
 
 
 @_rows
-def _driver_block_rates(Q, T, b, i, h0, h1, u1, u2, kappa, L, eps, inv_omega, m0, m1, m2, E0,
-                        E1, E2, cond, vx, vy, vt, wx, wy, wt, lo, hi):
-    """`driver_rates` on the block lo … hi − 1: link i's rows of first (v…) and second (w…)
-    coefficients written, the bounds (m…, E…[n − lo]) and cond[n] carried on."""
+def _driver_block_rates(T, Q0, i, h0, h1, u1, u2, kappa, L, eps, inv_omega, m0, m1, m2, E0, E1,
+                        E2, cond, vx, vy, vt, wx, wy, wt, lo, hi):
+    """`driver_rates` of a driver on the frame on the block lo … hi − 1 (the hinge H stands
+    still: ω = u̇, α = ü): link i's rows of first (v…) and second (w…) coefficients written,
+    the bounds (m…, E…[n − lo]) and cond[n] carried on."""
     for n in range(lo, hi):
         k, j = _at(n), _at(n - lo)
-        hvx, hvy, hax, hay = _point_rates(Q, T, b, h0, h1, k)
-        v0, v1, v2, w0, w1, w2 = _origin_rates(
-            T[i, 0, k], T[i, 1, k], h0, h1, hvx, hvy, hax, hay, Q[1, b, 2, k] + u1[k],
-            2.0 * (Q[2, b, 2, k] + u2[k]))
+        v0, v1, v2, w0, w1, w2 = _origin_rates(T[i, 0, k], T[i, 1, k], h0, h1, 0.0, 0.0, 0.0,
+                                               0.0, u1[k], 2.0 * u2[k])
         vx[k], vy[k], vt[k], wx[k], wy[k], wt[k] = v0, v1, v2, w0, w1, w2
         inv = inv_omega[j]
         m0[j], m1[j], m2[j], E0[j], E1[j], E2[j] = _bound_2(
             kappa, eps, m0[j], m1[j], m2[j], E0[j], E1[j], E2[j],
-            abs(Q[0, i, 2, k]) * (1.0 / math.pi), _size3(v0, v1, v2, L) * inv,
+            abs(Q0[i, 2, k]) * (1.0 / math.pi), _size3(v0, v1, v2, L) * inv,
             _size3(w0, w1, w2, L) * inv * inv)
         cond[k] = kappa if kappa > cond[k] else cond[k]
 
 
 @_rows
-def _rrr_block_rates(Q, T, iA, a0, a1, iC, c0, c1, i1, i2, ba0, ba1, bc0, bc1, mid, hd2,
-                     unreliable, L, eps, inv_omega, m0, m1, m2, E0, E1, E2, cond, v1x, v1y, v1t,
-                     w1x, w1y, w1t, v2x, v2y, v2t, w2x, w2y, w2t, lo, hi):
+def _rrr_block_rates(QA, QC, Q, T, iA, a0, a1, iC, c0, c1, i1, i2, ba0, ba1, bc0, bc1, mid,
+                     hd2, unreliable, L, eps, inv_omega, m0, m1, m2, E0, E1, E2, cond, v1x, v1y,
+                     v1t, w1x, w1y, w1t, v2x, v2y, v2t, w2x, w2y, w2t, lo, hi):
     """`rrr_rates` on the block lo … hi − 1: both links' rows of first (v…) and second (w…)
-    coefficients written, the bounds and cond carried on as in `_driver_block_rates`."""
+    coefficients written, the bounds and cond carried on as in `_driver_block_rates`. QA, QC:
+    the poses Q the pivots' motions are read from, None for a pivot on the frame (still)."""
     for n in range(lo, hi):
         k, j = _at(n), _at(n - lo)
-        vAx, vAy, aAx, aAy = _point_rates(Q, T, iA, a0, a1, k)
-        vCx, vCy, aCx, aCy = _point_rates(Q, T, iC, c0, c1, k)
+        if QA is None:
+            vAx = vAy = aAx = aAy = 0.0
+        else:
+            vAx, vAy, aAx, aAy = _point_rates(QA, T, iA, a0, a1, k)
+        if QC is None:
+            vCx = vCy = aCx = aCy = 0.0
+        else:
+            vCx, vCy, aCx, aCy = _point_rates(QC, T, iC, c0, c1, k)
         cs1, sn1, cs2, sn2 = T[i1, 0, k], T[i1, 1, k], T[i2, 0, k], T[i2, 1, k]
         om1, om2, al1, al2, kap = _rrr_rate_solve(vAx, vAy, aAx, aAy, vCx, vCy, aCx, aCy, cs1,
                                                   sn1, cs2, sn2, ba0, ba1, bc0, bc1, mid, hd2,
@@ -765,25 +870,37 @@ def _rrr_block_rates(Q, T, iA, a0, a1, iC, c0, c1, i1, i2, ba0, ba1, bc0, bc1, m
 
 
 @_rows
-def _rrp_block_rates(Q, T, iA, a0, a1, ig, p0, p1, e00, e01, ap0, ap1, length, ir, ib,
+def _rrp_block_rates(QA, QG, Q, T, iA, a0, a1, ig, p0, p1, e00, e01, ap0, ap1, length, ir, ib,
                      unreliable, L, eps, inv_omega, m0, m1, m2, E0, E1, E2, cond, vrx, vry, vrt,
                      wrx, wry, wrt, vbx, vby, vbt, wbx, wby, wbt, lo, hi):
     """`rrp_rates` on the block lo … hi − 1: the rod's and the block's rows written, the
-    bounds and cond carried on as in `_driver_block_rates`."""
+    bounds and cond carried on as in `_driver_block_rates`. QA, QG: the poses Q the pivot's and
+    the guide's motions are read from, None for the frame (still; the guide at angle 0)."""
     for n in range(lo, hi):
         k, j = _at(n), _at(n - lo)
-        vAx, vAy, aAx, aAy = _point_rates(Q, T, iA, a0, a1, k)
-        c, sn, cg, sg = T[ir, 0, k], T[ir, 1, k], T[ig, 0, k], T[ig, 1, k]
-        ex, ey = cg * e00 - sg * e01, sg * e00 + cg * e01
-        lam = (Q[0, ib, 0, k] - Q[0, ig, 0, k]) * ex + (Q[0, ib, 1, k] - Q[0, ig, 1, k]) * ey
-        vcx, vcy, acx, acy = _point_rates(Q, T, ig, p0 + lam * e00, p1 + lam * e01, k)
-        og, ag = Q[1, ig, 2, k], 2.0 * Q[2, ig, 2, k]
+        if QA is None:
+            vAx = vAy = aAx = aAy = 0.0
+        else:
+            vAx, vAy, aAx, aAy = _point_rates(QA, T, iA, a0, a1, k)
+        c, sn = T[ir, 0, k], T[ir, 1, k]
+        if QG is None:
+            ex, ey = e00, e01
+            lam = Q[0, ib, 0, k] * ex + Q[0, ib, 1, k] * ey
+            vcx = vcy = acx = acy = og = ag = 0.0
+        else:
+            cg, sg = T[ig, 0, k], T[ig, 1, k]
+            ex, ey = cg * e00 - sg * e01, sg * e00 + cg * e01
+            # P's place along the track (the block and the guide have the same angle)
+            lam = (Q[0, ib, 0, k] - QG[0, ig, 0, k]) * ex + (Q[0, ib, 1, k] - QG[0, ig, 1, k]) * ey
+            vcx, vcy, acx, acy = _point_rates(QG, T, ig, p0 + lam * e00, p1 + lam * e01, k)
+            og, ag = QG[1, ig, 2, k], 2.0 * QG[2, ig, 2, k]
         om, al, kap, vPx, vPy, aPx, aPy = _rrp_rate_solve(
             vAx, vAy, aAx, aAy, vcx, vcy, acx, acy, c, sn, ex, ey, ap0, ap1, og, length,
             unreliable)
         r0, r1, r2, t0, t1, t2 = _origin_rates(c, sn, a0, a1, vAx, vAy, aAx, aAy, om, al)
         vrx[k], vry[k], vrt[k], wrx[k], wry[k], wrt[k] = r0, r1, r2, t0, t1, t2
-        q0, q1, q2, u0, u1, u2 = _origin_rates(cg, sg, p0, p1, vPx, vPy, aPx, aPy, og, ag)
+        q0, q1, q2, u0, u1, u2 = _origin_rates(T[ib, 0, k], T[ib, 1, k], p0, p1, vPx, vPy, aPx,
+                                               aPy, og, ag)
         vbx[k], vby[k], vbt[k], wbx[k], wby[k], wbt[k] = q0, q1, q2, u0, u1, u2
         inv = inv_omega[j]
         m0[j], m1[j], m2[j], E0[j], E1[j], E2[j] = _bound_2(
@@ -805,25 +922,45 @@ def fused_positions(ok, ops, fl, Q0, T, U, signs, R, lo, hi):
     vectorised arctan2."""
     for n in range(lo, hi):
         ok[n] = True
-    for g in range(ops.shape[0]):
-        op, i1, i2, i3, i4, row, c = (ops[g, 0], ops[g, 1], ops[g, 2], ops[g, 3], ops[g, 4],
-                                      ops[g, 5], ops[g, 6])
-        f0, f1, f2, f3, f4, f5, f6 = fl[g, 0], fl[g, 1], fl[g, 2], fl[g, 3], fl[g, 4], fl[g, 5], \
-            fl[g, 6]
-        f7, f8, f9, f10, f11 = fl[g, 7], fl[g, 8], fl[g, 9], fl[g, 10], fl[g, 11]
-        if op == DRIVER:
-            _driver_block_positions(Q0, T, i1, i2, f0, f1, U[i3, 0], f2, Q0[i2, 0], Q0[i2, 1],
-                                    Q0[i2, 2], T[i2, 0], T[i2, 1], ok, lo, hi)
-        elif op == RRR:
-            _rrr_block_positions(Q0, T, i1, f0, f1, i2, f2, f3, f4, f5, f6, signs[row], f8, f9,
-                                 f10, f11, Q0[i3, 0], Q0[i3, 1], T[i3, 0], T[i3, 1], Q0[i4, 0],
-                                 Q0[i4, 1], T[i4, 0], T[i4, 1], R[c], R[c + 1], R[c + 2],
-                                 R[c + 3], ok, lo, hi)
-        else:
-            _rrp_block_positions(Q0, T, i1, f0, f1, i2, f2, f3, f4, f5, f6, f7, signs[row], f9,
-                                 f10, Q0[i3, 0], Q0[i3, 1], T[i3, 0], T[i3, 1], Q0[i4, 0],
-                                 Q0[i4, 1], Q0[i4, 2], T[i4, 0], T[i4, 1], R[c], R[c + 1], ok,
-                                 lo, hi)
+    for lo2 in range(lo, hi, SUBBLOCK):  # each group's inputs still in the cache
+        hi2 = min(hi, lo2 + SUBBLOCK)
+        a, b = lo2 - lo, hi2 - lo
+        for g in range(ops.shape[0]):
+            op, i1, i2, i3, i4, row, c = (ops[g, 0], ops[g, 1], ops[g, 2], ops[g, 3], ops[g, 4],
+                                          ops[g, 5], ops[g, 6])
+            f0, f1, f2, f3, f4, f5, f6 = fl[g, 0], fl[g, 1], fl[g, 2], fl[g, 3], fl[g, 4], \
+                fl[g, 5], fl[g, 6]
+            f7, f8, f9, f10, f11 = fl[g, 7], fl[g, 8], fl[g, 9], fl[g, 10], fl[g, 11]
+            still = ops[g, 7]
+            if op == DRIVER and _within(U[i3, 0], f2, lo2, hi2):
+                _driver_block_positions(U[i3, 0], f2, f0, f1, Q0[i2, 0], Q0[i2, 1], Q0[i2, 2],
+                                        T[i2, 0], T[i2, 1], ok, lo2, hi2)
+            elif op == DRIVER:  # inputs of many turns (or NaN): sample by sample, `_cos_sin`
+                for n in range(lo2, hi2):
+                    u = U[i3, 0, n]
+                    _driver_position(Q0, T, i1, i2, f0, f1, u, f2, n)
+                    ok[n] = ok[n] & (u - u == 0.0)
+            elif op == RRR:
+                rrr_pos = (T, i1, f0, f1, i2, f2, f3, f4, f5, f6, signs[row][a:b], f8, f9, f10,
+                        f11, Q0[i3, 0], Q0[i3, 1], T[i3, 0], T[i3, 1], Q0[i4, 0], Q0[i4, 1],
+                        T[i4, 0], T[i4, 1], R[c][a:b], R[c + 1][a:b], R[c + 2][a:b],
+                        R[c + 3][a:b], ok, lo2, hi2)
+                if still == 1:  # a pivot on the frame: its own compiled case, without reads
+                    _rrr_block_positions(None, Q0, *rrr_pos)
+                elif still == 2:
+                    _rrr_block_positions(Q0, None, *rrr_pos)
+                else:
+                    _rrr_block_positions(Q0, Q0, *rrr_pos)
+            else:
+                rrp_pos = (T, i1, f0, f1, i2, f2, f3, f4, f5, f6, f7, signs[row][a:b], f9, f10,
+                        Q0[i3, 0], Q0[i3, 1], T[i3, 0], T[i3, 1], Q0[i4, 0], Q0[i4, 1],
+                        Q0[i4, 2], T[i4, 0], T[i4, 1], R[c][a:b], R[c + 1][a:b], ok, lo2, hi2)
+                if still == 1:
+                    _rrp_block_positions(None, Q0, *rrp_pos)
+                elif still == 2:
+                    _rrp_block_positions(Q0, None, *rrp_pos)
+                else:
+                    _rrp_block_positions(Q0, Q0, *rrp_pos)
 
 
 @_loop(0)
@@ -835,31 +972,50 @@ def fused_rates(cond, ops, fl, Q, T, U, per, L, eps, m0, unreliable, plain, weig
     m, E of the block's size; m0: the drawing's coordinates over L) and their relative values
     (`relative_errors` with the weights `plain` into err, `weighted` into serr); E0[n − lo]:
     the positions' bound."""
-    for d in range(U.shape[0]):  # 1/Ω in E0 until the end (`_rate_scale`)
-        _rate_scale_block(U[d, 1], U[d, 2], per[d], E0, d == 0, lo, hi)
-    _bounds_start_block(m0, E0, m[0], m[1], m[2], E[0], E[1], E[2], lo, hi)
-    for g in range(ops.shape[0]):
-        op, i1, i2, i3, i4 = ops[g, 0], ops[g, 1], ops[g, 2], ops[g, 3], ops[g, 4]
-        f0, f1, f2, f3, f4, f5 = fl[g, 0], fl[g, 1], fl[g, 2], fl[g, 3], fl[g, 4], fl[g, 5]
-        f11, f12, f13, f14, f15, f16, f17 = fl[g, 11], fl[g, 12], fl[g, 13], fl[g, 14], \
-            fl[g, 15], fl[g, 16], fl[g, 17]
-        if op == DRIVER:
-            _driver_block_rates(Q, T, i1, i2, f0, f1, U[i3, 1], U[i3, 2], f3, L, eps, E0, m[0],
-                                m[1], m[2], E[0], E[1], E[2], cond, Q[1, i2, 0], Q[1, i2, 1],
-                                Q[1, i2, 2], Q[2, i2, 0], Q[2, i2, 1], Q[2, i2, 2], lo, hi)
-        elif op == RRR:
-            _rrr_block_rates(Q, T, i1, f0, f1, i2, f2, f3, i3, i4, f12, f13, f14, f15, f16, f17,
-                             unreliable, L, eps, E0, m[0], m[1], m[2], E[0], E[1], E[2], cond,
-                             Q[1, i3, 0], Q[1, i3, 1], Q[1, i3, 2], Q[2, i3, 0], Q[2, i3, 1],
-                             Q[2, i3, 2], Q[1, i4, 0], Q[1, i4, 1], Q[1, i4, 2], Q[2, i4, 0],
-                             Q[2, i4, 1], Q[2, i4, 2], lo, hi)
-        else:
-            _rrp_block_rates(Q, T, i1, f0, f1, i2, f2, f3, f4, f5, f11, f12, f13, i3, i4,
-                             unreliable, L, eps, E0, m[0], m[1], m[2], E[0], E[1], E[2], cond,
-                             Q[1, i3, 0], Q[1, i3, 1], Q[1, i3, 2], Q[2, i3, 0], Q[2, i3, 1],
-                             Q[2, i3, 2], Q[1, i4, 0], Q[1, i4, 1], Q[1, i4, 2], Q[2, i4, 0],
-                             Q[2, i4, 1], Q[2, i4, 2], lo, hi)
-    _relative_block(m[1], m[2], E[0], E[1], E[2], eps, plain, weighted, err, serr, E0, lo, hi)
+    for lo2 in range(lo, hi, SUBBLOCK):  # the bounds and each group's inputs in the cache
+        hi2 = min(hi, lo2 + SUBBLOCK)
+        inv = E0[lo2 - lo:hi2 - lo]
+        m0r, m1r, m2r, E0r, E1r, E2r = m[0], m[1], m[2], E[0], E[1], E[2]
+        for d in range(U.shape[0]):  # 1/Ω in inv until the end (`_rate_scale`)
+            _rate_scale_block(U[d, 1], U[d, 2], per[d], inv, d == 0, lo2, hi2)
+        _bounds_start_block(m0, inv, m0r, m1r, m2r, E0r, E1r, E2r, lo2, hi2)
+        for g in range(ops.shape[0]):
+            op, i1, i2, i3, i4 = ops[g, 0], ops[g, 1], ops[g, 2], ops[g, 3], ops[g, 4]
+            f0, f1, f2, f3, f4, f5 = fl[g, 0], fl[g, 1], fl[g, 2], fl[g, 3], fl[g, 4], fl[g, 5]
+            f11, f12, f13, f14, f15, f16, f17 = fl[g, 11], fl[g, 12], fl[g, 13], fl[g, 14], \
+                fl[g, 15], fl[g, 16], fl[g, 17]
+            still = ops[g, 7]
+            if op == DRIVER:
+                _driver_block_rates(T, Q[0], i2, f0, f1, U[i3, 1], U[i3, 2], f3, L, eps, inv,
+                                    m0r, m1r, m2r, E0r, E1r, E2r, cond, Q[1, i2, 0],
+                                    Q[1, i2, 1], Q[1, i2, 2], Q[2, i2, 0], Q[2, i2, 1],
+                                    Q[2, i2, 2], lo2, hi2)
+            elif op == RRR:
+                rrr_rate = (Q, T, i1, f0, f1, i2, f2, f3, i3, i4, f12, f13, f14, f15, f16, f17,
+                        unreliable, L, eps, inv, m0r, m1r, m2r, E0r, E1r, E2r, cond,
+                        Q[1, i3, 0], Q[1, i3, 1], Q[1, i3, 2], Q[2, i3, 0], Q[2, i3, 1],
+                        Q[2, i3, 2], Q[1, i4, 0], Q[1, i4, 1], Q[1, i4, 2], Q[2, i4, 0],
+                        Q[2, i4, 1], Q[2, i4, 2], lo2, hi2)
+                if still == 1:  # as in `fused_positions`
+                    _rrr_block_rates(None, Q, *rrr_rate)
+                elif still == 2:
+                    _rrr_block_rates(Q, None, *rrr_rate)
+                else:
+                    _rrr_block_rates(Q, Q, *rrr_rate)
+            else:
+                rrp_rate = (Q, T, i1, f0, f1, i2, f2, f3, f4, f5, f11, f12, f13, i3, i4, unreliable,
+                        L, eps, inv, m0r, m1r, m2r, E0r, E1r, E2r, cond, Q[1, i3, 0],
+                        Q[1, i3, 1], Q[1, i3, 2], Q[2, i3, 0], Q[2, i3, 1], Q[2, i3, 2],
+                        Q[1, i4, 0], Q[1, i4, 1], Q[1, i4, 2], Q[2, i4, 0], Q[2, i4, 1],
+                        Q[2, i4, 2], lo2, hi2)
+                if still == 1:
+                    _rrp_block_rates(None, Q, *rrp_rate)
+                elif still == 2:
+                    _rrp_block_rates(Q, None, *rrp_rate)
+                else:
+                    _rrp_block_rates(Q, Q, *rrp_rate)
+        _relative_block(m1r, m2r, E0r, E1r, E2r, eps, plain, weighted, err, serr, inv, lo2,
+                        hi2)
 
 
 @_rows

@@ -167,7 +167,13 @@ class Solution:
         out = np.empty((K + 1, 2, N))  # out[k, x|y, n]; handed out as (N, 2) views
         sx, sy = (np.broadcast_to(s[..., j], (N,)) for j in (0, 1))
         from . import kernels  # numba loads on the first solve, not on import
-        kernels.point_motion(C, c, sn, sx, sy, out)
+        rows = [C[k, :, j] for k, j in ((0, 0), (0, 1), (1, 0), (1, 1), (1, 2), (2, 0), (2, 1),
+                                        (2, 2))] if K == 2 else []
+        if s.ndim == 1 and all(r.flags.c_contiguous for r in [c, sn, *rows]) and rows:
+            # rows contiguous (the solver's layout): a loop whose rows are arrays of their own
+            kernels.point_motion_2(c, sn, float(s[0]), float(s[1]), *rows, *out.reshape(6, N))
+        else:
+            kernels.point_motion(C, c, sn, sx, sy, out)
         out.setflags(write=False)  # like the rest of a solution
         return PointMotion(*([out[k].T for k in range(K + 1)] + [None] * (3 - K)))
 

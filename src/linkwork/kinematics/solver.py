@@ -8,6 +8,8 @@ then one batched Newton solve at the samples).
 
 from __future__ import annotations
 
+import sys
+import threading
 from functools import lru_cache
 
 import numpy as np
@@ -49,13 +51,40 @@ def plan(mech: Mechanism) -> tuple[GroupSolver, ...]:
     return tuple(GroupSolver(mech, g) for g in order)
 
 
+#: pose arrays of this many bytes and more (up to `SPARE_UP_TO`) are taken from the memory of
+#: the last one once no solution refers to it any more (`_pose_memory`): below it, the C
+#: library's allocator keeps freed memory for the next request itself; above it, it hands the
+#: memory back to the system, and a new array of that size is paid again page by page (first
+#: touches: a fifth of the time of a Jansen linkage's solve in a loop of solves)
+SPARE_FROM = 1 << 25
+SPARE_UP_TO = 1 << 29  # … not beyond: a batch of millions keeps no gigabytes alive
+_SPARE: list = [None]
+_SPARE_LOCK = threading.Lock()
+
+
+def _pose_memory(size: int) -> np.ndarray:
+    """`size` float64s: the spare buffer of the last large pose array when no one refers to it
+    (no `Solution` alive: its only references are the slot and this call), else fresh memory,
+    which then becomes the spare."""
+    if not SPARE_FROM <= 8 * size <= SPARE_UP_TO:
+        return np.empty(size)
+    with _SPARE_LOCK:
+        buf = _SPARE[0]
+        # references: the slot, `buf` and getrefcount's argument
+        if buf is not None and size <= buf.size <= 2 * size and sys.getrefcount(buf) == 3:
+            return buf[:size]
+        _SPARE[0] = buf = np.empty(size)
+        return buf
+
+
 def _pose_array(order: int, N: int, n_links: int, frame: int) -> np.ndarray:
     """Q[k, n, link, (x, y, θ)], stored with the sample axis last in memory, so that every
     Q[k, :, link, c] the group solvers and `Solution` work on is contiguous (a C-ordered array
     would make each of them a strided walk over all of Q[k]). The frame's rows are zero; every
     other link's rows are written by the group that solves it (not zeroed first: on large
     batches that pass over memory is a noticeable part of the solve)."""
-    Q = np.empty((order + 1, n_links, 3, N))
+    shape = (order + 1, n_links, 3, N)
+    Q = _pose_memory(int(np.prod(shape))).reshape(shape)
     Q[:, frame] = 0.0
     return Q.transpose(0, 3, 1, 2)
 

@@ -317,11 +317,18 @@ def _edge_point(mech: Mechanism, d: dict) -> np.ndarray | None:
     return None
 
 
-def loops(mech: Mechanism) -> list[LoopReport]:
-    """Grashof reports of the four-link loops of `mech` (see `LoopReport`)."""
+def loop_cycles(mech: Mechanism) -> list[list[str]]:
+    """The four-link loops `loops` classifies: found from the structure alone (links, pairs,
+    solution order), so the same for every drawing of it (a design sweep finds them once)."""
+    return _loop_candidates(mech, _unfolded(mech))
+
+
+def loops(mech: Mechanism, cycles: list[list[str]] | None = None) -> list[LoopReport]:
+    """Grashof reports of the four-link loops of `mech` (see `LoopReport`); `cycles`: its
+    `loop_cycles`, if known (those of another drawing of the same structure)."""
     G = _unfolded(mech)
     out = []
-    for cyc in _loop_candidates(mech, G):
+    for cyc in _loop_candidates(mech, G) if cycles is None else cycles:
         # rotate so that the frame comes first
         k = cyc.index(mech.frame)
         cyc = cyc[k:] + cyc[:k]

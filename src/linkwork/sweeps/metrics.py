@@ -157,9 +157,7 @@ def evaluate(mech: Mechanism, sol: Solution, metrics: list[Metric]) -> list:
 
 def _value(mech: Mechanism, sol: Solution, ok: np.ndarray, m: Metric):
     if m.kind == "grashof":
-        from ..structure.grashof import loops
-        rep = next(iter(loops(mech)), None)
-        return "" if rep is None else " ".join(x for x in (rep.grashof, rep.type) if x)
+        return _grashof(mech)
     if m.kind == "input-range":
         return math.degrees(float(np.ptp(sol.inputs[:, 0]))) if len(sol) else math.nan
     if not ok.any():
@@ -190,6 +188,17 @@ def _value(mech: Mechanism, sol: Solution, ok: np.ndarray, m: Metric):
             return math.nan
         return _time_ratio(np.unwrap(sol.inputs[:, 0]), pm.velocity @ _main_axis(pm.position))
     raise AssertionError(m.kind)
+
+
+def _grashof(mech: Mechanism, cycles: list | None = None) -> str:
+    """Grashof class and type of the first four-link loop ("" if none); `cycles`: the
+    structure's loops (`grashof.loop_cycles`), if known."""
+    from ..structure.grashof import loops
+    try:
+        rep = next(iter(loops(mech, cycles)), None)
+    except LinkworkError:
+        return ""
+    return "" if rep is None else " ".join(x for x in (rep.grashof, rep.type) if x)
 
 
 def _quantity(sol: Solution, m: Metric) -> np.ndarray:
@@ -284,8 +293,10 @@ def evaluate_designs(mechs: list[Mechanism], sols: list[Solution], metrics: list
 
 def _column(mechs, sols, ok, count, n, N, point, m: Metric) -> list:
     """One metric of every design (see `evaluate_designs`)."""
-    if m.kind == "grashof":
-        return [evaluate(mech, s, [m])[0] for mech, s in zip(mechs, sols)]
+    if m.kind == "grashof":  # the loops of the structure found once, classified per design
+        from ..structure.grashof import loop_cycles
+        cycles = loop_cycles(mechs[0])
+        return [_grashof(mech, cycles) for mech in mechs]
     if m.kind == "input-range":
         return [math.degrees(float(np.ptp(s.inputs[:, 0]))) if len(s) else math.nan for s in sols]
     none = count == 0

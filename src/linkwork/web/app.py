@@ -10,6 +10,7 @@ becomes a 4xx answer with its message, anything else a 500 answer without a trac
 from __future__ import annotations
 
 import threading
+import time
 import tomllib
 import warnings
 from contextlib import asynccontextmanager, contextmanager
@@ -73,6 +74,56 @@ class _BodyLimit:
             return await receive()
 
         return await self.app(scope, replay, send)
+
+
+class _ServerTiming:
+    """The whole request's time in the server (routing, validation, the work, the encoding) as
+    `app` in the answer's Server-Timing header, after the stages the endpoint measured itself
+    (`Stages`): the browser's developer tools show them, bench/bench_workbench.py reads them."""
+
+    def __init__(self, app) -> None:
+        self.app = app
+
+    async def __call__(self, scope, receive, send):
+        if scope["type"] != "http" or not scope.get("path", "").startswith("/api/"):
+            return await self.app(scope, receive, send)
+        t0 = time.perf_counter()
+
+        async def timed(message):
+            if message["type"] == "http.response.start":
+                headers = list(message.get("headers") or [])
+                total = f"app;dur={(time.perf_counter() - t0) * 1e3:.2f}".encode()
+                for k, (name, value) in enumerate(headers):
+                    if name.lower() == b"server-timing":
+                        headers[k] = (name, value + b", " + total)
+                        break
+                else:
+                    headers.append((b"server-timing", total))
+                message = {**message, "headers": headers}
+            await send(message)
+
+        return await self.app(scope, receive, timed)
+
+
+class Stages:
+    """Milliseconds per stage of a request (wall clock; `cpu` the thread's CPU time, which
+    other processes on a shared machine do not stretch), written as a Server-Timing header."""
+
+    def __init__(self) -> None:
+        self.ms: dict[str, float] = {}
+        self._cpu = time.thread_time()
+
+    @contextmanager
+    def __call__(self, name: str) -> Iterator[None]:
+        t = time.perf_counter()
+        try:
+            yield
+        finally:
+            self.ms[name] = self.ms.get(name, 0.0) + (time.perf_counter() - t) * 1e3
+
+    def header(self) -> str:
+        ms = {**self.ms, "cpu": (time.thread_time() - self._cpu) * 1e3}
+        return ", ".join(f"{k};dur={v:.2f}" for k, v in ms.items())
 
 
 def _error(status: int, message: str, kind: str) -> JSONResponse:
@@ -150,20 +201,43 @@ def mechanism_info(loaded, warned: list[str]) -> dict:
     }
 
 
-def drawing(mech: Mechanism, req: m.DrawingRequest, previous: Mechanism | None = None) -> dict:
+def drawing(mech: Mechanism, req: m.DrawingRequest, previous: Mechanism | None = None,
+            stage: Stages | None = None) -> dict:
     """The drawing of `linkwork draw` for the request, with what the page needs beside it
-    (`previous`: the drag's previous frame, see `solve_request`)."""
-    from ..constructions import construct
-    from ..drawing import Scene, scene_figure
+    (`previous`: the drag's previous frame, see `solve_request`; `stage`: times the solve, the
+    scene and the SVG)."""
     from ..kinematics.continuation import carried
 
-    sol = solve_request(mech, req, previous=previous)
+    stage = stage or Stages()
+    with stage("solve"):
+        sol = solve_request(mech, req, previous=previous)
     if len(sol) != 1:
         raise InputError(f"a drawing shows one position; got {len(sol)} samples")
     where = "the design position" if req.at is None and req.times is None else (
         f"t = {req.times[0]:g} s" if req.times is not None else "this input")
     if sol.status[0] == Status.UNREACHABLE:
         raise InputError(f"mechanism '{mech.name}' cannot be assembled at {where}")
+    with stage("scene"):
+        fig, steps = _figure(mech, sol, req)
+    with stage("svg"):
+        svg, transforms = fig.svg_and_transforms()
+    return {"svg": svg, "status": str(Status(int(sol.status[0]))),
+            "input": [None if not np.isfinite(v) else float(v) for v in sol.inputs[0]],
+            "time": None if sol.time is None else float(sol.time[0]),
+            "points": {p: (None if not np.all(np.isfinite(xy)) else [float(xy[0]), float(xy[1])])
+                       for p in mech.points for xy in [sol.point(p).position[0]]},
+            "poses": {ln: (None if not np.all(np.isfinite(q)) else [float(v) for v in q])
+                      for ln in mech.link_names for q in [sol.pose_derivatives(ln)[0, 0]]},
+            "transforms": transforms, "steps": steps,
+            "march": None if carried(mech) is None else str(carried(mech))}
+
+
+def _figure(mech: Mechanism, sol: Solution, req: m.DrawingRequest):
+    """The scene's figure for the request's layers and construction, and the construction's
+    step texts."""
+    from ..constructions import construct
+    from ..drawing import Scene, scene_figure
+
     sc = Scene(mech, sol)
     if not req.motion:
         sc.motion = None  # what the layers draw when the whole motion is not known
@@ -193,16 +267,7 @@ def drawing(mech: Mechanism, req: m.DrawingRequest, previous: Mechanism | None =
     fig = scene_figure(sc, layers, construction=con, step=req.step, paths=req.paths or None)
     if req.fit == "motion" and con is None and req.motion:
         fig.view["mechanism"] = sc.box(grow=0.12)
-    svg = fig.to_svg()
-    return {"svg": svg, "status": str(Status(int(sol.status[0]))),
-            "input": [None if not np.isfinite(v) else float(v) for v in sol.inputs[0]],
-            "time": None if sol.time is None else float(sol.time[0]),
-            "points": {p: (None if not np.all(np.isfinite(xy)) else [float(xy[0]), float(xy[1])])
-                       for p in mech.points for xy in [sol.point(p).position[0]]},
-            "poses": {ln: (None if not np.all(np.isfinite(q)) else [float(v) for v in q])
-                      for ln in mech.link_names for q in [sol.pose_derivatives(ln)[0, 0]]},
-            "transforms": fig.transforms(), "steps": steps,
-            "march": None if carried(mech) is None else str(carried(mech))}
+    return fig, steps
 
 
 def create_app(workdir: str | Path | None = None, *, compiled: bool = False) -> FastAPI:
@@ -364,10 +429,15 @@ def create_app(workdir: str | Path | None = None, *, compiled: bool = False) -> 
     def drawing_(req: m.DrawingRequest):
         """The SVG of `linkwork draw` at one position, with the layers and construction asked,
         the point positions drawn and how the drawing maps world to SVG coordinates."""
+        stage = Stages()
         with _warnings(compiled) as warned:
-            loaded = load(req.source)
-            doc = drawing(loaded.mechanism, req, loaded.previous)
-        return respond({**doc, "warnings": warned})
+            with stage("load"):
+                loaded = load(req.source)
+            doc = drawing(loaded.mechanism, req, loaded.previous, stage)
+        with stage("encode"):
+            out = respond({**doc, "warnings": warned})
+        out.headers["Server-Timing"] = stage.header()
+        return out
 
     @app.post("/api/drawing.png", responses={**errors, 200: {"content": {"image/png": {}}}},
               response_class=Response)
@@ -403,4 +473,5 @@ def create_app(workdir: str | Path | None = None, *, compiled: bool = False) -> 
 
     app.mount("/static", StaticFiles(directory=STATIC, check_dir=False), name="static")
     app.add_middleware(_BodyLimit, limit=MAX_BODY)
+    app.add_middleware(_ServerTiming)
     return app
