@@ -214,7 +214,7 @@ def _scan_once(place):
         if kept.get("u") is u:
             return kept["state"]
         state = place(u)
-        if not kept:  # the first is the grid
+        if not kept and u.size > 1:  # the grid (the design check and refinements: one input)
             kept["u"], kept["state"] = u, state
         return state
 
