@@ -125,8 +125,9 @@ def solve_blocks(mech: Mechanism, tab: Tables, solvers, Q: np.ndarray, T: np.nda
             signs[row, :nb] = given.get(group, design)
         kernels.fused_positions(assembled, tab.ops, tab.fl, Q0, T, U, signs, R, lo, hi)
         for row, i, phi in tab.angles:
-            if row >= 0:
-                np.subtract(np.arctan2(R[row + 1, :nb], R[row, :nb]), phi, out=Q0[i, 2, sl])
+            if row >= 0:  # in place: no temporary of the block's size
+                np.arctan2(R[row + 1, :nb], R[row, :nb], out=Q0[i, 2, sl])
+                Q0[i, 2, sl] -= phi
             else:  # a block turns with its guide
                 Q0[i, 2, sl] = Q0[phi, 2, sl]
         ok = assembled[sl]
@@ -141,8 +142,8 @@ def solve_blocks(mech: Mechanism, tab: Tables, solvers, Q: np.ndarray, T: np.nda
             Qb[1:, ~ok] = np.nan
         err, serr, cond = errors[sl], status_errors[sl], condition[sl]
         # samples near a singular position: once more in extended precision (`precision`)
-        sel = np.flatnonzero(ok & (serr > TOLERANCE) & (cond < POLISH_LIMIT)) if can_polish \
-            else np.zeros(0, dtype=int)
+        sel = np.flatnonzero(ok & (serr > TOLERANCE) & (cond < POLISH_LIMIT)) \
+            if can_polish and not serr.max(initial=0.0) <= TOLERANCE else np.zeros(0, dtype=int)
         if sel.size:
             e, se, c = polish(mech, solvers, Qb, T[:, :, sl],
                               {j: v[:, sl] for j, v in inputs.items()}, sel, E0[sel])
