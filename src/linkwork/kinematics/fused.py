@@ -1,26 +1,26 @@
-"""The fused pass: one compiled walk through the whole solution order per sample, for the
-mechanisms whose every group has a compiled closed form (revolute drivers on the frame, RRR and
-RRP dyads: four-bars, slider-cranks, the Watt and Stephenson six-bars, Jansen's linkage).
+"""The fused pass: one compiled walk through the whole solution order per block of samples,
+for the mechanisms whose every group has a compiled closed form (revolute drivers on the frame,
+RRR and RRP dyads: four-bars, slider-cranks, the Watt and Stephenson six-bars, Jansen's
+linkage).
 
 The per-group path (`solver.solve` with `groups.GroupSolver`) makes one pass over the batch per
 group and kind of work (positions, rates, error bounds), each reading and writing the work
 arrays of all samples again. Here the solution order is encoded once per mechanism as small
-tables (`tables`: an opcode per group, its link indices and constants), and two loops of
-`kernels` interpret them sample by sample: `fused_positions` (every group's positions) and
-`fused_rates` (every group's velocities, accelerations, condition number and the forward error
-bounds of `precision`, kept in registers). Between the two, the links' angles are taken with
-NumPy's vectorised arctan2 from the hinge vectors (a scalar atan2 costs more than the rest of
-the positions). The tables are data: one compiled interpreter serves every mechanism.
+tables (`tables`: an opcode per group, its link indices and constants, which pivot is the
+frame), and two loops of `kernels` walk them per sub-block of samples: `fused_positions`
+(every group's positions) and `fused_rates` (every group's velocities, accelerations,
+condition number and the forward error bounds of `precision`), each group's work a vectorised
+block loop (`kernels._rrr_block_positions` …). Between the two, the links' angles are taken
+with NumPy's vectorised arctan2 from the hinge vectors. The tables are data: one compiled
+interpreter serves every mechanism.
 
 The arithmetic is that of the per-group kernels (the same per-sample helpers), so the results
-are the same to the last bit but for numba's contractions; the statuses, condition numbers,
-error bounds and the polishing of samples near singular positions are those of the per-group
-path (tests/kinematics/test_fused.py holds the two to each other).
-
-Measured (bench/README.md), the fused pass is no faster than the per-group path: the time is
-the dyads' arithmetic and the error bounds, not the passes over memory it saves. It stays for
-`designs.solve_designs` (a design's constants as a row of the tables); whether to keep both paths is
-open (issue 17).
+are the same to the last bit but for numba's contractions and the sign of zeros; the statuses,
+condition numbers, error bounds and the polishing of samples near singular positions are those
+of the per-group path (tests/kinematics/test_fused.py holds the two to each other), which stays
+as the independent check. Measured (bench/README.md), the fused pass is 2.6–3× faster than
+the per-group path; `designs.solve_designs` runs it too (a design's constants as a row of the
+tables).
 """
 
 from __future__ import annotations

@@ -5,8 +5,10 @@ Why compiled (numba): a dyad's positions, velocities and accelerations are some 
 operations per sample. As NumPy array operations each of them is a Python call and a walk
 through memory, which held the four-bar, the six-bars and Jansen's linkage to several hundred
 nanoseconds per sample and dyad; these loops do the same arithmetic in registers. Each formula
-has this one implementation; the generic path (constraints on jets and a linear solve,
-`groups.derivatives_generic`) stays the independent check of it
+has this one implementation, a pure per-sample helper (scalars in, scalars out: `_rrr_solve`,
+`_rrr_rate_solve`, `_bound_2` …) that the per-group loops (array-indexed) and the fused pass's
+block loops (vectorised, see `_ROWS`) share; the generic path (constraints on jets and a linear
+solve, `groups.derivatives_generic`) stays the independent check of it
 (tests/kinematics/test_generic_vs_closed_form.py).
 
 A batch of a few thousand samples or fewer runs the same loops interpreted (`_loop`): numba's
