@@ -135,9 +135,17 @@ _C2, _C3, _C4, _C5, _C6, _C7, _C8, _C9, _C10 = ((-1.0) ** k / math.factorial(2 *
                                                 for k in range(2, 11))
 
 
+def _library_cos_sin(t):
+    """cos t, sin t by NumPy (the C library's): the interpreted loops' `_sincos` and
+    `_cos_sin`, which as Python is faster than the polynomial (within 2 ulp of it)."""
+    return np.cos(t), np.sin(t)
+
+
 @lru_cache(maxsize=1)
 def _interpreted() -> dict:
-    return _bound({**globals(), "math": _NUMPY_MATH})
+    ns = _bound({**globals(), "math": _NUMPY_MATH})
+    ns["_sincos"] = ns["_cos_sin"] = _library_cos_sin
+    return ns
 
 
 @lru_cache(maxsize=1)
