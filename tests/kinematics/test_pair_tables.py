@@ -1,15 +1,16 @@
 """The pair tables (`constraints.PairTable`) against the jets and against finite differences.
 
 Newton's method and the continuation's tangents evaluate a group's residuals, Jacobian and
-first rates from tables of its lower pairs; the jets (`groups.residual_and_jacobian_jets`,
+first and second rates from tables of its lower pairs; the jets (`groups.residual_and_jacobian_jets`,
 `groups.rate_residuals_jets`) evaluate the same equations written once over Taylor series.
 Two checks that do not use the tables' own output as expectation:
 
 - the jets: the same residuals, Jacobian and rates at random poses, velocities and inputs,
   to rounding (1e-13 of the length scale);
 - finite differences: the Jacobian's columns against central differences of the tables'
-  own residuals (an error of the order h² · |r''|), and the first rates against the
-  difference quotient of the residuals along a straight motion of the known links and inputs.
+  own residuals (an error of the order h² · |r''|), the first rates against the difference
+  quotient of the residuals along a straight motion of the known links and inputs, the second
+  rates against the second difference along a motion with accelerations.
 
 Groups: every generic group of the library mechanisms whose pairs the tables cover, and every
 such mechanism as one group of all its moving links, pairs and drivers (as
@@ -143,6 +144,33 @@ def test_first_rates_equal_the_difference_quotient_along_a_motion(mech, group):
     fd = (at(h) - at(-h)) / (2 * h)
     np.testing.assert_allclose(groups.rate_residuals(state, group, 1), fd, rtol=0,
                                atol=1e-6 * L * (1 + np.abs(V).max()))
+
+
+@pytest.mark.parametrize("mech, group", CASES)
+def test_second_rates_equal_the_jets_and_the_second_difference_along_a_motion(mech, group):
+    """−r_2 of the acceleration equation: the residuals' second Taylor coefficient along the
+    motion q(t) = q₀ + q₁t + q₂t² of every link (the group's own q₂ left out) and inputs."""
+    rng = np.random.default_rng(RNG_SEED + 4)
+    L = mech.length_scale
+    Q = rng.normal(size=(3, 3, len(contact.rows(mech)), 3)) * np.array([L, L, 2.0])
+    Q[:, :, mech.link_index[mech.frame]] = 0.0
+    inputs = {d.joint: rng.normal(size=(3, 3)) for d in mech.drivers}
+    state = State(mech, Q, inputs)
+    got = groups.rate_residuals(state, group, 2)
+    size = L * (1 + np.abs(Q[1:]).max()) ** 2
+    np.testing.assert_allclose(got, groups.rate_residuals_jets(state, group, 2), rtol=0,
+                               atol=1e-13 * size)
+    table = groups.pair_table_of(mech, group)
+    idx = [state.li(ln) for ln in group.links]
+    Q2 = Q[2].copy()
+    Q2[:, idx] = 0.0
+    h = 1e-4
+
+    def at(t):
+        return table.evaluate(Q[0] + t * Q[1] + t * t * Q2,
+                              {j: v[0] + t * v[1] + t * t * v[2] for j, v in inputs.items()})[0]
+    fd = (at(h) - 2 * at(0.0) + at(-h)) / (2 * h * h)
+    np.testing.assert_allclose(got, fd, rtol=0, atol=1e-5 * size)
 
 
 @pytest.mark.parametrize("mech, group", CASES[:6])

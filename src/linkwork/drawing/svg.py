@@ -405,10 +405,18 @@ class Figure:
     def transforms(self) -> dict[str, dict]:
         """How each panel maps its world coordinates to the SVG's (mm of paper, y down):
         x_svg = origin[0] + (x − lo[0])/per_mm, y_svg = origin[1] + (hi[1] − y)/per_mm."""
-        panels, _, _ = self._layout()
+        return self._transforms(self._layout()[0])
+
+    @staticmethod
+    def _transforms(panels: dict) -> dict[str, dict]:
         return {n: {"origin": [float(p["ox"]), float(p["oy"])], "lo": [float(v) for v in p["lo"]],
                     "hi": [float(v) for v in p["hi"]], "per_mm": float(p["scale"].per_mm)}
                 for n, p in panels.items()}
+
+    def svg_and_transforms(self) -> tuple[str, dict[str, dict]]:
+        """`to_svg()` and `transforms()` from one layout (the workbench draws a frame with both)."""
+        laid = self._layout()
+        return self._svg(laid), self._transforms(laid[0])
 
     @staticmethod
     def _tf(panel: dict):
@@ -424,8 +432,12 @@ class Figure:
     def to_svg(self, *, animate: float | None = None) -> str:
         """The drawing as an SVG document. ``animate``: seconds per step for a SMIL animation
         in which the construction steps appear one after another."""
-        panels, width, body_h = self._layout()
+        return self._svg(self._layout(), animate)
+
+    def _svg(self, laid: tuple[dict, float, float], animate: float | None = None) -> str:
+        panels, width, body_h = laid
         tfs = {n: self._tf(p) for n, p in panels.items()}
+        cut = {n: self._cut(n) for n in panels}  # whether each panel is framed (see _cut)
         legend = list(self.legend)
         caption_h = 0.0
         captions = self.captions if animate else ([self.captions[self.current_step]]
@@ -465,7 +477,7 @@ class Figure:
             out += parts
             out.append("</g>")
         out.append('<g id="labels" class="layer">')
-        out += self._place_labels(tfs, panels, samples, animate)
+        out += self._place_labels(tfs, panels, samples, animate, cut)
         out.append("</g>")
         y = body_h
         if captions:
@@ -490,11 +502,11 @@ class Figure:
                 f'<title>{html.escape(plain(self.title))}</title>',
                 f'<rect x="0" y="0" width="{sym._f(width)}" height="{sym._f(height)}" fill="#fff"/>',
                 "<defs>" + "".join(
-                    f'<clipPath id="clip-{_ident(n)}">{self._clip_rect(n, p)}</clipPath>'
+                    f'<clipPath id="clip-{_ident(n)}">{self._clip_rect(p, cut[n])}</clipPath>'
                     for n, p in panels.items()) + "</defs>"]
         frames = [f'<g id="frame-{_ident(n)}" class="frame">'
-                  + self._clip_rect(n, p).replace("/>", ' fill="none" stroke="#000" stroke-width="0.35"/>')
-                  + "</g>" for n, p in panels.items() if self._cut(n)]
+                  + self._clip_rect(p, True).replace("/>", ' fill="none" stroke="#000" stroke-width="0.35"/>')
+                  + "</g>" for n, p in panels.items() if cut[n]]
         out = frames + out
         return "\n".join(head + out + ["</svg>"]) + "\n"
 
@@ -508,10 +520,11 @@ class Figure:
         pts = pts[np.all(np.isfinite(pts), axis=1)]
         return bool(np.any((pts < lo) | (pts > hi)))
 
-    def _clip_rect(self, name: str, p: dict) -> str:
+    @staticmethod
+    def _clip_rect(p: dict, cut: bool) -> str:
         """The rectangle drawing is cut at: the frame (FRAME_PAD around the panel) where the
-        space's layers run past the sheet, else the panel with its margin."""
-        pad = FRAME_PAD if self._cut(name) else MARGIN
+        space's layers run past the sheet (`cut`, see `_cut`), else the panel with its margin."""
+        pad = FRAME_PAD if cut else MARGIN
         return (f'<rect x="{sym._f(p["x"] - pad)}" y="{sym._f(p["y"] - pad)}" '
                 f'width="{sym._f(p["w"] + 2 * pad)}" height="{sym._f(p["h"] + 2 * pad)}"/>')
 
@@ -679,12 +692,12 @@ class Figure:
             return f'<g{ident} class="symbol {d["name"]}{(" " + p.cls) if p.cls else ""}">{svg}</g>', pts
         return "", []
 
-    def _place_labels(self, tfs: dict, panels: dict, samples: list, animate: float | None) -> list[str]:
+    def _place_labels(self, tfs: dict, panels: dict, samples: list, animate: float | None,
+                      cut: dict[str, bool]) -> list[str]:
         """Each label beside its point where it covers least: other labels (measured boxes), the
         drawn geometry (sampled lines, symbols) and the other labels' points. Greedy first, in
         order, then a second pass moves each label to its best place among all the others (a
         crowded corner settles); a label put far from its point gets a thin leader line."""
-        cut = {n: self._cut(n) for n in panels}
         todo = []  # (label, anchor on paper, width, height, frame box or None)
         for lab in self.labels:
             if lab.space not in tfs:
@@ -706,9 +719,11 @@ class Figure:
         points = np.array([t[1] for t in todo], float).reshape(-1, 2)
         placed = np.full((len(todo), 4), np.nan)  # the boxes chosen so far (x0, y0, x1, y1)
 
-        def best_box(i: int):
-            """The candidate box of label i that covers least (all candidates scored at once:
-            directions in order of preference, each at the distances nearest first)."""
+        def candidates(i: int):
+            """The candidate boxes of label i (directions in order of preference, each at the
+            distances nearest first) and what each costs whatever the other labels' boxes: the
+            drawn lines and the other labels' points under it, its distance and direction, the
+            frame it would cross. Scored once per label: only the boxes move between passes."""
             lab, a, w, h, frame = todo[i]
             dirs = np.array(_candidates(lab.prefer))
             dist = np.array(LABEL_DISTANCES) + lab.clear
@@ -716,25 +731,36 @@ class Figure:
             d = np.tile(dist, len(dirs))
             c = a + dirs[k] * (d[:, None] + np.array([w, h]) / 2)  # box centres
             box = np.hstack([c - [w / 2, h / 2], c + [w / 2, h / 2]])
-            others = np.delete(placed, i, axis=0)
-            others = others[np.isfinite(others[:, 0])]
-            ow = np.minimum(box[:, None, 2], others[None, :, 2]) - np.maximum(box[:, None, 0], others[None, :, 0])
-            oh = np.minimum(box[:, None, 3], others[None, :, 3]) - np.maximum(box[:, None, 1], others[None, :, 1])
-            score = 40.0 * np.sum(np.clip(ow, 0, None) * np.clip(oh, 0, None), axis=1) / (w * h)
             # the drawn lines have a width: what runs just past a box touches it too
             wide = box + np.array([-INK_PAD, -INK_PAD, INK_PAD, INK_PAD])
             reach = float(d.max()) + w + h + INK_PAD
+            costs = []
             for pts, weight in ((ink, 2.0), (np.delete(points, i, axis=0), 12.0)):
                 # another label's point under this label costs most (its own is never inside)
                 near = pts[np.all(np.abs(pts - a) <= reach, axis=1)]
                 inside = ((near[None, :, 0] >= wide[:, None, 0]) & (near[None, :, 0] <= wide[:, None, 2])
                           & (near[None, :, 1] >= wide[:, None, 1]) & (near[None, :, 1] <= wide[:, None, 3]))
-                score += weight * inside.sum(axis=1)
-            score += 0.15 * k + 0.6 * d
+                costs.append(weight * inside.sum(axis=1))
+            costs.append(0.15 * k + 0.6 * d)
             if frame is not None:
                 across = ((box[:, 0] < frame[0]) | (box[:, 2] > frame[2]) | (box[:, 1] < frame[1])
                           | (box[:, 3] > frame[3]))
-                score += 1e4 * across
+                costs.append(1e4 * across)
+            return box, w * h, costs
+
+        scored = [candidates(i) for i in range(len(todo))]
+
+        def best_box(i: int):
+            """The candidate box of label i that covers least: its fixed costs and the area it
+            shares with the other labels' boxes (all candidates at once)."""
+            box, area, costs = scored[i]
+            others = np.delete(placed, i, axis=0)
+            others = others[np.isfinite(others[:, 0])]
+            ow = np.minimum(box[:, None, 2], others[None, :, 2]) - np.maximum(box[:, None, 0], others[None, :, 0])
+            oh = np.minimum(box[:, None, 3], others[None, :, 3]) - np.maximum(box[:, None, 1], others[None, :, 1])
+            score = 40.0 * np.sum(np.clip(ow, 0, None) * np.clip(oh, 0, None), axis=1) / area
+            for cost in costs:  # added in this order, as they always were (equal scores, same pick)
+                score += cost
             return box[int(np.argmin(score))]
 
         for _ in range(2):  # greedy, then each label again among all the others

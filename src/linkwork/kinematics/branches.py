@@ -284,13 +284,7 @@ def path_schedule(mech: Mechanism, solvers: tuple[GroupSolver, ...], values: np.
 
     def inputs(lam: np.ndarray) -> np.ndarray:
         """Inputs at λ on the path (its vertices exactly at their knots)."""
-        last = len(path.vertices) - 1
-        j = np.clip(np.searchsorted(path.knots, lam, side="right") - 1, 0, max(last - 1, 0))
-        out = path.points(lam, j)
-        k = np.minimum(np.searchsorted(path.knots, lam), last)
-        at = path.knots[k] == lam
-        out[at] = path.vertices[k[at]]
-        return out / w
+        return path.at(lam) / w
 
     generic_above = False
     for s in solvers:

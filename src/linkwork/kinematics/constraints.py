@@ -197,83 +197,102 @@ class PairTable:
         self.cols = 3 * len(slot) + len(drivers)
         pts = sorted(points.items(), key=lambda kv: kv[1])
         self.pt_link = np.array([slot[k[0]] for k, _ in pts], dtype=np.intp)
-        self.pt_s = np.array([[k[1], k[2]] for k, _ in pts]).reshape(-1, 2)
+        self.s0 = np.array([k[1] for k, _ in pts])
+        self.s1 = np.array([k[2] for k, _ in pts])
         self.J0 = np.zeros((self.rows, self.cols))
         for r, c, v in fixed:
             self.J0[r, c] += v
         # the entries that change with the poses, in the order `evaluate` lists their values
+        # (complex values count twice: x then y)
         var: list[tuple[int, int]] = []
 
         def arr(items, i):
             return np.array([it[i] for it in items], dtype=np.intp)
 
+        def pairs(r0, c):  # rows r0 and r0 + 1 of column c, per pair: x then y
+            return [rc for a, b in zip(r0, c) for rc in ((a, b), (a + 1, b))]
+
+        def across(r0, c):  # columns c and c + 1 of row r0, per pair
+            return [rc for a, b in zip(r0, c) for rc in ((a, b), (a, b + 1))]
+
+        # every pair's point difference d = (point on b) − (point on a), at once
+        dA, dB = [], []
         self.rev = None
         if rev:
             r0, pa, pb, ca, cb = (arr(rev, i) for i in range(5))
-            self.rev = (r0, pa, pb)
-            var += list(zip(r0, cb + 2)) + list(zip(r0 + 1, cb + 2)) + \
-                list(zip(r0, ca + 2)) + list(zip(r0 + 1, ca + 2))
+            self.rev = (np.stack([r0, r0 + 1], axis=1).ravel(), len(dA), pa, pb)
+            dA += list(pa)
+            dB += list(pb)
+            var += pairs(r0, cb + 2) + pairs(r0, ca + 2)
         self.pri = None
         if pri:
             r0, pa, pb, ca, cb = (arr(pri, i) for i in range(5))
             n0 = np.array([it[5] for it in pri])
-            self.pri = (r0, pa, pb, ca // 3, n0[:, 0], n0[:, 1])
-            var += list(zip(r0, cb)) + list(zip(r0, cb + 1)) + list(zip(r0, ca)) + \
-                list(zip(r0, ca + 1)) + list(zip(r0, cb + 2)) + list(zip(r0, ca + 2))
+            self.pri = (r0, len(dA), pa, pb, ca // 3, n0[:, 0], n0[:, 1])
+            dA += list(pa)
+            dB += list(pb)
+            var += across(r0, cb) + across(r0, ca) + list(zip(r0, cb + 2)) + list(zip(r0, ca + 2))
         self.circ = None
         if circ:
             r0, pk, pp, ca, cb = (arr(circ, i) for i in range(5))
             R = np.array([it[5] for it in circ])
-            self.circ = (r0, pk, pp, R)
-            var += list(zip(r0, cb)) + list(zip(r0, cb + 1)) + list(zip(r0, ca)) + \
-                list(zip(r0, ca + 1)) + list(zip(r0, cb + 2)) + list(zip(r0, ca + 2))
+            self.circ = (r0, len(dA), pk, pp, R)
+            dA += list(pk)
+            dB += list(pp)
+            var += across(r0, cb) + across(r0, ca) + list(zip(r0, cb + 2)) + list(zip(r0, ca + 2))
+        self.dA, self.dB = np.array(dA, dtype=np.intp), np.array(dB, dtype=np.intp)
         self.gears = gears
         self.prismatic_angles = rows_const
-        dvar = []
         for r, kind, cd, cb, _, axis, _ in self.drivers:
             if kind == "prismatic":
-                dvar += [(r, cd), (r, cd + 1), (r, cb), (r, cb + 1), (r, cb + 2)]
-        var += dvar
+                var += [(r, cd), (r, cd + 1), (r, cb), (r, cb + 1), (r, cb + 2)]
         if len(set(var)) != len(var) or any(self.J0[r, c] != 0 for r, c in var):
             raise ValueError("two terms of one equation on one coordinate")  # pragma: no cover
         self.var = np.array([r * self.cols + c for r, c in var], dtype=np.intp)
 
     def evaluate(self, Q0: np.ndarray, inputs: dict) -> tuple[np.ndarray, np.ndarray]:
         """Residuals (N, rows) and Jacobian (N, rows, cols) at the poses Q0 (N, Q rows, 3) and
-        the driver inputs (joint -> (N,) values)."""
-        P = Q0[:, self.rows_q]
-        N = P.shape[0]
-        c, s = np.cos(P[..., 2]), np.sin(P[..., 2])
-        cp, sp = c[:, self.pt_link], s[:, self.pt_link]
-        s0, s1 = self.pt_s[:, 0], self.pt_s[:, 1]
-        Rx = cp * s0 - sp * s1  # R(θ)·s of every point the pairs name
-        Ry = sp * s0 + cp * s1
-        Wx = P[:, self.pt_link, 0] + Rx
-        Wy = P[:, self.pt_link, 1] + Ry
-        r = np.empty((N, self.rows), dtype=P.dtype)
+        the driver inputs (joint -> (N,) values). Points and their differences are held as
+        complex numbers x + iy, whose (x, y) pairs are a revolute pair's two rows and its
+        entries in x then y (`view`): few array operations, which is what a handful of samples
+        costs. Every product is of reals (NumPy's complex product fuses a·b − c·d in its
+        vector loops and not in its scalar ones: a sample's digits would depend on its batch);
+        sums, differences and products by ±i are exact in either."""
+        P, c, sn, Rs, tR, D = self._points(Q0)
+        N, real = P.shape[0], P.dtype
+        cplx = Rs.dtype
+        r = np.empty((N, self.rows), dtype=real)
         vals = []
         if self.rev is not None:
-            r0, pa, pb = self.rev
-            r[:, r0] = Wx[:, pb] - Wx[:, pa]
-            r[:, r0 + 1] = Wy[:, pb] - Wy[:, pa]
-            vals += [-Ry[:, pb], Rx[:, pb], Ry[:, pa], -Rx[:, pa]]
+            rows, at, pa, pb = self.rev
+            r[:, rows] = D[:, at:at + pa.size].view(real)
+            vals += [tR.take(pb, axis=1).view(real), (-tR.take(pa, axis=1)).view(real)]
         if self.pri is not None:
-            r0, pa, pb, ta, n0x, n0y = self.pri
-            ca, sa = c[:, ta], s[:, ta]
-            nx, ny = ca * n0x - sa * n0y, sa * n0x + ca * n0y
-            dx, dy = Wx[:, pb] - Wx[:, pa], Wy[:, pb] - Wy[:, pa]
+            r0, at, pa, pb, ta, n0x, n0y = self.pri
+            d = D[:, at:at + pa.size]
+            dx, dy = d.real, d.imag
+            ca, sa = c.take(ta, axis=1), sn.take(ta, axis=1)
+            n = np.empty(ca.shape, dtype=cplx)  # the guide's normal
+            nx, ny = n.real, n.imag
+            nx[:] = ca * n0x - sa * n0y
+            ny[:] = sa * n0x + ca * n0y
             r[:, r0] = nx * dx + ny * dy
-            vals += [nx, ny, -nx, -ny, ny * Rx[:, pb] - nx * Ry[:, pb],
-                     nx * dy - ny * dx + nx * Ry[:, pa] - ny * Rx[:, pa]]
+            tb, ta_ = tR.take(pb, axis=1), tR.take(pa, axis=1)
+            vals += [n.view(real), (-n).view(real), nx * tb.real + ny * tb.imag,
+                     nx * dy - ny * dx - (nx * ta_.real + ny * ta_.imag)]
         for row, cb, ca in self.prismatic_angles:
             r[:, row] = (P[:, cb // 3, 2] - P[:, ca // 3, 2]) * self.L
         if self.circ is not None:
-            r0, pk, pp, R = self.circ
-            dx, dy = Wx[:, pp] - Wx[:, pk], Wy[:, pp] - Wy[:, pk]
+            r0, at, pk, pp, R = self.circ
+            d = D[:, at:at + pk.size]
+            dx, dy = d.real, d.imag
             r[:, r0] = (dx * dx + dy * dy - R * R) * (0.5 / R)
-            ex, ey = dx / R, dy / R
-            vals += [ex, ey, -ex, -ey, ey * Rx[:, pp] - ex * Ry[:, pp],
-                     ex * Ry[:, pk] - ey * Rx[:, pk]]
+            e = np.empty(d.shape, dtype=cplx)
+            ex, ey = e.real, e.imag
+            ex[:], ey[:] = dx / R, dy / R
+            tp, tk = tR.take(pp, axis=1), tR.take(pk, axis=1)
+            vals += [e.view(real), (-e).view(real), ex * tp.real + ey * tp.imag,
+                     -(ex * tk.real + ey * tk.imag)]
         for row, (c1, c2, cc), (r1, r2) in self.gears:
             th1, th2, thc = P[:, c1 // 3, 2], P[:, c2 // 3, 2], P[:, cc // 3, 2]
             r[:, row] = (th1 - thc) * r1 + (th2 - thc) * r2
@@ -283,17 +302,87 @@ class PairTable:
             if kind == "revolute":
                 r[:, row] = (qd[:, 2] - qb[:, 2] - (u - u0)) * self.L
             else:
-                cb_, sb = c[:, cb // 3], s[:, cb // 3]
+                cb_, sb = c[:, cb // 3], sn[:, cb // 3]
                 ux, uy = cb_ * axis[0] - sb * axis[1], sb * axis[0] + cb_ * axis[1]
                 dx, dy = qd[:, 0] - qb[:, 0], qd[:, 1] - qb[:, 1]
                 r[:, row] = ux * dx + uy * dy - u
                 vals += [ux[:, None], uy[:, None], -ux[:, None], -uy[:, None],
                          (ux * dy - uy * dx)[:, None]]
-        J = np.empty((N, self.rows, self.cols), dtype=P.dtype)
+        J = np.empty((N, self.rows, self.cols), dtype=real)
         J[:] = self.J0
         if vals:
             J.reshape(N, -1)[:, self.var] = np.concatenate(vals, axis=1)
         return r, J
+
+    def _points(self, Q0: np.ndarray) -> tuple:
+        """The links' poses (N, links, 3), cos θ, sin θ, and of every point the pairs name
+        R(θ)·s and ∂/∂θ of it (i·R(θ)·s), and the pairs' point differences D, complex."""
+        # gathers by `take`: C order whatever Q's layout, so that the complex arrays are pairs
+        P = Q0.take(self.rows_q, axis=1)
+        cplx = np.result_type(P.dtype, np.complex64)
+        c, sn = np.cos(P[..., 2]), np.sin(P[..., 2])
+        cp, sp = c.take(self.pt_link, axis=1), sn.take(self.pt_link, axis=1)
+        Rs = np.empty(cp.shape, dtype=cplx)  # R(θ)·s of every point the pairs name
+        Rs.real = cp * self.s0 - sp * self.s1
+        Rs.imag = sp * self.s0 + cp * self.s1
+        W = _complex(P[..., 0], P[..., 1]).take(self.pt_link, axis=1) + Rs
+        D = W.take(self.dB, axis=1) - W.take(self.dA, axis=1)
+        return P, c, sn, Rs, Rs * 1j, D
+
+    def quadratic(self, Q0: np.ndarray, Q1: np.ndarray) -> np.ndarray:
+        """(N, rows): ½·q̇ᵀ·∇²r·q̇, the part of the residuals' second Taylor coefficient that
+        the Jacobian does not give (r₂ = J·q₂ + this), at the poses Q0 with the first
+        coefficients Q1 (N, Q rows, 3) of every link the pairs name; the inputs enter the
+        equations linearly. A point z + R(θ)·s moves with ż + θ̇·i·R(θ)·s and bends by
+        −½θ̇²·R(θ)·s; a guide's normal n turns with θ̇·i·n."""
+        P, c, sn, Rs, tR, D = self._points(Q0)
+        N, real = P.shape[0], P.dtype
+        V = Q1.take(self.rows_q, axis=1)
+        w = V[..., 2]  # θ̇ of every link
+        wp = w.take(self.pt_link, axis=1)
+        V1 = _complex(V[..., 0], V[..., 1]).take(self.pt_link, axis=1) + _times(tR, wp)
+        bend = _times(Rs, -0.5 * wp * wp)
+        D1 = V1.take(self.dB, axis=1) - V1.take(self.dA, axis=1)
+        B = bend.take(self.dB, axis=1) - bend.take(self.dA, axis=1)
+        out = np.zeros((N, self.rows), dtype=real)
+        if self.rev is not None:
+            rows, at, pa, _ = self.rev
+            out[:, rows] = B[:, at:at + pa.size].view(real)
+        if self.pri is not None:
+            r0, at, pa, _, ta, n0x, n0y = self.pri
+            sl = slice(at, at + pa.size)
+            ca, sa, wa = c.take(ta, axis=1), sn.take(ta, axis=1), w.take(ta, axis=1)
+            nx, ny = ca * n0x - sa * n0y, sa * n0x + ca * n0y
+            d, d1, b = D[:, sl], D1[:, sl], B[:, sl]
+            out[:, r0] = (nx * b.real + ny * b.imag + wa * (nx * d1.imag - ny * d1.real)
+                          - 0.5 * wa * wa * (nx * d.real + ny * d.imag))
+        if self.circ is not None:
+            r0, at, pk, _, R = self.circ
+            sl = slice(at, at + pk.size)
+            d, d1, b = D[:, sl], D1[:, sl], B[:, sl]
+            out[:, r0] = ((d.real * b.real + d.imag * b.imag) / R
+                          + (d1.real * d1.real + d1.imag * d1.imag) * (0.5 / R))
+        for row, kind, cd, cb, _, axis, _ in self.drivers:
+            if kind == "prismatic":
+                k, j = cb // 3, cd // 3
+                ux, uy = c[:, k] * axis[0] - sn[:, k] * axis[1], sn[:, k] * axis[0] + c[:, k] * axis[1]
+                dx, dy = P[:, j, 0] - P[:, k, 0], P[:, j, 1] - P[:, k, 1]
+                vx, vy = V[:, j, 0] - V[:, k, 0], V[:, j, 1] - V[:, k, 1]
+                wb = w[:, k]
+                out[:, row] = wb * (ux * vy - uy * vx) - 0.5 * wb * wb * (ux * dx + uy * dy)
+        return out
+
+
+def _complex(x: np.ndarray, y: np.ndarray) -> np.ndarray:
+    """x + iy (exact)."""
+    z = np.empty(x.shape, dtype=np.result_type(x.dtype, np.complex64))
+    z.real, z.imag = x, y
+    return z
+
+
+def _times(z: np.ndarray, a: np.ndarray) -> np.ndarray:
+    """z·a for real a, by real products (see `PairTable.evaluate`)."""
+    return _complex(z.real * a, z.imag * a)
 
 
 def pair_table(mech: Mechanism, links: tuple[str, ...], joints: tuple[str, ...],

@@ -440,15 +440,17 @@ def _carry_points(mech: Mechanism, solvers, gen: "_Generic", lanes: list) -> Car
     schedule = gen.schedule
     if schedule is None:
         schedule = branch_schedule(mech) if len(mech.drivers) == 1 else {}
-    new_of = [lanes[r[0]][1] for r in rows]
     lams = np.array([r[1] for r in rows])
-    u = np.array([ln.point(x) for ln, x in zip(new_of, lams)]) / gen.weights
-    arrive = np.array([ln.direction(x, True) for ln, x in zip(new_of, lams)]) / gen.weights
-    leave = np.array([ln.direction(x, False) for ln, x in zip(new_of, lams)]) / gen.weights
+    lane_of = np.array([r[0] for r in rows])
+    u, arrive, leave = (np.empty((lams.size, gen.weights.size)) for _ in range(3))
+    for n, (_, new, _, _, _) in enumerate(lanes):
+        on = lane_of == n
+        u[on] = new.at(lams[on]) / gen.weights
+        arrive[on] = new.directions(lams[on], True) / gen.weights
+        leave[on] = new.directions(lams[on], False) / gen.weights
     pred = np.array([r[2] for r in rows])
     ok, q, t_arrive, t_leave, jacobians = _attempt(mech, solvers, gen, schedule, u, lams,
                                                    arrive, leave, pred)
-    lane_of = np.array([r[0] for r in rows])
     taken, failed = 0, None
     for n, (old, new, _, _, after) in enumerate(lanes):
         idx = np.flatnonzero(lane_of == n)
@@ -570,24 +572,26 @@ class InputPath:
 
     def point(self, lam: float) -> np.ndarray:
         """Input at λ (a vertex exactly, at its knot)."""
-        j = np.searchsorted(self.knots, lam)
-        if j < self.knots.size and self.knots[j] == lam and j < len(self.vertices):
-            return self.vertices[j]
-        seg = j - 1
-        return self.vertices[seg] + (lam - self.knots[seg]) * self.dirs[seg]
+        return self.at(np.array([lam]))[0]
 
-    def points(self, lam: np.ndarray, seg: np.ndarray) -> np.ndarray:
-        """Inputs (M, drivers) at λ on the given segments (vertices exactly at their knots)."""
-        at = self.knots[seg] == lam
+    def at(self, lam: np.ndarray) -> np.ndarray:
+        """Inputs (M, drivers) at λ ≥ the first knot (vertices exactly at their knots)."""
+        j = np.searchsorted(self.knots, lam)
+        seg = np.clip(j - 1, 0, len(self.dirs) - 1)
         out = self.vertices[seg] + (lam - self.knots[seg])[:, None] * self.dirs[seg]
-        out[at] = self.vertices[seg[at]]
+        hit = (j < len(self.vertices)) & (self.knots[np.minimum(j, self.knots.size - 1)] == lam)
+        out[hit] = self.vertices[j[hit]]
         return out
 
     def direction(self, lam: float, arriving: bool) -> np.ndarray:
         """Unit direction (in λ) of the segment a step arrives at λ along, or leaves λ along
         (they differ at a sample of several drivers)."""
+        return self.directions(np.array([lam]), arriving)[0]
+
+    def directions(self, lam: np.ndarray, arriving: bool) -> np.ndarray:
+        """`direction` at each λ (M, drivers)."""
         seg = np.searchsorted(self.knots, lam, side="left" if arriving else "right") - 1
-        return self.dirs[min(max(seg, 0), len(self.dirs) - 1)]
+        return self.dirs[np.clip(seg, 0, len(self.dirs) - 1)]
 
     def grid(self, spacing: float) -> tuple[np.ndarray, np.ndarray]:
         """λ of points along the path at most `spacing` apart, every vertex among them, and the
@@ -927,8 +931,8 @@ class _Ahead:
         V = len(path.vertices)
         self.lams = path.knots[:V]
         u = path.vertices / gen.weights
-        arrive = np.array([path.direction(x, True) for x in self.lams]) / gen.weights
-        leave = np.array([path.direction(x, False) for x in self.lams]) / gen.weights
+        arrive = path.directions(self.lams, True) / gen.weights
+        leave = path.directions(self.lams, False) / gen.weights
         state = _march_state(mech, u, arrive, self.lams, schedule)
         ahead = solvers[:gen.first]
         self.ok = np.ones(V, dtype=bool)
@@ -994,10 +998,13 @@ def _correct(state: State, solver, guess: np.ndarray) -> tuple[np.ndarray, np.nd
         # (a pair table's Jacobian with all its columns: the tangent's rates take them)
         r, Jall = groups.residual_and_jacobian(state, group, all_columns=True)
         Jq = Jall[:, :, :m]
+        # a sample converged by a small step keeps the Jacobian a step before, as when the
+        # batch's evaluations end with it: its answer does not depend on the others in the batch
+        fresh = alive & ~converged
         converged |= alive & (np.abs(r).max(axis=1) <= tol)
         if J is None:
             J = np.full(Jall.shape, np.nan)
-        J[alive] = Jall[alive]
+        J[fresh] = Jall[fresh]
         todo = alive & ~converged
         if not todo.any():
             break
@@ -1016,6 +1023,8 @@ def _correct(state: State, solver, guess: np.ndarray) -> tuple[np.ndarray, np.nd
         # (quadratic convergence): close enough for a starting value and a tangent, and it
         # saves the evaluation that would confirm it
         converged[rows[~failing & np.isfinite(before) & (size <= STEP_TOL * L)]] = True
+        if not (alive & ~converged).any():
+            break  # (the Jacobian stays the one a step before: enough for the tangent)
     converged &= alive
     state.Q[0][:, idx, :] = np.where(converged[:, None, None], q, np.nan)
     state.forget_trig(idx)

@@ -276,20 +276,24 @@ def rate_residuals(state: State, group: Group, k: int,
                    jacobian: np.ndarray | None = None) -> np.ndarray:
     """(N, rows): the k-th Taylor coefficient of the group's constraint residuals with the
     group's own k-th pose coefficients set to zero, the right-hand side −r_k of J·q⁽ᵏ⁾/k! = −r_k
-    (all lower coefficients as they stand in Q). First order from the group's `PairTable`
-    where it has one (the Jacobian's columns of the known links and inputs times their
-    rates; `jacobian`: that Jacobian at the poses in Q[0], all its columns, if at hand), else
-    on jets (`rate_residuals_jets`)."""
-    table = pair_table_of(state.mech, group) if k == 1 else None
+    (all lower coefficients as they stand in Q). First and second order from the group's
+    `PairTable` where it has one (the Jacobian's columns of the known links and inputs times
+    their k-th coefficients, at second order plus the velocities' quadratic part,
+    `PairTable.quadratic`; `jacobian`: that Jacobian at the poses in Q[0], all its columns, if
+    at hand), else on jets (`rate_residuals_jets`)."""
+    table = pair_table_of(state.mech, group) if k <= 2 else None
     if table is None:
         return rate_residuals_jets(state, group, k)
     J = jacobian
     if J is None or J.shape[2] != table.cols:
         _, J = table.evaluate(state.Q[0], {j: v[0] for j, v in state.inputs.items()})
     known = table.rows_q[group.size:]
-    rates = [state.Q[1][:, known].reshape(J.shape[0], -1)]
-    rates += [state.inputs[d[4]][1][:, None] for d in table.drivers]
-    return np.einsum("nij,nj->ni", J[:, :, 3 * group.size:], np.concatenate(rates, axis=1))
+    rates = [state.Q[k][:, known].reshape(J.shape[0], -1)]
+    rates += [state.inputs[d[4]][k][:, None] for d in table.drivers]
+    r = np.einsum("nij,nj->ni", J[:, :, 3 * group.size:], np.concatenate(rates, axis=1))
+    if k == 2:  # the velocities' part (the group's own included)
+        r += table.quadratic(state.Q[0], state.Q[1])
+    return r
 
 
 def rate_residuals_jets(state: State, group: Group, k: int) -> np.ndarray:

@@ -220,7 +220,7 @@ def drawing(mech: Mechanism, req: m.DrawingRequest, previous: Mechanism | None =
     with stage("scene"):
         fig, steps = _figure(mech, sol, req)
     with stage("svg"):
-        svg, transforms = fig.to_svg(), fig.transforms()
+        svg, transforms = fig.svg_and_transforms()
     return {"svg": svg, "status": str(Status(int(sol.status[0]))),
             "input": [None if not np.isfinite(v) else float(v) for v in sol.inputs[0]],
             "time": None if sol.time is None else float(sol.time[0]),
