@@ -76,29 +76,15 @@ def _prepare(mech: Mechanism, inputs, times, velocities, accelerations,
     does not take it; `schedule`: its change points, if known (one driver)."""
     from .branches import branch_schedule, path_schedule
     from .groups import input_coefficients
-    from .solver import _as_2d, _plain_numbers
+    from .solver import driver_samples
 
     fused = _fused(mech)
     if fused is None:
         return None
     solvers, tab = fused
     nd = len(mech.drivers)
-    inputs, times, velocities, accelerations, _, _ = _plain_numbers(
-        mech, inputs, times, velocities, accelerations, None, None)
-    t = None
-    if times is not None:  # as `solve`: the laws' values and rates at the times
-        t = np.atleast_1d(np.asarray(times, dtype=float))
-        laws = np.stack([d.law.derivatives(t) for d in mech.drivers], axis=-1)
-        for i, d in enumerate(mech.drivers):
-            if isinstance(d.law, ConstantSpeed):
-                laws[0, :, i] += mech.driver_input_at_design(d)
-        values, velocities, accelerations = laws[0], laws[1], laws[2]
-    else:
-        if inputs is None:
-            inputs = [[mech.driver_input_at_design(d) for d in mech.drivers]]
-        values = _as_2d(inputs, nd, "inputs")
-        velocities, accelerations = (_as_2d(a, nd, name, rows=values.shape[0]) for a, name in (
-            (velocities, "velocities"), (accelerations, "accelerations")))
+    t, values, velocities, accelerations, _, _ = driver_samples(
+        mech, inputs, times, velocities, accelerations)
     c = input_coefficients(mech, values, velocities, accelerations, None, 2)
     coef = np.stack([c[d.joint] for d in mech.drivers])
     if nd == 1:
