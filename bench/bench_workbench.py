@@ -140,20 +140,19 @@ def drag_frames(page, url: str, name: str, point: str, radius: float, place: flo
     targets = [screen_of(page, centre + radius * np.array([math.cos(a), math.sin(a)]))
                for a in np.linspace(0, 2 * math.pi * (frames + warmup) / 24, frames + warmup)]
     for target in targets:
-        n = page.evaluate("window.linkworkFrames.length")
+        # the page says when a frame is recorded: waiting for it costs the page nothing (a
+        # poll by animation frames or timers would run in the page during the frame timed)
+        page.evaluate(NEXT_FRAME)
         page.mouse.move(*target)
-        # polled by a timer, not by animation frames: those would keep an unthrottled browser
-        # drawing frames all the time, on the cores the server needs
-        page.evaluate(WAIT_FRAME, n)
+        page.evaluate("() => window.nextFrame")
     page.mouse.up()
     return stages(page.evaluate("window.linkworkFrames")[-frames:])
 
 
-WAIT_FRAME = """n => new Promise((done, fail) => {
-    const until = performance.now() + 60000;
-    const poll = () => window.linkworkFrames.length > n ? done()
-        : performance.now() > until ? fail(new Error("no frame drawn")) : setTimeout(poll, 2);
-    poll(); })"""
+NEXT_FRAME = """() => { window.nextFrame = new Promise((done, fail) => {
+    const late = setTimeout(() => fail(new Error("no frame drawn in a minute")), 60000);
+    window.addEventListener("linkworkframe", () => { clearTimeout(late); done(); }, { once: true });
+}); }"""
 
 
 def stages(frames: list[dict]) -> dict[str, np.ndarray]:

@@ -226,6 +226,67 @@ def test_dragging_a_point_solves_again(page):
         [ln for ln in resolve("library:crank-rocker")[1].splitlines() if not ln.startswith("A ")]
 
 
+def _shows_the_last_drawing(page) -> bool:
+    """Whether the page shows the SVG the server sent last; a frame may arrive between the
+    export and the comparison, so a difference must last (3 s) to count."""
+    deadline = time.monotonic() + 3.0
+    while not _shown_is(page, _exported(page)):
+        if time.monotonic() > deadline:
+            return False
+        page.wait_for_timeout(100)
+    return True
+
+
+def _shown_is(page, svg: str) -> bool:
+    """Whether the drawing in the page is `svg` as the page's parser reads it (the same
+    elements, attributes and text, node for node)."""
+    return page.eval_on_selector("#drawing svg", """(shown, text) => {
+        const t = document.createElement("template");
+        t.innerHTML = text.replace(/^<\\?xml[^>]*>\\s*/, "");
+        return t.content.firstElementChild.isEqualNode(shown); }""", svg)
+
+
+def _exported(page) -> str:
+    """The SVG drawn last, as the server sent it (the export, clicked without the mouse, which
+    may be dragging)."""
+    with page.expect_download() as dl:
+        page.eval_on_selector("#export-svg", "e => e.click()")
+    return Path(dl.value.path()).read_text()
+
+
+def test_each_frame_shows_the_servers_drawing(page):
+    """The page puts a new drawing in by changing what differs from the one shown: after a
+    drag's frames, a layer switched on and off again, what it shows is the server's SVG."""
+    page.check("#edit")
+    page.wait_for_timeout(300)
+    a = _client_of(page, (15.0, 25.0))  # C at the design position
+    page.mouse.move(*a)
+    page.mouse.down()
+    for k in range(1, 6):
+        page.mouse.move(a[0] + 4 * k, a[1] - 3 * k)
+        page.wait_for_timeout(60)
+        assert _shows_the_last_drawing(page)
+    page.mouse.up()
+    wait_drawn(page, lambda: json.loads(page.get_attribute("#input-slider", "data-moved") or "{}")
+               .get("C") is not None, "solve the whole motion of the new design")
+    assert _shows_the_last_drawing(page)
+    page.check("#show-poles")
+    wait_drawn(page, lambda: page.locator("#drawing svg #layer-poles").count() == 1, "draw the poles")
+    assert _shows_the_last_drawing(page)
+    page.uncheck("#show-poles")
+    wait_drawn(page, lambda: page.locator("#drawing svg #layer-poles").count() == 0, "hide the poles")
+    assert _shows_the_last_drawing(page)
+    svg = _exported(page)
+    assert 'id="layer-poles"' not in svg
+    # and a different drawing is not the same (the comparison sees a difference)
+    assert not _shown_is(page, svg.replace('id="layer-mechanism"', 'id="layer-other"'))
+    # another mechanism: other names, other texts, other symbols in the same places
+    page.select_option("#mechanism", "library:slider-crank-centric")
+    wait_drawn(page, lambda: page.inner_text("#title") == linkwork.load("library:slider-crank-centric").name,
+               "open the slider-crank")
+    assert _shows_the_last_drawing(page)
+
+
 def test_an_unassemblable_drag_shows_the_engines_message(page):
     """At 180° the crank's end A is at (−10, 0); dragged out to (−25, 0) it makes a crank of 25,
     whose chain cannot close there: |A O4| = 65 > coupler + rocker = √925 + √1000 ≈ 62.0."""

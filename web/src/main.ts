@@ -7,6 +7,7 @@ import {
   Source, Transform, XY, get, post, postFile, postTimed, toSvg, toWorld,
 } from "./api";
 import { EditError, addEntry, addToLink, removeEntry, removeFromLinks } from "./edit";
+import { showSvg } from "./morph";
 import { plotSvg } from "./plot";
 
 const $ = <T extends HTMLElement>(id: string): T => {
@@ -101,7 +102,8 @@ interface Frame {
   server: Record<string, number>;
 }
 
-// every drawing of a drag, as it went; bench/bench_workbench.py reads them
+// every drawing of a drag, as it went (a "linkworkframe" event on the window says when one is
+// added); bench/bench_workbench.py reads them
 const frames: Frame[] = [];
 Object.assign(window, { linkworkFrames: frames });
 let movedAt: { event: number; handler: number } | null = null; // the pointer's last move of a drag
@@ -196,6 +198,7 @@ async function redraw(): Promise<void> {
           requestAnimationFrame(() => window.setTimeout(() => {
             frame.painted = performance.now();
             frames.push(frame);
+            window.dispatchEvent(new Event("linkworkframe"));
           }, 0));
         }
         clearError();
@@ -223,7 +226,7 @@ async function redraw(): Promise<void> {
 
 function show(d: Drawing, req: DrawingRequest): void {
   state.drawn = d;
-  ui.drawing.innerHTML = d.svg.replace(/^<\?xml[^>]*>\s*/, "");
+  showSvg(ui.drawing, d.svg);
   ui.drawing.classList.remove("stale");
   const t = d.transforms["mechanism"];
   ui.drawing.dataset.transform = JSON.stringify(t);
@@ -294,16 +297,31 @@ function buildConstructions(info: MechanismInfo): void {
 function numbers(d: Drawing): void {
   const unit = state.info?.units.length ?? "";
   const head = ui.numbers.tHead as HTMLTableSectionElement;
-  head.innerHTML = `<tr><th>point</th><th>x [${unit}]</th><th>y [${unit}]</th></tr>`;
-  const body = ui.numbers.tBodies[0];
-  body.innerHTML = "";
-  for (const [name, xy] of Object.entries(d.points)) {
-    const row = body.insertRow();
-    row.dataset.point = name;
-    row.insertCell().textContent = name;
-    row.insertCell().textContent = xy ? xy[0].toFixed(4) : "—";
-    row.insertCell().textContent = xy ? xy[1].toFixed(4) : "—";
+  if (head.dataset.unit !== unit) {
+    head.innerHTML = `<tr><th>point</th><th>x [${unit}]</th><th>y [${unit}]</th></tr>`;
+    head.dataset.unit = unit;
   }
+  const body = ui.numbers.tBodies[0];
+  const points = Object.entries(d.points);
+  // the same points as shown (a frame of a drag): only the numbers that changed are written
+  const rows = body.rows;
+  if (rows.length !== points.length || points.some(([name], k) => rows[k].dataset.point !== name)) {
+    body.innerHTML = "";
+    for (const [name] of points) {
+      const row = body.insertRow();
+      row.dataset.point = name;
+      row.insertCell().textContent = name;
+      row.insertCell();
+      row.insertCell();
+    }
+  }
+  points.forEach(([, xy], k) => {
+    const cells = rows[k].cells;
+    for (const i of [0, 1]) {
+      const text = xy ? xy[i].toFixed(4) : "—";
+      if (cells[i + 1].textContent !== text) cells[i + 1].textContent = text;
+    }
+  });
 }
 
 // ------------------------------------------------------------------ quantities and plots

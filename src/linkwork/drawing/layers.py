@@ -22,7 +22,7 @@ adds its primitives to a :class:`~.svg.Figure`:
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 from functools import cached_property
 from typing import Iterable, Sequence
 
@@ -57,6 +57,9 @@ class Scene:
     sol: Solution
     scales: Scales | None = None
     index: int = 0
+    #: the motions of the named points asked for so far (the layers, the scales and the box ask
+    #: for the same points again and again)
+    _points: dict = field(default_factory=dict, init=False, repr=False, compare=False)
 
     @cached_property
     def motion(self) -> Solution | None:
@@ -65,14 +68,20 @@ class Scene:
         except LinkworkError:
             return None
 
+    def _point(self, name: str):
+        m = self._points.get(name)
+        if m is None:
+            m = self._points[name] = self.sol.point(name)
+        return m
+
     def pos(self, name: str) -> np.ndarray:
-        return self.sol.point(name).position[self.index]
+        return self._point(name).position[self.index]
 
     def vel(self, name: str) -> np.ndarray:
-        return self.sol.point(name).velocity[self.index]
+        return self._point(name).velocity[self.index]
 
     def acc(self, name: str) -> np.ndarray:
-        return self.sol.point(name).acceleration[self.index]
+        return self._point(name).acceleration[self.index]
 
     def theta(self, link: str) -> float:
         """Rotation of ``link`` from its design position."""

@@ -714,41 +714,41 @@ class Figure:
                     continue  # its point is cut off with the drawing at the frame
             w, h = text_width(lab.text, lab.size, lab.italic) + 0.4, lab.size * 0.95
             todo.append((lab, a, w, h, frame))
+        if not todo:
+            return []
         ink = np.asarray(samples, float).reshape(-1, 2)
         ink = ink[np.all(np.isfinite(ink), axis=1)]
         points = np.array([t[1] for t in todo], float).reshape(-1, 2)
         placed = np.full((len(todo), 4), np.nan)  # the boxes chosen so far (x0, y0, x1, y1)
 
-        def candidates(i: int):
-            """The candidate boxes of label i (directions in order of preference, each at the
-            distances nearest first) and what each costs whatever the other labels' boxes: the
-            drawn lines and the other labels' points under it, its distance and direction, the
-            frame it would cross. Scored once per label: only the boxes move between passes."""
-            lab, a, w, h, frame = todo[i]
-            dirs = np.array(_candidates(lab.prefer))
-            dist = np.array(LABEL_DISTANCES) + lab.clear
-            k = np.repeat(np.arange(len(dirs)), len(dist))
-            d = np.tile(dist, len(dirs))
-            c = a + dirs[k] * (d[:, None] + np.array([w, h]) / 2)  # box centres
-            box = np.hstack([c - [w / 2, h / 2], c + [w / 2, h / 2]])
-            # the drawn lines have a width: what runs just past a box touches it too
-            wide = box + np.array([-INK_PAD, -INK_PAD, INK_PAD, INK_PAD])
-            reach = float(d.max()) + w + h + INK_PAD
-            costs = []
-            for pts, weight in ((ink, 2.0), (np.delete(points, i, axis=0), 12.0)):
-                # another label's point under this label costs most (its own is never inside)
-                near = pts[np.all(np.abs(pts - a) <= reach, axis=1)]
-                inside = ((near[None, :, 0] >= wide[:, None, 0]) & (near[None, :, 0] <= wide[:, None, 2])
-                          & (near[None, :, 1] >= wide[:, None, 1]) & (near[None, :, 1] <= wide[:, None, 3]))
-                costs.append(weight * inside.sum(axis=1))
-            costs.append(0.15 * k + 0.6 * d)
+        # every label's candidate boxes at once: directions in order of preference, each at the
+        # distances nearest first (k: the direction's rank, d: the distance)
+        n, nd = len(todo), len(LABEL_DISTANCES)
+        dirs = np.array([_candidates(t[0].prefer) for t in todo], float).reshape(n, -1, 2)
+        wh = np.array([(t[2], t[3]) for t in todo], float).reshape(n, 2)
+        dist = np.array(LABEL_DISTANCES) + np.array([t[0].clear for t in todo], float)[:, None]
+        k = np.repeat(np.arange(dirs.shape[1]), nd)
+        d = np.tile(dist, (1, dirs.shape[1]))
+        c = points[:, None, :] + dirs[:, k] * (d[:, :, None] + wh[:, None, :] / 2)  # box centres
+        boxes = np.concatenate([c - wh[:, None, :] / 2, c + wh[:, None, :] / 2], axis=2)
+        # the drawn lines have a width: what runs just past a box touches it too
+        wide = boxes + np.array([-INK_PAD, -INK_PAD, INK_PAD, INK_PAD])
+        on_ink = _inside_counts(ink, wide.reshape(-1, 4)).reshape(n, -1)
+        # another label's point under this label costs most (its own does not count)
+        under = ((points[None, None, :, 0] >= wide[:, :, None, 0]) & (points[None, None, :, 0] <= wide[:, :, None, 2])
+                 & (points[None, None, :, 1] >= wide[:, :, None, 1]) & (points[None, None, :, 1] <= wide[:, :, None, 3]))
+        under[np.arange(n), :, np.arange(n)] = False
+        on_points = under.sum(axis=2)
+        preference = 0.15 * k + 0.6 * d
+        scored = []  # per label: its boxes, its area, what each box costs whatever the others' boxes
+        for i, (_, _, w, h, frame) in enumerate(todo):
+            costs = [2.0 * on_ink[i], 12.0 * on_points[i], preference[i]]
             if frame is not None:
-                across = ((box[:, 0] < frame[0]) | (box[:, 2] > frame[2]) | (box[:, 1] < frame[1])
-                          | (box[:, 3] > frame[3]))
+                b = boxes[i]
+                across = ((b[:, 0] < frame[0]) | (b[:, 2] > frame[2]) | (b[:, 1] < frame[1])
+                          | (b[:, 3] > frame[3]))
                 costs.append(1e4 * across)
-            return box, w * h, costs
-
-        scored = [candidates(i) for i in range(len(todo))]
+            scored.append((boxes[i], w * h, costs))
 
         def best_box(i: int):
             """The candidate box of label i that covers least: its fixed costs and the area it
@@ -902,6 +902,20 @@ def _resample(xy: np.ndarray, step: float = 0.8) -> list[np.ndarray]:
         n = max(2, int(np.linalg.norm(b - a) / step) + 1)
         out += list(a + np.linspace(0, 1, n)[:, None] * (b - a))
     return out
+
+
+def _inside_counts(pts: np.ndarray, boxes: np.ndarray) -> np.ndarray:
+    """How many of the points (n, 2) lie in each box (m, 4: x0, y0, x1, y1, edges included):
+    with the points sorted by x, a box's x range is one slice of them, whose y are tested."""
+    order = np.argsort(pts[:, 0], kind="stable")
+    xs, ys = pts[order, 0], pts[order, 1]
+    lo = np.searchsorted(xs, boxes[:, 0], "left")
+    span = np.maximum(np.searchsorted(xs, boxes[:, 2], "right") - lo, 0)
+    box_of = np.repeat(np.arange(len(boxes)), span)  # the slices one after another
+    start = np.cumsum(span) - span
+    y = ys[np.arange(len(box_of)) - start[box_of] + lo[box_of]]
+    ok = (y >= boxes[box_of, 1]) & (y <= boxes[box_of, 3])
+    return np.bincount(box_of[ok], minlength=len(boxes))
 
 
 def _candidates(prefer: np.ndarray | None) -> list[tuple[float, float]]:
