@@ -209,6 +209,22 @@ def check_number(value, what: str) -> float:
     return _finite(float(value), what, repr(value))
 
 
+#: (unit, wanted unit) -> factor: "number unit" in these is converted without pint (whose
+#: import costs more than a command's whole solve), by pint's own factor, so to the same bits
+#: (tests/io/test_unit_fast_paths.py holds them to pint)
+QUICK_FACTORS = {
+    ("rpm", "rad/s"): 2 * math.pi / 60, ("deg/s", "rad/s"): math.pi / 180,
+    ("rad/s", "rad/s"): 1.0, ("rpm", "deg/s"): 6.0,
+    ("deg", "rad"): math.pi / 180, ("rad", "rad"): 1.0, ("rad", "deg"): 180 / math.pi,
+    ("deg", "deg"): 1.0, ("s", "s"): 1.0, ("ms", "s"): 1e-3, ("min", "s"): 60.0,
+    ("mm", "mm"): 1.0, ("m", "m"): 1.0, ("mm", "m"): 1e-3, ("cm", "m"): 1e-2, ("in", "m"): 0.0254,
+    ("m", "mm"): 1000.0, ("cm", "mm"): 10.0,
+    ("mm/s", "mm/s"): 1.0, ("m/s", "m/s"): 1.0, ("in/s", "in/s"): 1.0,
+}
+_QUICK = re.compile(r"\s*(?P<number>[+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?)\s*"
+                    r"(?P<unit>[a-z]+(?:/s)?)\s*")
+
+
 def parse_quantity(text: str | float | int, *, default_unit: str, kind: str) -> float:
     """Value of `text` expressed in `default_unit`.
 
@@ -219,6 +235,10 @@ def parse_quantity(text: str | float | int, *, default_unit: str, kind: str) -> 
         return check_number(text, kind)
     if _plain_number(text):
         return _finite(float(text), kind, text.strip())
+    quick = _QUICK.fullmatch(text) if len(text) <= MAX_LENGTH else None
+    if quick is not None and (quick["unit"], default_unit) in QUICK_FACTORS:
+        value = _finite(float(quick["number"]), kind, text.strip())
+        return _finite(value * QUICK_FACTORS[quick["unit"], default_unit], kind, text.strip())
     q = read_quantity(text, kind)
     if str(q.units) == "dimensionless":
         return float(q.magnitude)

@@ -1,26 +1,26 @@
-"""The fused pass: one compiled walk through the whole solution order per sample, for the
-mechanisms whose every group has a compiled closed form (revolute drivers on the frame, RRR and
-RRP dyads: four-bars, slider-cranks, the Watt and Stephenson six-bars, Jansen's linkage).
+"""The fused pass: one compiled walk through the whole solution order per block of samples,
+for the mechanisms whose every group has a compiled closed form (revolute drivers on the frame,
+RRR and RRP dyads: four-bars, slider-cranks, the Watt and Stephenson six-bars, Jansen's
+linkage).
 
 The per-group path (`solver.solve` with `groups.GroupSolver`) makes one pass over the batch per
 group and kind of work (positions, rates, error bounds), each reading and writing the work
 arrays of all samples again. Here the solution order is encoded once per mechanism as small
-tables (`tables`: an opcode per group, its link indices and constants), and two loops of
-`kernels` interpret them sample by sample: `fused_positions` (every group's positions) and
-`fused_rates` (every group's velocities, accelerations, condition number and the forward error
-bounds of `precision`, kept in registers). Between the two, the links' angles are taken with
-NumPy's vectorised arctan2 from the hinge vectors (a scalar atan2 costs more than the rest of
-the positions). The tables are data: one compiled interpreter serves every mechanism.
+tables (`tables`: an opcode per group, its link indices and constants, which pivot is the
+frame), and two loops of `kernels` walk them per sub-block of samples: `fused_positions`
+(every group's positions) and `fused_rates` (every group's velocities, accelerations,
+condition number and the forward error bounds of `precision`), each group's work a vectorised
+block loop (`kernels._rrr_block_positions` …). Between the two, the links' angles are taken
+with NumPy's vectorised arctan2 from the hinge vectors. The tables are data: one compiled
+interpreter serves every mechanism.
 
 The arithmetic is that of the per-group kernels (the same per-sample helpers), so the results
-are the same to the last bit but for numba's contractions; the statuses, condition numbers,
-error bounds and the polishing of samples near singular positions are those of the per-group
-path (tests/kinematics/test_fused.py holds the two to each other).
-
-Measured (bench/README.md), the fused pass is no faster than the per-group path: the time is
-the dyads' arithmetic and the error bounds, not the passes over memory it saves. It stays for
-`designs.solve_designs` (a design's constants as a row of the tables); whether to keep both paths is
-open (issue 17).
+are the same to the last bit but for numba's contractions and the sign of zeros; the statuses,
+condition numbers, error bounds and the polishing of samples near singular positions are those
+of the per-group path (tests/kinematics/test_fused.py holds the two to each other), which stays
+as the independent check. Measured (bench/README.md), the fused pass is 2.6–3× faster than
+the per-group path; `designs.solve_designs` runs it too (a design's constants as a row of the
+tables).
 """
 
 from __future__ import annotations
@@ -125,8 +125,9 @@ def solve_blocks(mech: Mechanism, tab: Tables, solvers, Q: np.ndarray, T: np.nda
             signs[row, :nb] = given.get(group, design)
         kernels.fused_positions(assembled, tab.ops, tab.fl, Q0, T, U, signs, R, lo, hi)
         for row, i, phi in tab.angles:
-            if row >= 0:
-                np.subtract(np.arctan2(R[row + 1, :nb], R[row, :nb]), phi, out=Q0[i, 2, sl])
+            if row >= 0:  # in place: no temporary of the block's size
+                np.arctan2(R[row + 1, :nb], R[row, :nb], out=Q0[i, 2, sl])
+                Q0[i, 2, sl] -= phi
             else:  # a block turns with its guide
                 Q0[i, 2, sl] = Q0[phi, 2, sl]
         ok = assembled[sl]
@@ -141,8 +142,8 @@ def solve_blocks(mech: Mechanism, tab: Tables, solvers, Q: np.ndarray, T: np.nda
             Qb[1:, ~ok] = np.nan
         err, serr, cond = errors[sl], status_errors[sl], condition[sl]
         # samples near a singular position: once more in extended precision (`precision`)
-        sel = np.flatnonzero(ok & (serr > TOLERANCE) & (cond < POLISH_LIMIT)) if can_polish \
-            else np.zeros(0, dtype=int)
+        sel = np.flatnonzero(ok & (serr > TOLERANCE) & (cond < POLISH_LIMIT)) \
+            if can_polish and not serr.max(initial=0.0) <= TOLERANCE else np.zeros(0, dtype=int)
         if sel.size:
             e, se, c = polish(mech, solvers, Qb, T[:, :, sl],
                               {j: v[:, sl] for j, v in inputs.items()}, sel, E0[sel])

@@ -5,8 +5,10 @@ Why compiled (numba): a dyad's positions, velocities and accelerations are some 
 operations per sample. As NumPy array operations each of them is a Python call and a walk
 through memory, which held the four-bar, the six-bars and Jansen's linkage to several hundred
 nanoseconds per sample and dyad; these loops do the same arithmetic in registers. Each formula
-has this one implementation; the generic path (constraints on jets and a linear solve,
-`groups.derivatives_generic`) stays the independent check of it
+has this one implementation, a pure per-sample helper (scalars in, scalars out: `_rrr_solve`,
+`_rrr_rate_solve`, `_bound_2` …) that the per-group loops (array-indexed) and the fused pass's
+block loops (vectorised, see `_ROWS`) share; the generic path (constraints on jets and a linear
+solve, `groups.derivatives_generic`) stays the independent check of it
 (tests/kinematics/test_generic_vs_closed_form.py).
 
 A batch of a few thousand samples or fewer runs the same loops interpreted (`_loop`): numba's
@@ -133,9 +135,17 @@ _C2, _C3, _C4, _C5, _C6, _C7, _C8, _C9, _C10 = ((-1.0) ** k / math.factorial(2 *
                                                 for k in range(2, 11))
 
 
+def _library_cos_sin(t):
+    """cos t, sin t by NumPy (the C library's): the interpreted loops' `_sincos` and
+    `_cos_sin`, which as Python is faster than the polynomial (within 2 ulp of it)."""
+    return np.cos(t), np.sin(t)
+
+
 @lru_cache(maxsize=1)
 def _interpreted() -> dict:
-    return _bound({**globals(), "math": _NUMPY_MATH})
+    ns = _bound({**globals(), "math": _NUMPY_MATH})
+    ns["_sincos"] = ns["_cos_sin"] = _library_cos_sin
+    return ns
 
 
 @lru_cache(maxsize=1)

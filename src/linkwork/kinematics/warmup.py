@@ -21,9 +21,9 @@ _LOCK = threading.Lock()
 
 def compile_kernels() -> None:
     """Load the compiled loops (compiled, or read from numba's cache) by solving a few library
-    mechanisms with them: the fused pass (a four-bar, a slider-crank) and the per-group loops
-    (chains with a Newton group), so that no solve after this waits for the compiler. Once per
-    process; sets `READY`."""
+    mechanisms with them and reading their points: the fused pass (a four-bar, a slider-crank)
+    and the per-group loops (chains with a Newton group), so that no solve after this waits for
+    the compiler. Once per process; sets `READY`."""
     from ..io import load
     from ..io.library import LIBRARY_PREFIX
     from .kernels import compiled_loops as kernel_choice
@@ -35,8 +35,10 @@ def compile_kernels() -> None:
             for name in ("crank-rocker", "slider-crank-centric", "alt-ten-link",
                          "crank-driven-wedge"):
                 mech = load(LIBRARY_PREFIX + name)
-                solve(mech, np.full((8, 1), mech.driver_input_at_design(mech.drivers[0])),
-                      order=2)
+                sol = solve(mech, np.full((8, 1), mech.driver_input_at_design(mech.drivers[0])),
+                            order=2)
+                for p in mech.points:  # the points' loops too (`Solution.point`)
+                    sol.point(p)
         READY.set()
 
 
