@@ -643,9 +643,19 @@ def test_numbers_carry_units(page):
         assert page.locator(f"#quantity option[value='{key}']").inner_text().endswith(f"[{unit}]")
 
 
-def test_keys_move_a_point_like_a_drag(page):
+def test_keys_move_a_point_like_a_drag(browser, server):
     """Alt+arrows solve the moved design at the input shown, as a drag's frames do, without the
-    whole motion; it is asked for once, when the keys rest."""
+    whole motion; it is asked for once, when the keys rest (the drawings over HTTP or the
+    drawing socket)."""
+    page, net, errors = _open(browser, server)
+    try:
+        _keys_move_a(page, net)
+    finally:
+        page.close()
+    assert not errors, errors
+
+
+def _keys_move_a(page, net) -> None:
     page.focus("#input-slider")
     for _ in range(30):
         page.keyboard.press("ArrowRight")
@@ -655,6 +665,7 @@ def test_keys_move_a_point_like_a_drag(page):
     asked: list[tuple[str, dict]] = []
     page.on("request", lambda r: asked.append((r.url.split("/api/")[-1], json.loads(r.post_data or "{}")))
             if "/api/" in r.url else None)
+    sent = len(net.sent)
     page.select_option("#selection", "point:A")
     page.check("#edit")
     page.focus("#drawing")
@@ -666,7 +677,8 @@ def test_keys_move_a_point_like_a_drag(page):
         return json.loads(page.get_attribute("#drawing", "data-moved") or "{}").get("A")
 
     wait_drawn(page, lambda: moved_a() == pytest.approx([0.0, 10.3]), "draw A moved up three times")
-    drawings = [body for what, body in asked if what == "drawing"]
+    drawings = [body for what, body in asked if what == "drawing"] + \
+        [json.loads(t) for t in net.sent[sent:]]
     assert drawings and all(body.get("motion") is False for body in drawings)
     assert all(body["at"] == pytest.approx([u], abs=1e-15) for body in drawings)
     assert not [w for w, _ in asked if w == "motion"] or \
