@@ -92,6 +92,15 @@ def test_a_message_over_the_size_limit_is_refused(client):
         assert json.loads(ws.receive_text())["status"] == 200
 
 
+def test_bytes_that_are_not_json_are_refused_as_over_http(client):
+    with client.websocket_connect("/api/drawing/ws") as ws:
+        ws.send_bytes(b"\xff\xfe")
+        got = json.loads(ws.receive_text())
+    http = client.post("/api/drawing", content=b"\xff\xfe", headers={"content-type": "application/json"})
+    assert (got["status"], got["body"]) == (http.status_code, http.json())
+    assert got["status"] == 422
+
+
 def test_another_sites_page_may_not_connect(client):
     with pytest.raises(WebSocketDisconnect) as e:
         with client.websocket_connect("/api/drawing/ws",

@@ -204,10 +204,10 @@ def _socket_drawing(message: dict, answer) -> tuple[int, "Stages", str]:
         # the messages are the HTTP API's word for word)
         try:
             req = m.DrawingRequest.model_validate(json.loads(data))
-        except json.JSONDecodeError as exc:
-            errors = [{"loc": ("body", exc.pos), "msg": "JSON decode error"}]
         except ValidationError as exc:
             errors = exc.errors()
+        except ValueError as exc:  # not JSON, or bytes that are not UTF-8
+            errors = [{"loc": ("body", getattr(exc, "pos", 0)), "msg": "JSON decode error"}]
         else:
             text, stage = answer(req)
             return 200, stage, text
@@ -496,7 +496,7 @@ def create_app(workdir: str | Path | None = None, *, compiled: bool = False) -> 
         HTTP answer's status, its Server-Timing stages (ms) and its JSON body (the drawing, or
         `{"error", "kind"}`). Only pages of this server may connect (a browser lets any site open
         a socket to 127.0.0.1, and reads its answers: the same-origin rule of HTTP does not hold)."""
-        origin = dict(ws.headers).get("origin")
+        origin = ws.headers.get("origin")
         if origin is not None and urlsplit(origin).netloc != ws.headers.get("host"):
             await ws.close(code=1008, reason="another site's page may not use this socket")
             return
