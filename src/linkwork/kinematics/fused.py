@@ -96,9 +96,10 @@ def solve_blocks(mech: Mechanism, tab: Tables, solvers, Q: np.ndarray, T: np.nda
                  U: np.ndarray | None = None, start: int = 0, stop: int | None = None,
                  block: int = 1 << 17) -> None:
     """Fill Q (Q[k, n, link, (x, y, θ)], order 2), T, and per sample `assembled`, `condition`,
-    `errors`, `status_errors` as the per-group loop of `solver.solve` does, block by block:
-    the samples start … stop − 1 (all by default) of these arrays (`designs.solve_designs`: one
-    design's part of a batch of designs; U the stacked inputs, if at hand), `block` samples at
+    `errors`, `status_errors` (whatever they held before) as the per-group loop of
+    `solver.solve` does, block by block: the samples start … stop − 1 (all by default) of these
+    arrays (`designs.solve_designs`: one design's part of a batch of designs; U the stacked
+    inputs, if at hand), `block` samples at
     a time (`solver.KERNEL_BLOCK`: the hinge vectors, assembly signs and error-bound work arrays
     are block-sized, not batch-sized; smaller blocks, which stay in the CPU's cache between the
     two passes, measured no faster)."""

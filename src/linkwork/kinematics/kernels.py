@@ -977,8 +977,8 @@ def fused_positions(ok, ops, fl, Q0, T, U, signs, R, lo, hi):
 def fused_rates(cond, ops, fl, Q, T, U, per, L, eps, m0, unreliable, plain, weighted, err, serr,
                 E0, m, E, lo, hi):
     """Velocities and accelerations of every group at the samples lo … hi − 1 (a block),
-    through the solution order as in `fused_positions`, with the condition numbers (cond[n]
-    raised to the groups'), the forward error bounds of `precision.ErrorBudget` (work arrays
+    through the solution order as in `fused_positions`, with the condition numbers (cond[n]:
+    the largest of 1 and the groups'), the forward error bounds of `precision.ErrorBudget` (work arrays
     m, E of the block's size; m0: the drawing's coordinates over L) and their relative values
     (`relative_errors` with the weights `plain` into err, `weighted` into serr); E0[n − lo]:
     the positions' bound."""
@@ -988,7 +988,7 @@ def fused_rates(cond, ops, fl, Q, T, U, per, L, eps, m0, unreliable, plain, weig
         m0r, m1r, m2r, E0r, E1r, E2r = m[0], m[1], m[2], E[0], E[1], E[2]
         for d in range(U.shape[0]):  # 1/Ω in inv until the end (`_rate_scale`)
             _rate_scale_block(U[d, 1], U[d, 2], per[d], inv, d == 0, lo2, hi2)
-        _bounds_start_block(m0, inv, m0r, m1r, m2r, E0r, E1r, E2r, lo2, hi2)
+        _bounds_start_block(m0, inv, m0r, m1r, m2r, E0r, E1r, E2r, cond, lo2, hi2)
         for g in range(ops.shape[0]):
             op, i1, i2, i3, i4 = ops[g, 0], ops[g, 1], ops[g, 2], ops[g, 3], ops[g, 4]
             f0, f1, f2, f3, f4, f5 = fl[g, 0], fl[g, 1], fl[g, 2], fl[g, 3], fl[g, 4], fl[g, 5]
@@ -1042,14 +1042,16 @@ def _rate_scale_block(u1, u2, per, top, first, lo, hi):
 
 
 @_rows
-def _bounds_start_block(m0, inv, m0r, m1r, m2r, E0r, E1r, E2r, lo, hi):
+def _bounds_start_block(m0, inv, m0r, m1r, m2r, E0r, E1r, E2r, cond, lo, hi):
     """The error bounds' start on a block (`precision.ErrorBudget`): sizes m0 (the drawing's
-    coordinates), 0, 0, bounds 0; inv[j]: Ω there, 1/Ω here (Ω = 1 where every rate is 0)."""
+    coordinates), 0, 0, bounds 0, the condition numbers cond[n] 1 (the caller's array need not
+    be filled); inv[j]: Ω there, 1/Ω here (Ω = 1 where every rate is 0)."""
     for j in range(hi - lo):
         i = _at(j)
         t = inv[i]
         inv[i] = 1.0 / (t if t > 0.0 else 1.0)
         m0r[i], m1r[i], m2r[i], E0r[i], E1r[i], E2r[i] = m0, 0.0, 0.0, 0.0, 0.0, 0.0
+        cond[_at(lo + j)] = 1.0
 
 
 @_rows

@@ -227,10 +227,14 @@ def solve(mech: Mechanism, inputs=None, *, times=None, velocities=None, accelera
                 path.vertices[-1], float(end), path.vertices[-2] if prev else None,
                 float(path.knots[len(path.vertices) - 2]) if prev else float(end),
                 schedules, ends.get("tail") if generic else None)
-    assembled = np.ones(N, dtype=bool)
-    condition = np.ones(N)
-    errors = np.zeros(N)
-    status_errors = np.zeros(N)  # the same, accelerations weighted to their own tolerance
+    tab = fused.tables(mech, solvers) if FUSED and order == 2 and not generic and \
+        n_rows == len(mech.link_names) else None
+    # the fused pass writes every sample of these itself (no pass over them beforehand);
+    # status_errors: the errors with the accelerations weighted to their own tolerance
+    fill = tab is None
+    assembled = np.ones(N, dtype=bool) if fill else np.empty(N, dtype=bool)
+    condition = np.ones(N) if fill else np.empty(N)
+    errors, status_errors = (np.zeros(N), np.zeros(N)) if fill else (np.empty(N), np.empty(N))
     T = np.empty((n_rows, 2, N))  # cos θ, sin θ of every link, rows contiguous
     T[frame, 0], T[frame, 1] = 1.0, 0.0
     # Closed-form groups in NumPy work sample by sample, so the samples are solved in blocks
@@ -240,8 +244,6 @@ def solve(mech: Mechanism, inputs=None, *, times=None, velocities=None, accelera
     compiled = order == 2 and all(s.compiled for s in solvers)
     block = max(N, 1) if generic else KERNEL_BLOCK if compiled else BLOCK
     can_polish = polishable(mech)
-    tab = fused.tables(mech, solvers) if FUSED and order == 2 and not generic and \
-        n_rows == len(mech.link_names) else None
     if tab is not None:  # one compiled pass through the solution order per sample
         fused.solve_blocks(mech, tab, solvers, Q, T, inputs, branches_in, assembled, condition,
                            errors, status_errors, can_polish, block=KERNEL_BLOCK)
