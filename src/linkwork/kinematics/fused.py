@@ -45,7 +45,8 @@ class Tables:
     ops: np.ndarray
     fl: np.ndarray  # (groups, 18) float64: the group's constants (`GroupSolver.fast`)
     #: in order: (hinge-vector row, link, φ): the link's angle is arctan2 of the row's vector
-    #: less φ; (−1, block, guide): the block keeps the guide's angle
+    #: less φ; (−1, block, guide): the block keeps the guide's angle (a guide on the frame:
+    #: none, the loop has written the block's angle 0)
     angles: tuple
     vectors: int  # rows of hinge vectors
     signs: tuple  # per sign row: (group, design sign)
@@ -78,7 +79,9 @@ def tables(mech: Mechanism, solvers: tuple[GroupSolver, ...]) -> Tables | None:
             o[:7] = kernels.RRP, f["iA"], f["ig"], f["ir"], f["ib"], len(signs), vectors
             c[:14] = (*f["A"], *f["P"], *f["e0"], f["rsq"], f["tol"], s.design_sign, *f["k"],
                       *f["AP"], f["length"])
-            angles += [(vectors, f["ir"], f["phi"]), (-1, f["ib"], f["ig"])]
+            angles.append((vectors, f["ir"], f["phi"]))
+            if f["ig"] != frame:  # the block's angle is the guide's, known only after the loop
+                angles.append((-1, f["ib"], f["ig"]))  # (on the frame: written in the loop)
             vectors += 2
         else:
             return None
