@@ -97,7 +97,7 @@ def solve_blocks(mech: Mechanism, tab: Tables, solvers, Q: np.ndarray, T: np.nda
                  inputs: dict, branches_in, assembled: np.ndarray, condition: np.ndarray,
                  errors: np.ndarray, status_errors: np.ndarray, can_polish: bool,
                  U: np.ndarray | None = None, start: int = 0, stop: int | None = None,
-                 block: int = 1 << 17) -> None:
+                 block: int = 1 << 17) -> bool:
     """Fill Q (Q[k, n, link, (x, y, θ)], order 2), T, and per sample `assembled`, `condition`,
     `errors`, `status_errors` (whatever they held before) as the per-group loop of
     `solver.solve` does, block by block: the samples start … stop − 1 (all by default) of these
@@ -105,7 +105,8 @@ def solve_blocks(mech: Mechanism, tab: Tables, solvers, Q: np.ndarray, T: np.nda
     inputs, if at hand), `block` samples at
     a time (`solver.KERNEL_BLOCK`: the hinge vectors, assembly signs and error-bound work arrays
     are block-sized, not batch-sized; smaller blocks, which stay in the CPU's cache between the
-    two passes, measured no faster)."""
+    two passes, measured no faster). Returns whether a sample was polished (its poses
+    rewritten, the frame's rows too)."""
     N = Q.shape[1] if stop is None else stop
     Qm = Q.transpose(0, 2, 3, 1)  # Qm[k, link, (x, y, θ), n]: the memory's order
     Q0 = Qm[0]
@@ -121,6 +122,7 @@ def solve_blocks(mech: Mechanism, tab: Tables, solvers, Q: np.ndarray, T: np.nda
     E0 = np.empty(B)
     m, E = np.empty((3, B)), np.empty((3, B))
     L, m0 = mech.length_scale, coordinate_size(mech)
+    polished = False
     for lo in range(start, N, B):
         hi = min(N, lo + B)
         sl, nb = slice(lo, hi), hi - lo
@@ -149,7 +151,9 @@ def solve_blocks(mech: Mechanism, tab: Tables, solvers, Q: np.ndarray, T: np.nda
         sel = np.flatnonzero(ok & (serr > TOLERANCE) & (cond < POLISH_LIMIT)) \
             if can_polish and not serr.max(initial=0.0) <= TOLERANCE else np.zeros(0, dtype=int)
         if sel.size:
+            polished = True
             e, se, c = polish(mech, solvers, Qb, T[:, :, sl],
                               {j: v[:, sl] for j, v in inputs.items()}, sel, E0[sel])
             done = np.isfinite(e)
             err[sel[done]], serr[sel[done]], cond[sel[done]] = e[done], se[done], c[done]
+    return polished
