@@ -55,10 +55,12 @@ def plan(mech: Mechanism) -> tuple[GroupSolver, ...]:
 #: the last one once no solution refers to it any more (`_pose_memory`): below it, the C
 #: library's allocator keeps freed memory for the next request itself; above it, it hands the
 #: memory back to the system, and a new array of that size is paid again page by page (first
-#: touches: a fifth of the time of a Jansen linkage's solve in a loop of solves). From 16 MB
-#: (a four-bar's 100 000 samples: 27 MB) so that the frame's rows can stay zero from one solve
-#: to the next (`_frame_rows_kept`).
-SPARE_FROM = 1 << 24
+#: touches: a fifth of the time of a Jansen linkage's solve in a loop of solves). Not lower:
+#: from 16 MB (a four-bar's 100 000 samples, 27 MB, kept as the spare) the four-bar's solve
+#: in a loop took 2.5 times as long, measured: the allocator, no longer given back a freed
+#: array that large, does not raise its threshold for fresh memory from the system above the
+#: other arrays' sizes, and each of them is paid page by page again.
+SPARE_FROM = 1 << 25
 SPARE_UP_TO = 1 << 29  # … not beyond: a batch of millions keeps no gigabytes alive
 #: the spare buffer, and (shape, frame) of the pose array in it whose frame rows are known to be
 #: zero (None: not known)
