@@ -893,11 +893,12 @@ def _rrp_block_rates(QA, QG, Q, T, iA, a0, a1, ig, p0, p1, e00, e01, ap0, ap1, l
         else:
             vAx, vAy, aAx, aAy = _point_rates(QA, T, iA, a0, a1, k)
         c, sn = T[ir, 0, k], T[ir, 1, k]
-        if QG is None:
+        if QG is None:  # the block at angle 0, as its positions wrote (its rows not read)
             ex, ey = e00, e01
-            lam = Q[0, ib, 0, k] * ex + Q[0, ib, 1, k] * ey
             vcx = vcy = acx = acy = og = ag = 0.0
+            cb, sb, tb = 1.0, 0.0, 0.0
         else:
+            cb, sb, tb = T[ib, 0, k], T[ib, 1, k], Q[0, ib, 2, k]
             cg, sg = T[ig, 0, k], T[ig, 1, k]
             ex, ey = cg * e00 - sg * e01, sg * e00 + cg * e01
             # P's place along the track (the block and the guide have the same angle)
@@ -909,13 +910,12 @@ def _rrp_block_rates(QA, QG, Q, T, iA, a0, a1, ig, p0, p1, e00, e01, ap0, ap1, l
             unreliable)
         r0, r1, r2, t0, t1, t2 = _origin_rates(c, sn, a0, a1, vAx, vAy, aAx, aAy, om, al)
         vrx[k], vry[k], vrt[k], wrx[k], wry[k], wrt[k] = r0, r1, r2, t0, t1, t2
-        q0, q1, q2, u0, u1, u2 = _origin_rates(T[ib, 0, k], T[ib, 1, k], p0, p1, vPx, vPy, aPx,
-                                               aPy, og, ag)
+        q0, q1, q2, u0, u1, u2 = _origin_rates(cb, sb, p0, p1, vPx, vPy, aPx, aPy, og, ag)
         vbx[k], vby[k], vbt[k], wbx[k], wby[k], wbt[k] = q0, q1, q2, u0, u1, u2
         inv = inv_omega[j]
         m0[j], m1[j], m2[j], E0[j], E1[j], E2[j] = _bound_2(
             kap, eps, m0[j], m1[j], m2[j], E0[j], E1[j], E2[j],
-            max(abs(Q[0, ir, 2, k]) * (1.0 / math.pi), abs(Q[0, ib, 2, k]) * (1.0 / math.pi)),
+            max(abs(Q[0, ir, 2, k]) * (1.0 / math.pi), abs(tb) * (1.0 / math.pi)),
             max(_size3(r0, r1, r2, L) * inv, _size3(q0, q1, q2, L) * inv),
             max(_size3(t0, t1, t2, L) * inv * inv, _size3(u0, u1, u2, L) * inv * inv))
         cond[k] = kap if kap > cond[k] else cond[k]
