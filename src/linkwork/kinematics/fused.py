@@ -119,6 +119,7 @@ def solve_blocks(mech: Mechanism, tab: Tables, solvers, Q: np.ndarray, T: np.nda
     B = max(1, min(N - start, block))
     R = np.empty((max(tab.vectors, 1), B))
     signs = np.empty((max(len(tab.signs), 1), B))
+    fixed = np.empty(max(len(tab.signs), 1))
     E0 = np.empty(B)
     m, E = np.empty((3, B)), np.empty((3, B))
     L, m0 = mech.length_scale, coordinate_size(mech)
@@ -128,8 +129,12 @@ def solve_blocks(mech: Mechanism, tab: Tables, solvers, Q: np.ndarray, T: np.nda
         sl, nb = slice(lo, hi), hi - lo
         given = branches_in(sl)
         for row, (group, design) in enumerate(tab.signs):
-            signs[row, :nb] = given.get(group, design)
-        kernels.fused_positions(assembled, tab.ops, tab.fl, Q0, T, U, signs, R, lo, hi)
+            if group in given:  # its change points: a sign per sample
+                signs[row, :nb] = given[group]
+                fixed[row] = np.nan
+            else:  # the design's sign at every sample: a number, not a row of them
+                fixed[row] = design
+        kernels.fused_positions(assembled, tab.ops, tab.fl, Q0, T, U, signs, fixed, R, lo, hi)
         for row, i, phi in tab.angles:
             if row >= 0:  # in place: no temporary of the block's size
                 np.arctan2(R[row + 1, :nb], R[row, :nb], out=Q0[i, 2, sl])

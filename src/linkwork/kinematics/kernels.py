@@ -922,16 +922,19 @@ def _rrp_block_rates(QA, QG, Q, T, iA, a0, a1, ig, p0, p1, e00, e01, ap0, ap1, l
 
 
 @_loop(0)
-def fused_positions(ok, ops, fl, Q0, T, U, signs, R, lo, hi):
+def fused_positions(ok, ops, fl, Q0, T, U, signs, fixed, R, lo, hi):
     """Positions of every group of a mechanism at the samples lo … hi − 1 (a block), through
     the whole solution order (the tables `ops`, `fl` of `fused.tables`: per group its opcode,
     link indices and constants), each group's loop over the block a vectorised block loop
     (`_rrr_block_positions` …) with the group's constants in registers. ok[n]: every group
     assembles. U[driver, k, n]: the inputs' Taylor coefficients; signs[row, n − lo]: the dyads'
-    assembly signs; the dyads' hinge vectors go to R[col …, n − lo] for the caller's
+    assembly signs, or fixed[row] where it is a number (the dyad's sign at every sample: the row
+    not read, the loop given a sub-block's copy of it, which stays in the L1 cache; NaN: the
+    row's); the dyads' hinge vectors go to R[col …, n − lo] for the caller's
     vectorised arctan2."""
     for n in range(lo, hi):
         ok[n] = True
+    own = np.empty(SUBBLOCK)
     for lo2 in range(lo, hi, SUBBLOCK):  # each group's inputs still in the cache
         hi2 = min(hi, lo2 + SUBBLOCK)
         a, b = lo2 - lo, hi2 - lo
@@ -942,6 +945,11 @@ def fused_positions(ok, ops, fl, Q0, T, U, signs, R, lo, hi):
                 fl[g, 5], fl[g, 6]
             f7, f8, f9, f10, f11 = fl[g, 7], fl[g, 8], fl[g, 9], fl[g, 10], fl[g, 11]
             still = ops[g, 7]
+            if op != DRIVER:
+                sign = signs[row][a:b]
+                if fixed[row] == fixed[row]:
+                    sign = own[:b - a]
+                    sign[:] = fixed[row]
             if op == DRIVER and _within(U[i3, 0], f2, lo2, hi2):
                 _driver_block_positions(U[i3, 0], f2, f0, f1, Q0[i2, 0], Q0[i2, 1], Q0[i2, 2],
                                         T[i2, 0], T[i2, 1], ok, lo2, hi2)
@@ -951,7 +959,7 @@ def fused_positions(ok, ops, fl, Q0, T, U, signs, R, lo, hi):
                     _driver_position(Q0, T, i1, i2, f0, f1, u, f2, n)
                     ok[n] = ok[n] & (u - u == 0.0)
             elif op == RRR:
-                rrr_pos = (T, i1, f0, f1, i2, f2, f3, f4, f5, f6, signs[row][a:b], f8, f9, f10,
+                rrr_pos = (T, i1, f0, f1, i2, f2, f3, f4, f5, f6, sign, f8, f9, f10,
                         f11, Q0[i3, 0], Q0[i3, 1], T[i3, 0], T[i3, 1], Q0[i4, 0], Q0[i4, 1],
                         T[i4, 0], T[i4, 1], R[c][a:b], R[c + 1][a:b], R[c + 2][a:b],
                         R[c + 3][a:b], ok, lo2, hi2)
@@ -962,7 +970,7 @@ def fused_positions(ok, ops, fl, Q0, T, U, signs, R, lo, hi):
                 else:
                     _rrr_block_positions(Q0, Q0, *rrr_pos)
             else:
-                rrp_pos = (T, i1, f0, f1, i2, f2, f3, f4, f5, f6, f7, signs[row][a:b], f9, f10,
+                rrp_pos = (T, i1, f0, f1, i2, f2, f3, f4, f5, f6, f7, sign, f9, f10,
                         Q0[i3, 0], Q0[i3, 1], T[i3, 0], T[i3, 1], Q0[i4, 0], Q0[i4, 1],
                         Q0[i4, 2], T[i4, 0], T[i4, 1], R[c][a:b], R[c + 1][a:b], ok, lo2, hi2)
                 if still == 1:
