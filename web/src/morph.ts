@@ -28,7 +28,8 @@ export function morph(old: Element, neu: Element): void {
     if (!o) {
       old.appendChild(n);
     } else if (sameKind(o, n)) {
-      if (o.nodeType === Node.ELEMENT_NODE) morph(o as Element, n as Element);
+      // a subtree that did not change (the browser compares it natively) is left alone
+      if (o.nodeType === Node.ELEMENT_NODE && !o.isEqualNode(n)) morph(o as Element, n as Element);
       else if (o.nodeValue !== n.nodeValue) o.nodeValue = n.nodeValue;
       o = o.nextSibling;
     } else {

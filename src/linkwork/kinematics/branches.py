@@ -143,6 +143,7 @@ def branch_schedule(mech: Mechanism) -> dict:
     revolute = mech.joint(d.joint).kind == "revolute"
     found: dict = {}
     period = 2 * np.pi if revolute else None
+    on_grid = _GridPlacement(mech, solvers)
     for k, s in enumerate(solvers):
         if s.kind not in BRANCHING:
             continue
@@ -150,7 +151,8 @@ def branch_schedule(mech: Mechanism) -> dict:
         n = SCAN * (int(round(span / (2 * np.pi))) if revolute else 1)
         grid = u0 - span / 2 + span * np.arange(n + 1) / n
 
-        placed_at = _scan_once(lambda u: _positions(mech, solvers, s, u, found))
+        placed_at = _scan_once(lambda u: _positions(mech, solvers, s, u, found),
+                               lambda u, k=k: on_grid.upto(k, u, found))
 
         def h2(u: np.ndarray) -> np.ndarray:
             return s.discriminant(placed_at(u))
@@ -204,21 +206,67 @@ def near_change_point(mech: Mechanism, u: np.ndarray, tol: float) -> np.ndarray:
     return near
 
 
-def _scan_once(place):
+def _scan_once(place, grid=None):
     """`place` (inputs → a `State` with the groups placed), solved once for the scan's grid:
     a dyad's discriminant and pivot gap are read from the same poses (the refinements' few
-    inputs are placed anew)."""
+    inputs are placed anew). `grid`: places the grid instead where it can (else None)."""
     kept: dict = {}
 
     def at(u: np.ndarray) -> State:
         if kept.get("u") is u:
             return kept["state"]
-        state = place(u)
-        if not kept and u.size > 1:  # the grid (the design check and refinements: one input)
+        big = not kept and u.size > 1  # the grid (the design check and refinements: one input)
+        state = grid(u) if big and grid is not None else None
+        if state is None:
+            state = place(u)
+        if big:
             kept["u"], kept["state"] = u, state
         return state
 
     return at
+
+
+class _GridPlacement:
+    """The groups placed on a one-driver scan's grid one after the other, for each
+    two-assembly group's discriminant in turn: those placed for an earlier group's scan are
+    kept for the next (not placed again for every group) while the grid and their assembly
+    signs on it are the same (no change point found among them). The state handed out is
+    `_positions`': the samples some group cannot assemble NaN. Each group is placed as
+    `placed` places it, so the scan's numbers are the same."""
+
+    def __init__(self, mech: Mechanism, solvers) -> None:
+        self.mech, self.solvers = mech, solvers
+        self.u = None
+
+    def upto(self, k: int, u: np.ndarray, schedule: dict) -> State | None:
+        """solvers[:k + 1] placed at inputs u with the assembly signs of `schedule`; None if a
+        Newton-solved group is among them (its starting values come from a march)."""
+        if any(t.kind == "generic" for t in self.solvers[:k + 1]):
+            return None
+        signs = {g: sc.signs(u) for g, sc in schedule.items()}
+
+        def unchanged(g, old) -> bool:
+            new = signs.get(g)
+            return (new is None) == (old is None) and (new is None or np.array_equal(new, old))
+
+        if not (self.u is not None and k + 1 >= self.n and np.array_equal(self.u, u)
+                and all(unchanged(g, old) for g, old in self.used.items())):
+            N = u.shape[0]
+            self.u, self.n, self.used, self.ok = u, 0, {}, np.ones(N, dtype=bool)
+            self.state = State(self.mech, _poses(self.mech, N),
+                               input_coefficients(self.mech, u[:, None], None, None, None, 0))
+        self.state.branches = signs
+        for t in self.solvers[self.n:k + 1]:
+            self.used[t.group] = signs.get(t.group)
+            self.ok &= t.positions(self.state)
+        self.n = k + 1
+        st = self.state
+        out = State(self.mech, st.Q.copy(), st.inputs, T=st.T.copy(), known=set(st.known),
+                    branches=signs)
+        if not self.ok.all():
+            out.Q[:, ~self.ok] = np.nan
+            out.forget_trig()
+        return out
 
 
 def _touches(fn, grid: np.ndarray, first: int, points: list, merge: float) -> None:

@@ -76,29 +76,15 @@ def _prepare(mech: Mechanism, inputs, times, velocities, accelerations,
     does not take it; `schedule`: its change points, if known (one driver)."""
     from .branches import branch_schedule, path_schedule
     from .groups import input_coefficients
-    from .solver import _as_2d, _plain_numbers
+    from .solver import driver_samples
 
     fused = _fused(mech)
     if fused is None:
         return None
     solvers, tab = fused
     nd = len(mech.drivers)
-    inputs, times, velocities, accelerations, _, _ = _plain_numbers(
-        mech, inputs, times, velocities, accelerations, None, None)
-    t = None
-    if times is not None:  # as `solve`: the laws' values and rates at the times
-        t = np.atleast_1d(np.asarray(times, dtype=float))
-        laws = np.stack([d.law.derivatives(t) for d in mech.drivers], axis=-1)
-        for i, d in enumerate(mech.drivers):
-            if isinstance(d.law, ConstantSpeed):
-                laws[0, :, i] += mech.driver_input_at_design(d)
-        values, velocities, accelerations = laws[0], laws[1], laws[2]
-    else:
-        if inputs is None:
-            inputs = [[mech.driver_input_at_design(d) for d in mech.drivers]]
-        values = _as_2d(inputs, nd, "inputs")
-        velocities, accelerations = (_as_2d(a, nd, name, rows=values.shape[0]) for a, name in (
-            (velocities, "velocities"), (accelerations, "accelerations")))
+    t, values, velocities, accelerations, _, _ = driver_samples(
+        mech, inputs, times, velocities, accelerations)
     c = input_coefficients(mech, values, velocities, accelerations, None, 2)
     coef = np.stack([c[d.joint] for d in mech.drivers])
     if nd == 1:
@@ -403,35 +389,6 @@ def _limits(designs: list[_Search]) -> list:
     return out
 
 
-def _motion_inputs(mech: Mechanism, limits, schedule: dict) -> tuple[np.ndarray, np.ndarray]:
-    """The inputs and input speeds of `motion.whole_motion` of a one-driver, constant-speed
-    design whose `input_limits` are `limits`: a crank's period in 1° steps, a rocker from the
-    design position to its upper limit, back to the lower and forward to the design position
-    (1° steps, or 1/200 of a slider's stroke), its speed reversed on the way back. `schedule`:
-    its change points (`branches.branch_schedule`; without any, the chain's period is a turn)."""
-    from .branches import chain_period
-
-    d = mech.drivers[0]
-    u0, speed = mech.driver_input_at_design(d), d.law.speed
-    if limits is None:
-        h = np.radians(1.0)
-        turn = chain_period(mech) if schedule else 2 * np.pi
-        n = int(round(turn / h))
-        u = u0 + np.sign(speed or 1.0) * np.linspace(0.0, turn, n + 1)
-        return u, np.full(u.shape, speed)
-    lo, hi = limits
-    h = np.radians(1.0) if mech.joint(d.joint).kind == "revolute" else (hi - lo) / 200
-
-    def leg(a: float, b: float) -> np.ndarray:
-        n = max(1, int(np.ceil(abs(b - a) / h - 1e-9)))
-        return a + np.sign(b - a) * np.minimum(np.arange(n + 1) * h, abs(b - a))
-
-    first, back, last = leg(u0, hi), leg(hi, lo), leg(lo, u0)
-    u = np.concatenate([first, back[1:], last[1:]])
-    sign = np.concatenate([np.ones(first.size), -np.ones(back.size - 1), np.ones(last.size - 1)])
-    return u, abs(speed) * sign
-
-
 def whole_motions(mechs, *, compiled: bool | None = None, isolate: bool = False) -> list:
     """`motion.whole_motion(mech)` (order 2, the default step) of every design, in one batch:
     the limit positions of the designs that do not turn fully searched for all designs at once
@@ -440,7 +397,7 @@ def whole_motions(mechs, *, compiled: bool | None = None, isolate: bool = False)
     or a law with a duration) are solved at their laws' 361 times in the same batch; designs
     the fused pass does not take go one by one through `whole_motion`. `isolate` as for
     `solve_designs`."""
-    from .motion import whole_motion
+    from .motion import motion_inputs, whole_motion
 
     mechs = list(mechs)
     if len(mechs) > WHOLE_BATCH:
@@ -485,7 +442,8 @@ def whole_motions(mechs, *, compiled: bool | None = None, isolate: bool = False)
             if lim is False:
                 alone.append(s.index)
             else:
-                inputs[s.index], velocities[s.index] = _motion_inputs(s.mech, lim, s.schedule)
+                inputs[s.index], velocities[s.index] = motion_inputs(
+                    s.mech, lim, period=None if s.schedule else 2 * np.pi)
                 schedules[s.index] = s.schedule
         for k in sorted(alone):
             out[k] = _one_by_one(isolate, whole_motion, mechs[k], order=2)

@@ -167,15 +167,26 @@ def whole_motion(mech: Mechanism, *, step: float | None = None, speed: float | N
     d = mech.drivers[0]
     if not isinstance(d.law, ConstantSpeed) and speed is None:
         return solve(mech, times=np.linspace(0.0, d.law.duration, 361), order=order)
+    u, w = motion_inputs(mech, input_limits(mech), step=step, speed=speed)
+    return solve(mech, u, velocities=w, order=order)
+
+
+def motion_inputs(mech: Mechanism, limits, *, step: float | None = None,
+                  speed: float | None = None, period: float | None = None) -> tuple:
+    """The inputs and input speeds of the whole motion of a one-driver mechanism whose
+    `input_limits` are `limits`: a crank over the chain's period (`period`, or
+    `branches.chain_period`), a rocker from the design position to its upper limit, back to
+    the lower and forward to the design position, its speed reversed on the way back; `step`
+    1° or 1/200 of a slider's stroke, `speed` the driver's constant speed unless given."""
+    d = mech.drivers[0]
     u0 = mech.driver_input_at_design(d)
     speed = d.law.speed if speed is None else speed
-    limits = input_limits(mech)
     if limits is None:
         h = step or np.radians(1.0)
-        turn = chain_period(mech)
+        turn = chain_period(mech) if period is None else period
         n = int(round(turn / h))
         u = u0 + np.sign(speed or 1.0) * np.linspace(0.0, turn, n + 1)
-        return solve(mech, u, velocities=np.full(u.shape, speed), order=order)
+        return u, np.full(u.shape, speed)
     lo, hi = limits
     h = step or (np.radians(1.0) if mech.joint(d.joint).kind == "revolute" else (hi - lo) / 200)
 
@@ -186,4 +197,4 @@ def whole_motion(mech: Mechanism, *, step: float | None = None, speed: float | N
     first, back, last = leg(u0, hi), leg(hi, lo), leg(lo, u0)
     u = np.concatenate([first, back[1:], last[1:]])
     sign = np.concatenate([np.ones(first.size), -np.ones(back.size - 1), np.ones(last.size - 1)])
-    return solve(mech, u, velocities=abs(speed) * sign, order=order)
+    return u, abs(speed) * sign

@@ -155,6 +155,30 @@ def _plain_numbers(mech: Mechanism, inputs, times, *rates) -> tuple:
     return tuple(out)
 
 
+def driver_samples(mech: Mechanism, inputs=None, times=None, velocities=None,
+                   accelerations=None, jerks=None, snaps=None) -> tuple:
+    """`solve`'s arguments as numbers per sample: (times or None, values, velocities,
+    accelerations, jerks, snaps), each (N, drivers) or None where not given — at `times`, each
+    driver's law (a constant speed from the design input), else the inputs (the design
+    position when none are given) with their rates."""
+    nd = len(mech.drivers)
+    inputs, times, velocities, accelerations, jerks, snaps = _plain_numbers(
+        mech, inputs, times, velocities, accelerations, jerks, snaps)
+    if times is not None:
+        t = np.atleast_1d(np.asarray(times, dtype=float))
+        laws = np.stack([d.law.derivatives(t) for d in mech.drivers], axis=-1)  # (5, N, nd)
+        for i, d in enumerate(mech.drivers):
+            if isinstance(d.law, ConstantSpeed):
+                laws[0, :, i] += mech.driver_input_at_design(d)
+        return (t, *laws)
+    if inputs is None:
+        inputs = [[mech.driver_input_at_design(d) for d in mech.drivers]]
+    values = _as_2d(inputs, nd, "inputs")
+    return (None, values, *(_as_2d(a, nd, name, rows=values.shape[0]) for a, name in (
+        (velocities, "velocities"), (accelerations, "accelerations"), (jerks, "jerks"),
+        (snaps, "snaps"))))
+
+
 def solve(mech: Mechanism, inputs=None, *, times=None, velocities=None, accelerations=None,
           jerks=None, snaps=None, order: int = 2, resume: PathEnd | None = None,
           previous: Mechanism | None = None, compiled: bool | None = None) -> Solution:
@@ -201,25 +225,8 @@ def solve(mech: Mechanism, inputs=None, *, times=None, velocities=None, accelera
                          "([[given]]), not by drivers: it has no inputs to solve at; use "
                          "kinematics.point_inputs.solve_given (as `linkwork analyze` does)")
     nd = len(mech.drivers)
-    inputs, times, velocities, accelerations, jerks, snaps = _plain_numbers(
+    t, values, velocities, accelerations, jerks, snaps = driver_samples(
         mech, inputs, times, velocities, accelerations, jerks, snaps)
-    t = None
-    if times is not None:
-        t = np.atleast_1d(np.asarray(times, dtype=float))
-        laws = np.stack([d.law.derivatives(t) for d in mech.drivers], axis=-1)  # (5, N, nd)
-        if any(isinstance(d.law, ConstantSpeed) for d in mech.drivers):
-            for i, d in enumerate(mech.drivers):
-                if isinstance(d.law, ConstantSpeed):
-                    laws[0, :, i] += mech.driver_input_at_design(d)
-        values, velocities, accelerations, jerks, snaps = laws
-    else:
-        if inputs is None:
-            inputs = [[mech.driver_input_at_design(d) for d in mech.drivers]]
-        values = _as_2d(inputs, nd, "inputs")
-        velocities, accelerations, jerks, snaps = (
-            _as_2d(a, nd, name, rows=values.shape[0]) for a, name in (
-                (velocities, "velocities"), (accelerations, "accelerations"), (jerks, "jerks"),
-                (snaps, "snaps")))
     N = values.shape[0]
     if previous is not None:  # every march of mech from here on, the change points' scans too
         follow(mech, previous)

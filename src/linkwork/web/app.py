@@ -425,8 +425,11 @@ def create_app(workdir: str | Path | None = None, *, compiled: bool = False) -> 
         return {"name": req.name, "title": con.title, "steps": [s.text for s in con.steps],
                 "description": con.describe(), "warnings": warned}
 
+    # run in the event loop itself, not handed to a worker thread and back: a drag's frame is a
+    # few milliseconds of work, and on a loaded machine each hand-over waits for a core to wake
+    # the other thread (the GIL lets no two requests compute at once anyway)
     @app.post("/api/drawing", response_model=m.Drawing, responses=errors)
-    def drawing_(req: m.DrawingRequest):
+    async def drawing_(req: m.DrawingRequest):
         """The SVG of `linkwork draw` at one position, with the layers and construction asked,
         the point positions drawn and how the drawing maps world to SVG coordinates."""
         stage = Stages()
