@@ -24,6 +24,10 @@ in the server from routing to the answer; cpu: the server thread's CPU time, whi
 processes do not stretch), transfer (the round trip less `app`), parse (the answer's body),
 dom (the drawing and the numbers into the page) and paint (to the first paint after it).
 
+The page sends a drag's drawings over its WebSocket (`/api/drawing/ws`) while it is open;
+`--transport http` takes the socket away from the page (it falls back to `POST /api/drawing`),
+to compare the two (both by default, the socket first).
+
     uv run python bench/bench_workbench.py                 # four-bar and Heusinger valve gear
     uv run python bench/bench_workbench.py --frames 200 --warmup 40 --mode unthrottled
 
@@ -117,7 +121,7 @@ def screen_of(page, xy) -> tuple[float, float]:
 
 
 def drag_frames(page, url: str, name: str, point: str, radius: float, place: float,
-                frames: int, warmup: int) -> dict[str, np.ndarray]:
+                frames: int, warmup: int, transport: str) -> dict[str, np.ndarray]:
     page.goto(f"{url}/?library={name}")
     page.wait_for_selector("body[data-ready=true]", timeout=120_000)
     if place:  # the slider to that sample, and its drawing shown
@@ -146,8 +150,16 @@ def drag_frames(page, url: str, name: str, point: str, radius: float, place: flo
         page.mouse.move(*target)
         page.evaluate("() => window.nextFrame")
     page.mouse.up()
-    return stages(page.evaluate("window.linkworkFrames")[-frames:])
+    timed = page.evaluate("window.linkworkFrames")[-frames:]
+    came = {f["via"] for f in timed}
+    if came != {transport}:
+        raise SystemExit(f"{name}: frames came over {came}, not {transport}")
+    return stages(timed)
 
+
+#: how the page sends a drag's drawings: its WebSocket, or (the socket taken away before the
+#: page's script runs) HTTP
+TRANSPORTS = {"socket": None, "http": "delete window.WebSocket;"}
 
 NEXT_FRAME = """() => { window.nextFrame = new Promise((done, fail) => {
     const late = setTimeout(() => fail(new Error("no frame drawn in a minute")), 60000);
@@ -175,6 +187,8 @@ def main() -> None:
                     help="the browser's frame clock (default: both, unthrottled first)")
     ap.add_argument("--compile-wait", type=float, default=120.0,
                     help="seconds to wait at most for the server's compiled loops")
+    ap.add_argument("--transport", choices=list(TRANSPORTS), action="append",
+                    help="how the page sends the drag's drawings (default: both, socket first)")
     args = ap.parse_args()
     if not Path(CHROMIUM).is_file():
         raise SystemExit("needs Debian's chromium (apt-get install chromium)")
@@ -189,15 +203,21 @@ def main() -> None:
             for mode in args.mode or list(MODES):
                 browser = p.chromium.launch(executable_path=CHROMIUM,
                                             args=["--no-sandbox", *MODES[mode]])
-                page = browser.new_page(viewport={"width": 1280, "height": 900})
-                print(f"\n{mode}: drag → painted frame (ms), p50 and p95, and the median of each stage")
-                print(f"{'mechanism':21} {'at':>4} {'p50':>6} {'p95':>6} |"
-                      + "".join(f"{c:>8}" for c in cols))
-                for name, point, radius, place in CASES:
-                    t = drag_frames(page, url, name, point, radius, place, args.frames, args.warmup)
-                    print(f"{name:21} {place:4.2f} {np.percentile(t['frame'], 50):6.1f} "
-                          f"{np.percentile(t['frame'], 95):6.1f} |"
-                          + "".join(f"{np.nanmedian(t[c]):8.1f}" for c in cols))
+                for transport in args.transport or list(TRANSPORTS):
+                    page = browser.new_page(viewport={"width": 1280, "height": 900})
+                    if TRANSPORTS[transport]:
+                        page.add_init_script(TRANSPORTS[transport])
+                    print(f"\n{mode}, over {transport}: drag → painted frame (ms), p50 and p95, "
+                          "and the median of each stage")
+                    print(f"{'mechanism':21} {'at':>4} {'p50':>6} {'p95':>6} |"
+                          + "".join(f"{c:>8}" for c in cols))
+                    for name, point, radius, place in CASES:
+                        t = drag_frames(page, url, name, point, radius, place, args.frames,
+                                        args.warmup, transport)
+                        print(f"{name:21} {place:4.2f} {np.percentile(t['frame'], 50):6.1f} "
+                              f"{np.percentile(t['frame'], 95):6.1f} |"
+                              + "".join(f"{np.nanmedian(t[c]):8.1f}" for c in cols))
+                    page.close()
                 browser.close()
     finally:
         proc.terminate()

@@ -643,9 +643,19 @@ def test_numbers_carry_units(page):
         assert page.locator(f"#quantity option[value='{key}']").inner_text().endswith(f"[{unit}]")
 
 
-def test_keys_move_a_point_like_a_drag(page):
+def test_keys_move_a_point_like_a_drag(browser, server):
     """Alt+arrows solve the moved design at the input shown, as a drag's frames do, without the
-    whole motion; it is asked for once, when the keys rest."""
+    whole motion; it is asked for once, when the keys rest (the drawings over HTTP or the
+    drawing socket)."""
+    page, net, errors = _open(browser, server)
+    try:
+        _keys_move_a(page, net)
+    finally:
+        page.close()
+    assert not errors, errors
+
+
+def _keys_move_a(page, net) -> None:
     page.focus("#input-slider")
     for _ in range(30):
         page.keyboard.press("ArrowRight")
@@ -655,6 +665,7 @@ def test_keys_move_a_point_like_a_drag(page):
     asked: list[tuple[str, dict]] = []
     page.on("request", lambda r: asked.append((r.url.split("/api/")[-1], json.loads(r.post_data or "{}")))
             if "/api/" in r.url else None)
+    sent = len(net.sent)
     page.select_option("#selection", "point:A")
     page.check("#edit")
     page.focus("#drawing")
@@ -666,7 +677,8 @@ def test_keys_move_a_point_like_a_drag(page):
         return json.loads(page.get_attribute("#drawing", "data-moved") or "{}").get("A")
 
     wait_drawn(page, lambda: moved_a() == pytest.approx([0.0, 10.3]), "draw A moved up three times")
-    drawings = [body for what, body in asked if what == "drawing"]
+    drawings = [body for what, body in asked if what == "drawing"] + \
+        [json.loads(t) for t in net.sent[sent:]]
     assert drawings and all(body.get("motion") is False for body in drawings)
     assert all(body["at"] == pytest.approx([u], abs=1e-15) for body in drawings)
     assert not [w for w, _ in asked if w == "motion"] or \
@@ -701,3 +713,116 @@ def test_drawing_and_plot_fit_a_laptop_screen(browser, server, size):
         assert fit["drawing"] > 250, fit
     finally:
         pg.close()
+
+
+# ------------------------------------------------------------------ the drawing socket
+class _Network:
+    """What a page sent and received: the drawing socket's messages, the HTTP drawing requests."""
+
+    def __init__(self, pg) -> None:
+        self.sent: list[str] = []
+        self.received: list[str] = []
+        self.http: list[str] = []
+        pg.on("websocket", self._socket)
+        pg.on("request", lambda r: self.http.append(r.post_data or "")
+              if r.url.endswith("/api/drawing") else None)
+
+    def _socket(self, ws) -> None:
+        if ws.url.endswith("/api/drawing/ws"):
+            ws.on("framesent", lambda p: self.sent.append(p if isinstance(p, str) else p.decode()))
+            ws.on("framereceived", lambda p: self.received.append(p if isinstance(p, str) else p.decode()))
+
+
+def _open(browser, server, script: str | None = None):
+    """The crank-rocker in a new page whose network is watched from the start; `script` runs
+    in the page before its own."""
+    pg = browser.new_page(viewport={"width": 1280, "height": 900})
+    errors: list[str] = []
+    pg.on("pageerror", lambda e: errors.append(str(e)))
+    net = _Network(pg)
+    if script:
+        pg.add_init_script(script)
+    pg.goto(f"{server}/?library=crank-rocker")
+    pg.wait_for_selector("body[data-ready=true]", timeout=30_000)
+    return pg, net, errors
+
+
+def _drag_c(pg) -> None:
+    """C dragged in five steps, the button held (the drag's frames, without the whole motion)."""
+    pg.check("#edit")
+    pg.wait_for_timeout(300)
+    a = _client_of(pg, (15.0, 25.0))
+    pg.mouse.move(*a)
+    pg.mouse.down()
+    for k in range(1, 6):
+        pg.mouse.move(a[0] + 4 * k, a[1] - 3 * k)
+        pg.wait_for_timeout(60)
+
+
+def _frames(pg) -> list[dict]:
+    return pg.evaluate("window.linkworkFrames")
+
+
+def test_a_drag_over_the_socket_shows_the_http_drawing(browser, server):
+    """The drag's frames go over the WebSocket; the last shows, element for element, the SVG
+    that `POST /api/drawing` answers to the same request."""
+    import httpx
+
+    pg, net, errors = _open(browser, server)
+    try:
+        pg.wait_for_timeout(300)  # the socket opens with the page
+        before = len(net.http)
+        _drag_c(pg)
+        wait_drawn(pg, lambda: len(_frames(pg)) >= 1 and len(net.received) == len(net.sent),
+                   "draw the drag's frames")
+        pg.wait_for_timeout(300)
+        assert len(net.received) == len(net.sent) >= 1
+        assert {f["via"] for f in _frames(pg)} == {"socket"}
+        assert net.http[before:] == []  # no drawing over HTTP while the socket is open
+        last = json.loads(net.sent[-1])
+        assert last["source"]["points"]["C"] != [15.0, 25.0] and last["motion"] is False
+        http = httpx.post(f"{server}/api/drawing", json=last, timeout=30)
+        assert http.status_code == 200
+        assert json.loads(net.received[-1])["body"]["svg"] == http.json()["svg"]
+        assert _shown_is(pg, http.json()["svg"])
+        pg.mouse.up()
+    finally:
+        pg.close()
+    assert not errors, errors
+
+
+def test_an_unassemblable_drag_over_the_socket_shows_the_engines_message(browser, server):
+    pg, net, errors = _open(browser, server)
+    try:
+        pg.wait_for_timeout(300)  # the socket opens with the page
+        test_an_unassemblable_drag_shows_the_engines_message(pg)
+        answers = [json.loads(t) for t in net.received]
+        refused = [a for a in answers if a["status"] == 400]
+        assert refused and all(a["body"]["kind"] == "InputError" for a in refused)
+        assert "cannot be assembled" in refused[0]["body"]["error"]
+        assert {f["via"] for f in _frames(pg)} == {"socket"}
+    finally:
+        pg.close()
+    assert not errors, errors
+
+
+# a WebSocket that something between refuses (the server answers the wrong path with 403)
+NO_SOCKET = """window.WebSocket = class extends WebSocket {
+    constructor(url, protocols) { super(url.replace("/api/drawing/ws", "/api/refused"), protocols); }
+};"""
+
+
+def test_without_the_socket_the_drag_goes_over_http(browser, server):
+    pg, net, errors = _open(browser, server, NO_SOCKET)
+    try:
+        before = len(net.http)
+        _drag_c(pg)
+        wait_drawn(pg, lambda: len(_frames(pg)) >= 1, "draw the drag's frames")
+        assert _shows_the_last_drawing(pg)
+        assert {f["via"] for f in _frames(pg)} == {"http"}
+        assert len(net.http) - before >= len(_frames(pg))
+        assert net.received == []
+        pg.mouse.up()
+    finally:
+        pg.close()
+    assert not errors, errors

@@ -173,6 +173,75 @@ export async function postTimed<T>(path: string, body: unknown): Promise<Timed<T
   return { body: out, headers, parsed: performance.now(), server };
 }
 
+/** A closed socket's answer: the request goes over HTTP instead. */
+class SocketClosed extends Error {}
+
+/** The drawings over the server's WebSocket (`/api/drawing/ws`: the requests and answers of
+ * `POST /api/drawing`, without an HTTP round trip each), one request at a time; over HTTP when
+ * the socket is not open (not yet, closed, or refused by something between) or is busy. A
+ * closed socket is opened again on a later request, at most every 2 s. */
+export class DrawingSocket {
+  private ws: WebSocket | null = null;
+  private waiting: { resolve: (t: Timed<Drawing>) => void; reject: (e: unknown) => void } | null = null;
+  private tried = -Infinity;
+
+  constructor(private readonly url: string) {
+    this.connect();
+  }
+
+  private connect(): void {
+    const now = performance.now();
+    if (this.ws || typeof WebSocket === "undefined" || now - this.tried < 2000) return;
+    this.tried = now;
+    const ws = new WebSocket(this.url);
+    ws.onmessage = (ev) => {
+      const headers = performance.now();
+      const w = this.waiting;
+      this.waiting = null;
+      if (!w) return;
+      let a: { status: number; timing: Record<string, number>; body: unknown };
+      try {
+        a = JSON.parse(ev.data as string);
+      } catch {
+        w.reject(new ApiError("the server answered without JSON", 500, "Network"));
+        return;
+      }
+      const parsed = performance.now();
+      if (a.status >= 200 && a.status < 300) {
+        w.resolve({ body: a.body as Drawing, headers, parsed, server: a.timing });
+      } else {
+        const e = a.body as { error?: string; kind?: string };
+        w.reject(new ApiError(e.error ?? `error ${a.status}`, a.status, e.kind ?? "Error"));
+      }
+    };
+    ws.onclose = () => {
+      if (this.ws === ws) this.ws = null;
+      const w = this.waiting;
+      this.waiting = null;
+      w?.reject(new SocketClosed());
+    };
+    this.ws = ws;
+  }
+
+  /** The drawing for `req`, and how it came ("socket" or "http"). */
+  async drawing(req: DrawingRequest): Promise<Timed<Drawing> & { via: string }> {
+    this.connect();
+    const ws = this.ws;
+    if (ws && ws.readyState === WebSocket.OPEN && !this.waiting) {
+      try {
+        const answer = await new Promise<Timed<Drawing>>((resolve, reject) => {
+          this.waiting = { resolve, reject };
+          ws.send(JSON.stringify(req));
+        });
+        return { ...answer, via: "socket" };
+      } catch (e) {
+        if (!(e instanceof SocketClosed)) throw e;
+      }
+    }
+    return { ...(await postTimed<Drawing>("/api/drawing", req)), via: "http" };
+  }
+}
+
 /** A POST whose answer is a file (PNG, CSV); errors come as JSON like every other answer. */
 export async function postFile(path: string, body: unknown): Promise<Blob> {
   const r = await fetch(path, {

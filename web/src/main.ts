@@ -3,8 +3,8 @@
 // the page only asks, shows and maps the pointer into the drawing's world coordinates.
 
 import {
-  ApiError, Drawing, DrawingRequest, FullMotion, FullSample, LibraryList, MechanismInfo, Motion,
-  Source, Transform, XY, get, post, postFile, postTimed, toSvg, toWorld,
+  ApiError, Drawing, DrawingSocket, DrawingRequest, FullMotion, FullSample, LibraryList, MechanismInfo, Motion,
+  Source, Transform, XY, get, post, postFile, toSvg, toWorld,
 } from "./api";
 import { EditError, addEntry, addToLink, removeEntry, removeFromLinks } from "./edit";
 import { showSvg } from "./morph";
@@ -100,12 +100,15 @@ interface Frame {
   shown: number;
   painted: number;
   server: Record<string, number>;
+  via: string; // "socket" or "http"
 }
 
 // every drawing of a drag, as it went (a "linkworkframe" event on the window says when one is
 // added); bench/bench_workbench.py reads them
 const frames: Frame[] = [];
 Object.assign(window, { linkworkFrames: frames });
+// the drawings over a WebSocket while it is open (a drag's frames skip an HTTP round trip each)
+const drawings = new DrawingSocket(`${location.protocol === "https:" ? "wss" : "ws"}://${location.host}/api/drawing/ws`);
 let movedAt: { event: number; handler: number } | null = null; // the pointer's last move of a drag
 
 function source(): Source {
@@ -188,12 +191,12 @@ async function redraw(): Promise<void> {
       movedAt = null;
       try {
         const sent = performance.now();
-        const answer = await postTimed<Drawing>("/api/drawing", req);
+        const answer = await drawings.drawing(req);
         if (generation !== state.generation) continue;
         show(answer.body, req);
         if (asked) {
           const frame: Frame = { ...asked, sent, headers: answer.headers, parsed: answer.parsed,
-            shown: performance.now(), painted: NaN, server: answer.server };
+            shown: performance.now(), painted: NaN, server: answer.server, via: answer.via };
           // after the next paint: a task queued in the frame callback runs after it
           requestAnimationFrame(() => window.setTimeout(() => {
             frame.painted = performance.now();

@@ -9,6 +9,7 @@ becomes a 4xx answer with its message, anything else a 500 answer without a trac
 
 from __future__ import annotations
 
+import json
 import threading
 import time
 import tomllib
@@ -17,13 +18,15 @@ from contextlib import asynccontextmanager, contextmanager
 from importlib import resources
 from pathlib import Path
 from typing import Iterator
+from urllib.parse import urlsplit
 
 import numpy as np
-from fastapi import FastAPI, Request
+from fastapi import FastAPI, Request, WebSocket, WebSocketDisconnect
 from fastapi.encoders import jsonable_encoder
 from fastapi.exceptions import RequestValidationError
 from fastapi.responses import FileResponse, JSONResponse, Response
 from fastapi.staticfiles import StaticFiles
+from pydantic import ValidationError
 
 from ..errors import LinkworkError, LinkworkWarning, InputError, UnknownMechanismError
 from ..kinematics import Solution, Status, compiled_loops, solve, solve_at, whole_motion
@@ -111,7 +114,7 @@ class Stages:
 
     def __init__(self) -> None:
         self.ms: dict[str, float] = {}
-        self._cpu = time.thread_time()
+        self.cpu0 = time.thread_time()
 
     @contextmanager
     def __call__(self, name: str) -> Iterator[None]:
@@ -122,7 +125,7 @@ class Stages:
             self.ms[name] = self.ms.get(name, 0.0) + (time.perf_counter() - t) * 1e3
 
     def header(self) -> str:
-        ms = {**self.ms, "cpu": (time.thread_time() - self._cpu) * 1e3}
+        ms = {**self.ms, "cpu": (time.thread_time() - self.cpu0) * 1e3}
         return ", ".join(f"{k};dur={v:.2f}" for k, v in ms.items())
 
 
@@ -130,9 +133,9 @@ def _error(status: int, message: str, kind: str) -> JSONResponse:
     return JSONResponse({"error": message, "kind": kind}, status_code=status)
 
 
-def _validation_message(exc: RequestValidationError) -> str:
+def _validation_message(exc: RequestValidationError | ValidationError | list) -> str:
     parts = []
-    for e in exc.errors()[:5]:
+    for e in (exc if isinstance(exc, list) else exc.errors())[:5]:
         loc = ".".join(str(x) for x in e.get("loc", ()) if x != "body")
         parts.append(f"{loc or 'request'}: {e.get('msg', 'invalid')}")
     return "; ".join(parts)
@@ -177,6 +180,45 @@ def solve_request(mech: Mechanism, req: m.At, order: int | None = None,
         values = np.asarray(values, float)[:, None]
     times = None if req.times is None else np.asarray(req.times, float)
     return solve_at(mech, values, times=times, order=order, previous=previous, asked="at or times")
+
+
+def _json(doc) -> str:
+    """JSON text as the API's answers write it (`JSONResponse`: NaN refused, UTF-8 kept)."""
+    return json.dumps(jsonable_encoder(doc), ensure_ascii=False, allow_nan=False,
+                      separators=(",", ":"))
+
+
+def _socket_drawing(message: dict, answer) -> tuple[int, "Stages", str]:
+    """One drawing request of the socket answered as `/api/drawing` answers it: (status, the
+    stages, the JSON body), an error as its exception handlers write it."""
+    stage = Stages()
+    data = message.get("text")
+    if data is None:
+        data = message.get("bytes") or b""
+    size = len(data.encode() if isinstance(data, str) else data)
+    try:
+        if size > MAX_BODY:
+            return 413, stage, _json({"error": f"the request body is larger than {MAX_BODY} bytes",
+                                      "kind": "BodyTooLarge"})
+        # as FastAPI reads a body: the JSON parsed, then the Python object validated (so that
+        # the messages are the HTTP API's word for word)
+        try:
+            req = m.DrawingRequest.model_validate(json.loads(data))
+        except ValidationError as exc:
+            errors = exc.errors()
+        except ValueError as exc:  # not JSON, or bytes that are not UTF-8
+            errors = [{"loc": ("body", getattr(exc, "pos", 0)), "msg": "JSON decode error"}]
+        else:
+            text, stage = answer(req)
+            return 200, stage, text
+        return 422, stage, _json({"error": _validation_message(errors),
+                                  "kind": "RequestValidationError"})
+    except LinkworkError as exc:
+        status = 404 if isinstance(exc, UnknownMechanismError) else 400
+        return status, stage, _json({"error": str(exc), "kind": type(exc).__name__})
+    except Exception as exc:  # noqa: BLE001 - never a trace to the page, as over HTTP
+        return 500, stage, _json({"error": f"internal error in linkwork ({type(exc).__name__}); "
+                                           "please report it", "kind": "InternalError"})
 
 
 def mechanism_info(loaded, warned: list[str]) -> dict:
@@ -425,6 +467,17 @@ def create_app(workdir: str | Path | None = None, *, compiled: bool = False) -> 
         return {"name": req.name, "title": con.title, "steps": [s.text for s in con.steps],
                 "description": con.describe(), "warnings": warned}
 
+    def drawing_answer(req: m.DrawingRequest) -> tuple[str, Stages]:
+        """The answer of `/api/drawing` (its JSON text) and where its time went."""
+        stage = Stages()
+        with _warnings(compiled) as warned:
+            with stage("load"):
+                loaded = load(req.source)
+            doc = drawing(loaded.mechanism, req, loaded.previous, stage)
+        with stage("encode"):
+            text = _json({**doc, "warnings": warned})
+        return text, stage
+
     # run in the event loop itself, not handed to a worker thread and back: a drag's frame is a
     # few milliseconds of work, and on a loaded machine each hand-over waits for a core to wake
     # the other thread (the GIL lets no two requests compute at once anyway)
@@ -432,15 +485,34 @@ def create_app(workdir: str | Path | None = None, *, compiled: bool = False) -> 
     async def drawing_(req: m.DrawingRequest):
         """The SVG of `linkwork draw` at one position, with the layers and construction asked,
         the point positions drawn and how the drawing maps world to SVG coordinates."""
-        stage = Stages()
-        with _warnings(compiled) as warned:
-            with stage("load"):
-                loaded = load(req.source)
-            doc = drawing(loaded.mechanism, req, loaded.previous, stage)
-        with stage("encode"):
-            out = respond({**doc, "warnings": warned})
-        out.headers["Server-Timing"] = stage.header()
-        return out
+        text, stage = drawing_answer(req)
+        return Response(text, media_type="application/json",
+                        headers={"Server-Timing": stage.header()})
+
+    @app.websocket("/api/drawing/ws")
+    async def drawing_socket(ws: WebSocket):
+        """`/api/drawing` over a WebSocket, for a drag's frames (no HTTP round trip per frame):
+        each message is a drawing request, each answer `{"status", "timing", "body"}` with the
+        HTTP answer's status, its Server-Timing stages (ms) and its JSON body (the drawing, or
+        `{"error", "kind"}`). Only pages of this server may connect (a browser lets any site open
+        a socket to 127.0.0.1, and reads its answers: the same-origin rule of HTTP does not hold)."""
+        origin = ws.headers.get("origin")
+        if origin is not None and urlsplit(origin).netloc != ws.headers.get("host"):
+            await ws.close(code=1008, reason="another site's page may not use this socket")
+            return
+        await ws.accept()
+        try:
+            while True:
+                message = await ws.receive()
+                if message["type"] == "websocket.disconnect":
+                    return
+                t0 = time.perf_counter()
+                status, stage, body = _socket_drawing(message, drawing_answer)
+                timing = {**stage.ms, "cpu": (time.thread_time() - stage.cpu0) * 1e3,
+                          "app": (time.perf_counter() - t0) * 1e3}
+                await ws.send_text(f'{{"status":{status},"timing":{_json(timing)},"body":{body}}}')
+        except WebSocketDisconnect:
+            return
 
     @app.post("/api/drawing.png", responses={**errors, 200: {"content": {"image/png": {}}}},
               response_class=Response)
