@@ -11,6 +11,7 @@ lines) are checked here against the engine's values, never against the construct
 from __future__ import annotations
 
 import re
+import warnings
 from pathlib import Path
 
 import numpy as np
@@ -165,6 +166,22 @@ def test_chained_plan_has_two_images_where_loops_do_not_close():
     for X, Y in (("A", "B"), ("B", "C"), ("C", "A")):
         d = sol.point(Y).position - sol.point(X).position
         assert np.allclose(pts[Y] - pts[X], w2[:, None] * d, atol=1e-9 * np.abs(w2[:, None] * d).max())
+
+
+@pytest.mark.parametrize("name", ["pantograph", "roberval-balance"])
+def test_over_closed_chains_plan_each_loop_closing_hinge_once(name):
+    """An over-closed chain (the pantograph's parallelogram, Roberval's balance): the hinge that
+    closes a loop belongs to two groups of the solution order; its two images j, j′ are drawn
+    once (drawing them with both groups had raised "drawn twice"), and every acceleration of
+    the plan is the engine's."""
+    mech = linkwork.load(f"library:{name}")
+    x0 = mech.driver_input_at_design(mech.drivers[0])
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # the over-closed chain's warning
+        sol = solve(mech, x0 + np.array([0.0, 0.3, -0.4]))
+    con = acceleration_plan(mech, sol)
+    con.check()
+    assert con.max_error() <= 1e-9 and not con.degenerate.any()
 
 
 # ------------------------------------------------------------------ slides in moving planes

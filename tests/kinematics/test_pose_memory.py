@@ -9,11 +9,12 @@ import numpy as np
 
 import linkwork
 from linkwork.kinematics import solver
+from linkwork.kinematics.solution import Status
 
 
 def test_live_solutions_keep_their_memory_and_dropped_ones_lend_it(monkeypatch):
     monkeypatch.setattr(solver, "SPARE_FROM", 1)  # every pose array through the spare
-    monkeypatch.setattr(solver, "_SPARE", [None])
+    monkeypatch.setattr(solver, "_SPARE", [None, None])
     mech = linkwork.load("library:crank-rocker")
     u = np.linspace(0.0, 6.0, 5000)
     a = linkwork.solve(mech, u)
@@ -39,7 +40,7 @@ def test_a_view_of_a_point_or_link_keeps_nothing_and_a_kept_pose_keeps_its_memor
     """Reading points copies out of the pose array: dropping the solution frees it for the
     next solve; holding on to its pose array (a view) does not."""
     monkeypatch.setattr(solver, "SPARE_FROM", 1)
-    monkeypatch.setattr(solver, "_SPARE", [None])
+    monkeypatch.setattr(solver, "_SPARE", [None, None])
     mech = linkwork.load("library:crank-rocker")
     u = np.linspace(0.0, 6.0, 5000)
     sol = linkwork.solve(mech, u)
@@ -50,3 +51,46 @@ def test_a_view_of_a_point_or_link_keeps_nothing_and_a_kept_pose_keeps_its_memor
     other = linkwork.solve(mech, u + 1.0)
     assert not np.shares_memory(other._C, keep)
     assert not np.shares_memory(other._C, C)
+
+
+def test_frame_rows_are_kept_zero_only_by_solves_that_do_not_write_them(monkeypatch):
+    """A solve whose every sample assembles leaves the frame's rows zero and says so: the next
+    pose array of its shape in that memory keeps them; a solve with unassembled samples (NaN
+    in every row of those) does not, and the next one zeroes them again. Either way the answer
+    is the one in fresh memory."""
+    monkeypatch.setattr(solver, "SPARE_FROM", 1)
+    monkeypatch.setattr(solver, "_SPARE", [None, None])
+    rocker = linkwork.load("library:double-rocker")
+    u = rocker.driver_input_at_design(rocker.drivers[0]) + np.linspace(-np.pi, np.pi, 3000)
+    frame = rocker.link_index[rocker.frame]
+
+    def fresh(v):
+        monkeypatch.setattr(solver, "SPARE_FROM", 1 << 60)
+        try:
+            return linkwork.solve(rocker, v)._C.copy()
+        finally:
+            monkeypatch.setattr(solver, "SPARE_FROM", 1)
+
+    def same(C, expect):
+        np.testing.assert_array_equal(np.isnan(C), np.isnan(expect))
+        np.testing.assert_array_equal(np.nan_to_num(C), np.nan_to_num(expect))
+
+    a = linkwork.solve(rocker, u)  # a double-rocker: some of these do not assemble
+    assert (a.status == Status.UNREACHABLE).any() and np.isnan(a._C[:, :, frame]).any()
+    assert solver._SPARE[1] is None
+    del a
+    gc.collect()
+    ok = u[linkwork.solve(rocker, u).status != Status.UNREACHABLE]
+    gc.collect()
+    v = np.resize(ok, u.size)  # the same shape, every sample assembling
+    b = linkwork.solve(rocker, v)  # in the NaN-marked memory: the frame's rows zeroed again
+    assert not np.isnan(b._C[:, :, frame]).any() and (b._C[:, :, frame] == 0.0).all()
+    same(b._C, fresh(v))
+    assert solver._SPARE[1] is not None  # kept zero, and said so
+    spare = b._C.__array_interface__["data"][0]
+    del b
+    gc.collect()
+    c = linkwork.solve(rocker, v[::-1].copy())  # the same memory, its frame rows not written
+    assert c._C.__array_interface__["data"][0] == spare
+    assert (c._C[:, :, frame] == 0.0).all()
+    same(c._C, fresh(v[::-1].copy()))

@@ -704,7 +704,8 @@ class AccelerationDrawer(ScriptDrawer):
         is laid off again at the other (the transfer rule)."""
         b = self.ac.b
         for P, L, T in self.chain.hinges:
-            if not ({L, T} & links) or (P, L, T) in self.tree or (P, T, L) in self.tree:
+            if not ({L, T} & links) or (P, L, T) in self.tree or (P, T, L) in self.tree \
+                    or f"a.twice.{P}.1" in b.elements:  # drawn with its other link's group
                 continue
             if L == self.mech.frame or T == self.mech.frame:
                 continue

@@ -24,9 +24,9 @@ import numpy as np
 from .construction import Builder, Construction, Role, safe_join
 from ..geometry import Point
 from ..instant import pole_schedule, poles
-from ..instant.poles import gear_pitch_point, pole_label
-from ..model import CircularSlot, Mechanism
-from ._common import singular_positions, as_solution, perp, rotate
+from ..instant.poles import contact_normal_line, pole_label, primary_pole
+from ..model import Mechanism
+from ._common import as_solution, singular_positions
 
 SOURCE = "Rosenauer §62, §75, §91–92; Pöschl §51 (Aronhold–Kennedy three-pole theorem)"
 
@@ -48,21 +48,15 @@ def kennedy(mech: Mechanism, inputs) -> Construction:
     legend = ", ".join(f"{i + 1} = {ln}" for i, ln in enumerate(links))
     b.step(f"Number the links ({legend}); the mechanism has {len(links) * (len(links) - 1) // 2} poles.")
     known: dict[tuple[str, str], Point] = {}
+    words = {"hinge": "the hinge {}", "common hinge": "the hinge {}",
+             "slider": "at infinity, normal to the guide of {}",
+             "gear": "the pitch point of the gear pair {}",
+             "rolling": "the point of contact of the rolling pair {}"}
     for st in sch.primary:
         lab = _lab(links, st.pair)
-        j = mech.joint(st.joint)
-        if st.rule in ("hinge", "common hinge"):
-            P = Point.from_xy(sol.point(j.point).position)
-            b.step(f"{lab} is the hinge {st.joint}.")
-        elif st.rule == "slider":
-            th = sol.pose_derivatives(j.links[0])[0, :, 2]
-            ax = rotate(th, np.broadcast_to(np.asarray(j.axis, float), (n, 2)))
-            P = Point.at_infinity(perp(ax))
-            b.step(f"{lab} lies at infinity, normal to the guide of {st.joint}.")
-        else:
-            P = Point.from_xy(gear_pitch_point(sol, j))
-            b.step(f"{lab} is the pitch point of the gear pair {st.joint}.")
-        known[st.pair] = b.point(f"pole.{pole_label(links, st.pair)}", P, Role.GIVEN, lab, kind="pole")
+        b.step(f"{lab} is {words[st.rule].format(st.joint)}.")
+        known[st.pair] = b.point(f"pole.{pole_label(links, st.pair)}", Point(primary_pole(sol, st)),
+                                 Role.GIVEN, lab, kind="pole")
     for st in sch.derived:
         lab = _lab(links, st.pair)
         lines, texts = [], []
@@ -73,7 +67,7 @@ def kennedy(mech: Mechanism, inputs) -> Construction:
                 texts.append("".join(_lab(links, x) for x in src.poles))
                 lines.append((ln, (p, q)))
             else:
-                ln, through = _normal(mech, sol, src.joint)
+                ln, through = _normal(sol, src.joint)
                 texts.append(f"the contact normal of {src.joint}")
                 lines.append((ln, (through,)))
         b.step(f"{lab} = {texts[0]} \u2229 {texts[1]} (three-pole theorem).")
@@ -101,19 +95,16 @@ def kennedy(mech: Mechanism, inputs) -> Construction:
     return b.finish()
 
 
-def _normal(mech: Mechanism, sol, joint: str):
-    """The contact normal of a pin in a slot: through the pin, normal to a straight slot, or
-    through the centre of a circular one."""
-    j = mech.joint(joint)
-    pin = Point.from_xy(sol.point_on(j.links[1], mech.points[j.point]).position)
-    n = len(sol)
-    if isinstance(j, CircularSlot):
-        c = Point.from_xy(sol.point_on(j.links[0], mech.points[j.center]).position)
+def _normal(sol, joint: str):
+    """The line through the relative pole of a pin in a slot, a cam or an intermittent pair
+    (`instant.poles.contact_normal_line`) and the points it is drawn through."""
+    X, d, K = contact_normal_line(sol, joint)
+    pin = Point.from_xy(X)
+    if K is not None:  # a circular slot: through the pin and the slot's centre
+        c = Point.from_xy(K)
         ln, _ = safe_join(pin, c)
         return ln, (pin, c)
-    th = sol.pose_derivatives(j.links[0])[0, :, 2]
-    ax = rotate(th, np.broadcast_to(np.asarray(j.axis, float), (n, 2)))
-    ln, _ = safe_join(pin, Point.at_infinity(perp(ax)))
+    ln, _ = safe_join(pin, Point.at_infinity(d))
     return ln, (pin,)
 
 

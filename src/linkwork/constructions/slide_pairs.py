@@ -154,7 +154,11 @@ def slide_pairs(mech: Mechanism, inputs, kv: float | None = None) -> Constructio
         b.compare(f"check_{j.name}_oa", f"o{la}\u2032 \u27c2 {nA}P_{G}", "cosine between oa' and AP_G",
                   dot(_unit(vG_A), _unit(P_G - PA)), np.zeros(n), one)
         # ---------------------------------------------------------------- half-Coriolis
-        k = kv if kv is not None else 0.5 / max(float(np.nanmax(abs(w))), 1e-300)
+        top = float(np.nanmax(abs(w))) if np.isfinite(w).any() else 0.0
+        # the drawing's scale: ω·k = ½; links that only translate (no Coriolis term, the
+        # triangles collapse, reported above): velocities drawn at half the mechanism's size
+        k = kv if kv is not None else 0.5 / top if top > 0.0 else \
+            0.5 * mech.length_scale / max(float(np.nanmax(vscale)), 1e-300)
         u_rel = k * perp(vrel)                 # the rotated sliding velocity, on the relative ray
         u_car = k * perp(vG_A)                 # the rotated carrying velocity of A, along AP_G
         b.step(f"Half-Coriolis (paper 5): lay the rotated sliding velocity on the relative ray at "

@@ -440,8 +440,9 @@ def _unscaled(s: np.ndarray, L: float) -> np.ndarray:
     return np.concatenate([s[:, :2] * L, s[:, 2:]], axis=1)
 
 
-def _primary_pole(solution: Solution, step: PoleStep) -> np.ndarray:
-    """Homogeneous (N, 3) coordinates of a primary pole."""
+def primary_pole(solution: Solution, step: PoleStep) -> np.ndarray:
+    """Homogeneous (N, 3) coordinates of a primary pole (read off its pair: a hinge, at infinity
+    normal to a guide, a gear pair's pitch point, a rolling pair's point of contact)."""
     mech = solution.mechanism
     j = mech.joint(step.joint)
     N = len(solution)
@@ -477,31 +478,36 @@ def gear_pitch_point(solution: Solution, g: Gear) -> np.ndarray:
     return (r2 * c1 - r1 * c2) / (r2 - r1)
 
 
-def _normal_line(solution: Solution, joint: str, L: float) -> np.ndarray:
-    """Scaled homogeneous line (N, 3): the contact normal of a pin in a slot or of a cam."""
+def contact_normal_line(solution: Solution, joint: str) -> tuple:
+    """The line through the relative pole of the two links of a pin in a slot, a cam contact or
+    an intermittent pair (Rosenauer §65; for higher pairs the profiles' common normal, Reuleaux,
+    Pöschl §45): a point X (N, 2) of it, its direction (N, 2), and for a circular slot its
+    centre K (N, 2), the line's second point (else None)."""
     mech = solution.mechanism
     j = mech.joint(joint)
     a, b = j.links
-    if isinstance(j, CamContact) or is_intermittent(j):
-        if is_intermittent(j):
-            X, n = contact_normal(solution, joint)
-            g = perp(n)
-        else:
-            rep = solution.joint(joint)
-            g, X = perp(rep["normal"]), rep["point"]  # the normal through the contact point
-        line = np.concatenate([g, -(g * X).sum(1, keepdims=True) / L], axis=1)
-        with np.errstate(invalid="ignore", divide="ignore"):
-            return line / np.linalg.norm(line, axis=1, keepdims=True)
+    if is_intermittent(j):
+        X, n = contact_normal(solution, joint)
+        return X, n, None
+    if isinstance(j, CamContact):
+        rep = solution.joint(joint)
+        return rep["point"], rep["normal"], None  # the normal through the contact point
     X = solution.point_on(b, mech.points[j.point]).position
-    N = len(solution)
-    if isinstance(j, Slot):
-        g = rotate(solution.pose_derivatives(a)[0, :, 2], j.axis)
+    if isinstance(j, Slot):  # normal to the slot at the pin
+        return X, -perp(rotate(solution.pose_derivatives(a)[0, :, 2], j.axis)), None
+    return X, None, solution.point_on(a, mech.points[j.center]).position
+
+
+def _normal_line(solution: Solution, joint: str, L: float) -> np.ndarray:
+    """Scaled homogeneous line (N, 3) of `contact_normal_line`."""
+    X, d, K = contact_normal_line(solution, joint)
+    if K is None:
+        g = perp(d)
         line = np.concatenate([g, -(g * X).sum(1, keepdims=True) / L], axis=1)
     else:
-        K = solution.point_on(a, mech.points[j.center]).position
-        p = _scaled(np.concatenate([X, np.ones((N, 1))], axis=1), L)
-        q = _scaled(np.concatenate([K, np.ones((N, 1))], axis=1), L)
-        line = np.cross(p, q)
+        ones = np.ones((len(X), 1))
+        line = np.cross(_scaled(np.concatenate([X, ones], axis=1), L),
+                        _scaled(np.concatenate([K, ones], axis=1), L))
     with np.errstate(invalid="ignore", divide="ignore"):
         return line / np.linalg.norm(line, axis=1, keepdims=True)
 
@@ -520,7 +526,7 @@ def kennedy_poles(solution: Solution, schedule: PoleSchedule | None = None) -> P
     scaled: dict[Pair, np.ndarray] = {}
     for step in schedule.steps:
         if step.rule in PRIMARY_RULES:
-            scaled[step.pair] = _scaled(_primary_pole(solution, step), L)
+            scaled[step.pair] = _scaled(primary_pole(solution, step), L)
             continue
         lines = []
         for src in step.lines:

@@ -215,6 +215,7 @@ def _placed(designs: list[_Search], us: list[np.ndarray], groups: list[int] | No
     ok = np.ones(S, dtype=bool)
     R = np.empty((max(max(s.tab.vectors for s in designs), 1), B))
     signs = np.empty((max(max(len(s.tab.signs) for s in designs), 1), B))
+    nan = np.full(signs.shape[0], np.nan)  # every sign row read (`kernels.fused_positions`)
     for k, (s, u, lo, hi) in enumerate(zip(designs, us, starts[:-1], starts[1:])):
         T[s.mech.link_index[s.mech.frame], 0, lo:hi] = 1.0
         U[0, 0, lo:hi] = u
@@ -222,8 +223,8 @@ def _placed(designs: list[_Search], us: list[np.ndarray], groups: list[int] | No
         for row, (group, design) in enumerate(s.tab.signs):
             signs[row, :hi - lo] = given.get(group, design)
         g = len(s.tab.ops) if groups is None else groups[k]
-        kernels.fused_positions(ok, s.tab.ops[:g], s.tab.fl[:g], Q0, T, U, signs, R, int(lo),
-                                int(hi))
+        kernels.fused_positions(ok, s.tab.ops[:g], s.tab.fl[:g], Q0, T, U, signs, nan, R,
+                                int(lo), int(hi))
     return [ok[lo:hi] for lo, hi in zip(starts[:-1], starts[1:])], (Q0, T, starts)
 
 

@@ -45,7 +45,8 @@ class Tables:
     ops: np.ndarray
     fl: np.ndarray  # (groups, 18) float64: the group's constants (`GroupSolver.fast`)
     #: in order: (hinge-vector row, link, φ): the link's angle is arctan2 of the row's vector
-    #: less φ; (−1, block, guide): the block keeps the guide's angle
+    #: less φ; (−1, block, guide): the block keeps the guide's angle (a guide on the frame:
+    #: none, the loop has written the block's angle 0)
     angles: tuple
     vectors: int  # rows of hinge vectors
     signs: tuple  # per sign row: (group, design sign)
@@ -78,7 +79,9 @@ def tables(mech: Mechanism, solvers: tuple[GroupSolver, ...]) -> Tables | None:
             o[:7] = kernels.RRP, f["iA"], f["ig"], f["ir"], f["ib"], len(signs), vectors
             c[:14] = (*f["A"], *f["P"], *f["e0"], f["rsq"], f["tol"], s.design_sign, *f["k"],
                       *f["AP"], f["length"])
-            angles += [(vectors, f["ir"], f["phi"]), (-1, f["ib"], f["ig"])]
+            angles.append((vectors, f["ir"], f["phi"]))
+            if f["ig"] != frame:  # the block's angle is the guide's, known only after the loop
+                angles.append((-1, f["ib"], f["ig"]))  # (on the frame: written in the loop)
             vectors += 2
         else:
             return None
@@ -94,14 +97,16 @@ def solve_blocks(mech: Mechanism, tab: Tables, solvers, Q: np.ndarray, T: np.nda
                  inputs: dict, branches_in, assembled: np.ndarray, condition: np.ndarray,
                  errors: np.ndarray, status_errors: np.ndarray, can_polish: bool,
                  U: np.ndarray | None = None, start: int = 0, stop: int | None = None,
-                 block: int = 1 << 17) -> None:
+                 block: int = 1 << 17) -> bool:
     """Fill Q (Q[k, n, link, (x, y, θ)], order 2), T, and per sample `assembled`, `condition`,
-    `errors`, `status_errors` as the per-group loop of `solver.solve` does, block by block:
-    the samples start … stop − 1 (all by default) of these arrays (`designs.solve_designs`: one
-    design's part of a batch of designs; U the stacked inputs, if at hand), `block` samples at
+    `errors`, `status_errors` (whatever they held before) as the per-group loop of
+    `solver.solve` does, block by block: the samples start … stop − 1 (all by default) of these
+    arrays (`designs.solve_designs`: one design's part of a batch of designs; U the stacked
+    inputs, if at hand), `block` samples at
     a time (`solver.KERNEL_BLOCK`: the hinge vectors, assembly signs and error-bound work arrays
     are block-sized, not batch-sized; smaller blocks, which stay in the CPU's cache between the
-    two passes, measured no faster)."""
+    two passes, measured no faster). Returns whether a sample was polished (its poses
+    rewritten, the frame's rows too)."""
     N = Q.shape[1] if stop is None else stop
     Qm = Q.transpose(0, 2, 3, 1)  # Qm[k, link, (x, y, θ), n]: the memory's order
     Q0 = Qm[0]
@@ -114,16 +119,22 @@ def solve_blocks(mech: Mechanism, tab: Tables, solvers, Q: np.ndarray, T: np.nda
     B = max(1, min(N - start, block))
     R = np.empty((max(tab.vectors, 1), B))
     signs = np.empty((max(len(tab.signs), 1), B))
+    fixed = np.empty(max(len(tab.signs), 1))
     E0 = np.empty(B)
     m, E = np.empty((3, B)), np.empty((3, B))
     L, m0 = mech.length_scale, coordinate_size(mech)
+    polished = False
     for lo in range(start, N, B):
         hi = min(N, lo + B)
         sl, nb = slice(lo, hi), hi - lo
         given = branches_in(sl)
         for row, (group, design) in enumerate(tab.signs):
-            signs[row, :nb] = given.get(group, design)
-        kernels.fused_positions(assembled, tab.ops, tab.fl, Q0, T, U, signs, R, lo, hi)
+            if group in given:  # its change points: a sign per sample
+                signs[row, :nb] = given[group]
+                fixed[row] = np.nan
+            else:  # the design's sign at every sample: a number, not a row of them
+                fixed[row] = design
+        kernels.fused_positions(assembled, tab.ops, tab.fl, Q0, T, U, signs, fixed, R, lo, hi)
         for row, i, phi in tab.angles:
             if row >= 0:  # in place: no temporary of the block's size
                 np.arctan2(R[row + 1, :nb], R[row, :nb], out=Q0[i, 2, sl])
@@ -145,7 +156,9 @@ def solve_blocks(mech: Mechanism, tab: Tables, solvers, Q: np.ndarray, T: np.nda
         sel = np.flatnonzero(ok & (serr > TOLERANCE) & (cond < POLISH_LIMIT)) \
             if can_polish and not serr.max(initial=0.0) <= TOLERANCE else np.zeros(0, dtype=int)
         if sel.size:
+            polished = True
             e, se, c = polish(mech, solvers, Qb, T[:, :, sl],
                               {j: v[:, sl] for j, v in inputs.items()}, sel, E0[sel])
             done = np.isfinite(e)
             err[sel[done]], serr[sel[done]], cond[sel[done]] = e[done], se[done], c[done]
+    return polished

@@ -166,17 +166,19 @@ def input_coefficients(mech: Mechanism, values: np.ndarray, rates: np.ndarray | 
     """Per driver joint, the (order+1, N) Taylor coefficients of its input (values, rates,
     accelerations, jerks and snaps given per sample; a constant-speed law supplies the rate)."""
     out = {}
+    extra = [rates, accels, jerks, snaps]
     for i, d in enumerate(mech.drivers):
-        der = np.zeros((order + 1, values.shape[0]))
-        der[0] = values[:, i]
-        extra = [rates, accels, jerks, snaps]
+        der = np.empty((order + 1, values.shape[0]))  # every row written once, in place (no
+        der[0] = values[:, i]                         # temporaries of the batch's size)
         for k in range(1, order + 1):
             given = extra[k - 1]
             if given is not None:
-                der[k] = given[:, i]
+                np.divide(given[:, i], factorial(k), out=der[k])
             elif k == 1 and isinstance(d.law, ConstantSpeed):
                 der[k] = d.law.speed
-        out[d.joint] = der / np.array([factorial(k) for k in range(order + 1)])[:, None]
+            else:
+                der[k] = 0.0
+        out[d.joint] = der
     return out
 
 

@@ -893,11 +893,12 @@ def _rrp_block_rates(QA, QG, Q, T, iA, a0, a1, ig, p0, p1, e00, e01, ap0, ap1, l
         else:
             vAx, vAy, aAx, aAy = _point_rates(QA, T, iA, a0, a1, k)
         c, sn = T[ir, 0, k], T[ir, 1, k]
-        if QG is None:
+        if QG is None:  # the block at angle 0, as its positions wrote (its rows not read)
             ex, ey = e00, e01
-            lam = Q[0, ib, 0, k] * ex + Q[0, ib, 1, k] * ey
             vcx = vcy = acx = acy = og = ag = 0.0
+            cb, sb, tb = 1.0, 0.0, 0.0
         else:
+            cb, sb, tb = T[ib, 0, k], T[ib, 1, k], Q[0, ib, 2, k]
             cg, sg = T[ig, 0, k], T[ig, 1, k]
             ex, ey = cg * e00 - sg * e01, sg * e00 + cg * e01
             # P's place along the track (the block and the guide have the same angle)
@@ -909,29 +910,31 @@ def _rrp_block_rates(QA, QG, Q, T, iA, a0, a1, ig, p0, p1, e00, e01, ap0, ap1, l
             unreliable)
         r0, r1, r2, t0, t1, t2 = _origin_rates(c, sn, a0, a1, vAx, vAy, aAx, aAy, om, al)
         vrx[k], vry[k], vrt[k], wrx[k], wry[k], wrt[k] = r0, r1, r2, t0, t1, t2
-        q0, q1, q2, u0, u1, u2 = _origin_rates(T[ib, 0, k], T[ib, 1, k], p0, p1, vPx, vPy, aPx,
-                                               aPy, og, ag)
+        q0, q1, q2, u0, u1, u2 = _origin_rates(cb, sb, p0, p1, vPx, vPy, aPx, aPy, og, ag)
         vbx[k], vby[k], vbt[k], wbx[k], wby[k], wbt[k] = q0, q1, q2, u0, u1, u2
         inv = inv_omega[j]
         m0[j], m1[j], m2[j], E0[j], E1[j], E2[j] = _bound_2(
             kap, eps, m0[j], m1[j], m2[j], E0[j], E1[j], E2[j],
-            max(abs(Q[0, ir, 2, k]) * (1.0 / math.pi), abs(Q[0, ib, 2, k]) * (1.0 / math.pi)),
+            max(abs(Q[0, ir, 2, k]) * (1.0 / math.pi), abs(tb) * (1.0 / math.pi)),
             max(_size3(r0, r1, r2, L) * inv, _size3(q0, q1, q2, L) * inv),
             max(_size3(t0, t1, t2, L) * inv * inv, _size3(u0, u1, u2, L) * inv * inv))
         cond[k] = kap if kap > cond[k] else cond[k]
 
 
 @_loop(0)
-def fused_positions(ok, ops, fl, Q0, T, U, signs, R, lo, hi):
+def fused_positions(ok, ops, fl, Q0, T, U, signs, fixed, R, lo, hi):
     """Positions of every group of a mechanism at the samples lo … hi − 1 (a block), through
     the whole solution order (the tables `ops`, `fl` of `fused.tables`: per group its opcode,
     link indices and constants), each group's loop over the block a vectorised block loop
     (`_rrr_block_positions` …) with the group's constants in registers. ok[n]: every group
     assembles. U[driver, k, n]: the inputs' Taylor coefficients; signs[row, n − lo]: the dyads'
-    assembly signs; the dyads' hinge vectors go to R[col …, n − lo] for the caller's
+    assembly signs, or fixed[row] where it is a number (the dyad's sign at every sample: the row
+    not read, the loop given a sub-block's copy of it, which stays in the L1 cache; NaN: the
+    row's); the dyads' hinge vectors go to R[col …, n − lo] for the caller's
     vectorised arctan2."""
     for n in range(lo, hi):
         ok[n] = True
+    own = np.empty(SUBBLOCK)
     for lo2 in range(lo, hi, SUBBLOCK):  # each group's inputs still in the cache
         hi2 = min(hi, lo2 + SUBBLOCK)
         a, b = lo2 - lo, hi2 - lo
@@ -942,6 +945,11 @@ def fused_positions(ok, ops, fl, Q0, T, U, signs, R, lo, hi):
                 fl[g, 5], fl[g, 6]
             f7, f8, f9, f10, f11 = fl[g, 7], fl[g, 8], fl[g, 9], fl[g, 10], fl[g, 11]
             still = ops[g, 7]
+            if op != DRIVER:
+                sign = signs[row][a:b]
+                if fixed[row] == fixed[row]:
+                    sign = own[:b - a]
+                    sign[:] = fixed[row]
             if op == DRIVER and _within(U[i3, 0], f2, lo2, hi2):
                 _driver_block_positions(U[i3, 0], f2, f0, f1, Q0[i2, 0], Q0[i2, 1], Q0[i2, 2],
                                         T[i2, 0], T[i2, 1], ok, lo2, hi2)
@@ -951,7 +959,7 @@ def fused_positions(ok, ops, fl, Q0, T, U, signs, R, lo, hi):
                     _driver_position(Q0, T, i1, i2, f0, f1, u, f2, n)
                     ok[n] = ok[n] & (u - u == 0.0)
             elif op == RRR:
-                rrr_pos = (T, i1, f0, f1, i2, f2, f3, f4, f5, f6, signs[row][a:b], f8, f9, f10,
+                rrr_pos = (T, i1, f0, f1, i2, f2, f3, f4, f5, f6, sign, f8, f9, f10,
                         f11, Q0[i3, 0], Q0[i3, 1], T[i3, 0], T[i3, 1], Q0[i4, 0], Q0[i4, 1],
                         T[i4, 0], T[i4, 1], R[c][a:b], R[c + 1][a:b], R[c + 2][a:b],
                         R[c + 3][a:b], ok, lo2, hi2)
@@ -962,7 +970,7 @@ def fused_positions(ok, ops, fl, Q0, T, U, signs, R, lo, hi):
                 else:
                     _rrr_block_positions(Q0, Q0, *rrr_pos)
             else:
-                rrp_pos = (T, i1, f0, f1, i2, f2, f3, f4, f5, f6, f7, signs[row][a:b], f9, f10,
+                rrp_pos = (T, i1, f0, f1, i2, f2, f3, f4, f5, f6, f7, sign, f9, f10,
                         Q0[i3, 0], Q0[i3, 1], T[i3, 0], T[i3, 1], Q0[i4, 0], Q0[i4, 1],
                         Q0[i4, 2], T[i4, 0], T[i4, 1], R[c][a:b], R[c + 1][a:b], ok, lo2, hi2)
                 if still == 1:
@@ -977,8 +985,8 @@ def fused_positions(ok, ops, fl, Q0, T, U, signs, R, lo, hi):
 def fused_rates(cond, ops, fl, Q, T, U, per, L, eps, m0, unreliable, plain, weighted, err, serr,
                 E0, m, E, lo, hi):
     """Velocities and accelerations of every group at the samples lo … hi − 1 (a block),
-    through the solution order as in `fused_positions`, with the condition numbers (cond[n]
-    raised to the groups'), the forward error bounds of `precision.ErrorBudget` (work arrays
+    through the solution order as in `fused_positions`, with the condition numbers (cond[n]:
+    the largest of 1 and the groups'), the forward error bounds of `precision.ErrorBudget` (work arrays
     m, E of the block's size; m0: the drawing's coordinates over L) and their relative values
     (`relative_errors` with the weights `plain` into err, `weighted` into serr); E0[n − lo]:
     the positions' bound."""
@@ -988,7 +996,7 @@ def fused_rates(cond, ops, fl, Q, T, U, per, L, eps, m0, unreliable, plain, weig
         m0r, m1r, m2r, E0r, E1r, E2r = m[0], m[1], m[2], E[0], E[1], E[2]
         for d in range(U.shape[0]):  # 1/Ω in inv until the end (`_rate_scale`)
             _rate_scale_block(U[d, 1], U[d, 2], per[d], inv, d == 0, lo2, hi2)
-        _bounds_start_block(m0, inv, m0r, m1r, m2r, E0r, E1r, E2r, lo2, hi2)
+        _bounds_start_block(m0, inv, m0r, m1r, m2r, E0r, E1r, E2r, cond, lo2, hi2)
         for g in range(ops.shape[0]):
             op, i1, i2, i3, i4 = ops[g, 0], ops[g, 1], ops[g, 2], ops[g, 3], ops[g, 4]
             f0, f1, f2, f3, f4, f5 = fl[g, 0], fl[g, 1], fl[g, 2], fl[g, 3], fl[g, 4], fl[g, 5]
@@ -1042,14 +1050,16 @@ def _rate_scale_block(u1, u2, per, top, first, lo, hi):
 
 
 @_rows
-def _bounds_start_block(m0, inv, m0r, m1r, m2r, E0r, E1r, E2r, lo, hi):
+def _bounds_start_block(m0, inv, m0r, m1r, m2r, E0r, E1r, E2r, cond, lo, hi):
     """The error bounds' start on a block (`precision.ErrorBudget`): sizes m0 (the drawing's
-    coordinates), 0, 0, bounds 0; inv[j]: Ω there, 1/Ω here (Ω = 1 where every rate is 0)."""
+    coordinates), 0, 0, bounds 0, the condition numbers cond[n] 1 (the caller's array need not
+    be filled); inv[j]: Ω there, 1/Ω here (Ω = 1 where every rate is 0)."""
     for j in range(hi - lo):
         i = _at(j)
         t = inv[i]
         inv[i] = 1.0 / (t if t > 0.0 else 1.0)
         m0r[i], m1r[i], m2r[i], E0r[i], E1r[i], E2r[i] = m0, 0.0, 0.0, 0.0, 0.0, 0.0
+        cond[_at(lo + j)] = 1.0
 
 
 @_rows

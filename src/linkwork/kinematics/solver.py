@@ -55,38 +55,63 @@ def plan(mech: Mechanism) -> tuple[GroupSolver, ...]:
 #: the last one once no solution refers to it any more (`_pose_memory`): below it, the C
 #: library's allocator keeps freed memory for the next request itself; above it, it hands the
 #: memory back to the system, and a new array of that size is paid again page by page (first
-#: touches: a fifth of the time of a Jansen linkage's solve in a loop of solves)
+#: touches: a fifth of the time of a Jansen linkage's solve in a loop of solves). Not lower:
+#: from 16 MB (a four-bar's 100 000 samples, 27 MB, kept as the spare) the four-bar's solve
+#: in a loop took 2.5 times as long, measured: the allocator, no longer given back a freed
+#: array that large, does not raise its threshold for fresh memory from the system above the
+#: other arrays' sizes, and each of them is paid page by page again.
 SPARE_FROM = 1 << 25
 SPARE_UP_TO = 1 << 29  # … not beyond: a batch of millions keeps no gigabytes alive
-_SPARE: list = [None]
+#: the spare buffer, and (shape, frame) of the pose array in it whose frame rows are known to be
+#: zero (None: not known)
+_SPARE: list = [None, None]
 _SPARE_LOCK = threading.Lock()
 
 
-def _pose_memory(size: int) -> np.ndarray:
+def _pose_memory(size: int, key=None) -> tuple[np.ndarray, bool]:
     """`size` float64s: the spare buffer of the last large pose array when no one refers to it
     (no `Solution` alive: its only references are the slot and this call), else fresh memory,
-    which then becomes the spare."""
+    which then becomes the spare; and whether it is the spare with the frame rows of `key`
+    zero (until marked again, they are not known to be)."""
     if not SPARE_FROM <= 8 * size <= SPARE_UP_TO:
-        return np.empty(size)
+        return np.empty(size), False
     with _SPARE_LOCK:
-        buf = _SPARE[0]
+        buf, zero = _SPARE
+        _SPARE[1] = None
         # references: the slot, `buf` and getrefcount's argument
         if buf is not None and size <= buf.size <= 2 * size and sys.getrefcount(buf) == 3:
-            return buf[:size]
-        _SPARE[0] = buf = np.empty(size)
-        return buf
+            return buf[:size], key is not None and zero == key
+        _SPARE[0] = np.empty(size)
+        return _SPARE[0], False
 
 
 def _pose_array(order: int, N: int, n_links: int, frame: int) -> np.ndarray:
     """Q[k, n, link, (x, y, θ)], stored with the sample axis last in memory, so that every
     Q[k, :, link, c] the group solvers and `Solution` work on is contiguous (a C-ordered array
-    would make each of them a strided walk over all of Q[k]). The frame's rows are zero; every
-    other link's rows are written by the group that solves it (not zeroed first: on large
-    batches that pass over memory is a noticeable part of the solve)."""
+    would make each of them a strided walk over all of Q[k]). The frame's rows are zero (set
+    here unless the spare memory holds them zero already, `_frame_rows_kept`); every other
+    link's rows are written by the group that solves it (not zeroed first: on large batches
+    that pass over memory is a noticeable part of the solve)."""
     shape = (order + 1, n_links, 3, N)
-    Q = _pose_memory(int(np.prod(shape))).reshape(shape)
-    Q[:, frame] = 0.0
+    mem, zero = _pose_memory(int(np.prod(shape)), (shape, frame))
+    Q = mem.reshape(shape)
+    if not zero:
+        Q[:, frame] = 0.0
     return Q.transpose(0, 3, 1, 2)
+
+
+def _frame_rows_kept(Q: np.ndarray, frame: int) -> None:
+    """Note that the pose array Q (of `_pose_array`) leaves the solve with its frame rows as
+    they were made, zero: when its memory is lent again as the spare for a pose array of the
+    same shape and frame, they need not be written again (7 MB of a four-bar's 100 000
+    samples). Only for solves in which nothing else writes them (no NaN of unassembled
+    samples, no polish)."""
+    shape = (Q.shape[0], Q.shape[2], Q.shape[3], Q.shape[1])
+    with _SPARE_LOCK:
+        buf = _SPARE[0]
+        if buf is not None and Q.size <= buf.size and \
+                Q.__array_interface__["data"][0] == buf.__array_interface__["data"][0]:
+            _SPARE[1] = (shape, frame)
 
 
 def _finish_block(state: State) -> None:
@@ -234,10 +259,14 @@ def solve(mech: Mechanism, inputs=None, *, times=None, velocities=None, accelera
                 path.vertices[-1], float(end), path.vertices[-2] if prev else None,
                 float(path.knots[len(path.vertices) - 2]) if prev else float(end),
                 schedules, ends.get("tail") if generic else None)
-    assembled = np.ones(N, dtype=bool)
-    condition = np.ones(N)
-    errors = np.zeros(N)
-    status_errors = np.zeros(N)  # the same, accelerations weighted to their own tolerance
+    tab = fused.tables(mech, solvers) if FUSED and order == 2 and not generic and \
+        n_rows == len(mech.link_names) else None
+    # the fused pass writes every sample of these itself (no pass over them beforehand);
+    # status_errors: the errors with the accelerations weighted to their own tolerance
+    fill = tab is None
+    assembled = np.ones(N, dtype=bool) if fill else np.empty(N, dtype=bool)
+    condition = np.ones(N) if fill else np.empty(N)
+    errors, status_errors = (np.zeros(N), np.zeros(N)) if fill else (np.empty(N), np.empty(N))
     T = np.empty((n_rows, 2, N))  # cos θ, sin θ of every link, rows contiguous
     T[frame, 0], T[frame, 1] = 1.0, 0.0
     # Closed-form groups in NumPy work sample by sample, so the samples are solved in blocks
@@ -247,11 +276,12 @@ def solve(mech: Mechanism, inputs=None, *, times=None, velocities=None, accelera
     compiled = order == 2 and all(s.compiled for s in solvers)
     block = max(N, 1) if generic else KERNEL_BLOCK if compiled else BLOCK
     can_polish = polishable(mech)
-    tab = fused.tables(mech, solvers) if FUSED and order == 2 and not generic and \
-        n_rows == len(mech.link_names) else None
     if tab is not None:  # one compiled pass through the solution order per sample
-        fused.solve_blocks(mech, tab, solvers, Q, T, inputs, branches_in, assembled, condition,
-                           errors, status_errors, can_polish, block=KERNEL_BLOCK)
+        polished = fused.solve_blocks(mech, tab, solvers, Q, T, inputs, branches_in, assembled,
+                                      condition, errors, status_errors, can_polish,
+                                      block=KERNEL_BLOCK)
+        if not polished and assembled.all():
+            _frame_rows_kept(Q, frame)
     else:
         for lo in range(0, N, block):
             sl = slice(lo, lo + block)

@@ -130,7 +130,8 @@ class Chain:
                      tuple(s for s in self.slides if {s[1], s[2]} <= keep),
                      tuple(s for s in self.slots if {s[1], s[2]} <= keep),
                      tuple(m for m in self.meshes if {m[1], m[2]} <= keep),
-                     known=tuple(known), collinear=self.collinear, frame=self.frame,
+                     # in the chain's order (a set's order would change with the hash seed)
+                     known=tuple(ln for ln in self.links if ln in set(known)), collinear=self.collinear, frame=self.frame,
                      contacts=tuple(c for c in self.contacts if {c[1], c[2]} <= keep),
                      rolls=tuple(c for c in self.rolls if {c[1], c[2]} <= keep),
                      arcs=tuple(c for c in self.arcs if {c[1], c[2]} <= keep),
@@ -497,6 +498,9 @@ class _Lines:
 NEAR_PARALLEL = 1e-3
 #: the rules' first choice of lines is kept while they cross at least at this sine (about 6°)
 COMFORTABLE = 0.1
+#: lines through a point that cross at no more than this sine at every position drawn: the
+#: points are in line there, and the image divides the known ones (`ensure_image`)
+COLLINEAR = 1e-9
 
 
 class _Planner:
@@ -545,9 +549,9 @@ class _Planner:
         p = g.get(line.points[0])
         return None if d is None or p is None else (p, d)
 
-    def sine(self, a: MechLine, b: MechLine) -> float:
+    def sine(self, a: MechLine, b: MechLine, reduce=np.min) -> float:
         """The smallest |sin| of the angle between two mechanism lines over the positions (1.0
-        without geometry, so that the first choice stands)."""
+        without geometry, so that the first choice stands; `reduce=np.max`: the largest)."""
         la, lb = self._through(a), self._through(b)
         if la is None or lb is None:
             return 1.0
@@ -555,7 +559,7 @@ class _Planner:
         with np.errstate(invalid="ignore", divide="ignore"):
             s = np.abs(u[:, 0] * v[:, 1] - u[:, 1] * v[:, 0]) / (np.hypot(*u.T) * np.hypot(*v.T))
         s = s[~np.isnan(s)]  # positions where the mechanism is not assembled tell nothing
-        return float(np.min(s)) if s.size else 1.0
+        return float(reduce(s)) if s.size else 1.0
 
     def place_aux(self, name: str, a: MechLine, b: MechLine) -> None:
         """Where the auxiliary point lies in the drawing (for the lines through it later)."""
@@ -676,6 +680,9 @@ class _Planner:
                 best = (self.sine(lx, ly), x, y, lx, ly)
             line_pair = next(((x, y) for i, x in enumerate(kp) for y in kp[i + 1:]
                               if self.collinear(x, y, p)), None)
+            if line_pair is None and best is not None and best[0] < NEAR_PARALLEL and \
+                    self.sine(best[3], best[4], reduce=np.max) <= COLLINEAR:
+                line_pair = best[1:3]  # in line at every position drawn (elliptical gears' M2)
             if best is not None and (best[0] >= NEAR_PARALLEL or line_pair is None):
                 sn, x, y, lx, ly = best
                 self.emit_meet(ln, p, PlanLine((ln, x), lx), PlanLine((ln, y), ly))
