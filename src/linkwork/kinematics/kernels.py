@@ -986,10 +986,10 @@ def fused_rates(cond, ops, fl, Q, T, U, per, L, eps, m0, unreliable, plain, weig
                 E0, m, E, lo, hi):
     """Velocities and accelerations of every group at the samples lo … hi − 1 (a block),
     through the solution order as in `fused_positions`, with the condition numbers (cond[n]:
-    the largest of 1 and the groups'), the forward error bounds of `precision.ErrorBudget` (work arrays
-    m, E of the block's size; m0: the drawing's coordinates over L) and their relative values
-    (`relative_errors` with the weights `plain` into err, `weighted` into serr); E0[n − lo]:
-    the positions' bound."""
+    the largest of 1 and the groups'), the forward error bounds of `precision.ErrorBudget`
+    (work arrays m, E of the block's size; m0: the drawing's coordinates over L) and their
+    relative values (`relative_errors` with the weights `plain` into err, `weighted` into
+    serr); E0[n − lo]: the positions' bound."""
     for lo2 in range(lo, hi, SUBBLOCK):  # the bounds and each group's inputs in the cache
         hi2 = min(hi, lo2 + SUBBLOCK)
         inv = E0[lo2 - lo:hi2 - lo]
