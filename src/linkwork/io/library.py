@@ -6,6 +6,7 @@ Standard library only, so that listing the library costs no NumPy, pydantic or s
 
 from __future__ import annotations
 
+import re
 import tomllib
 from importlib import resources
 
@@ -56,12 +57,25 @@ def _category(doc: dict) -> str:
     return "other"
 
 
+def _header(text: str) -> dict:
+    """The top-level keys of a mechanism file (name, category, description: all the listing
+    needs), read from the text before its first table, which `linkwork library` then parses
+    alone (the whole library parsed was most of the command's time); the whole file where
+    that part does not parse by itself or has no category (`_category` looks at the pairs)."""
+    head = re.split(r"(?m)^\[", text, maxsplit=1)[0]
+    try:
+        doc = tomllib.loads(head)
+    except tomllib.TOMLDecodeError:
+        doc = {}
+    return doc if doc.get("category") else tomllib.loads(text)
+
+
 def library_entries() -> list[dict[str, str]]:
     """Every shipped mechanism as {name, title, category, description}, grouped in the order
     of `CATEGORIES` (unknown groups after them, alphabetically), by name within a group."""
     out = []
     for n in library_names():  # (names just listed: read without listing the folder again)
-        doc = tomllib.loads(_read(n))
+        doc = _header(_read(n))
         out.append({"name": n, "title": doc.get("name", ""), "category": _category(doc),
                     "description": doc.get("description", "")})
     rank = {c: i for i, c in enumerate(CATEGORIES)}
