@@ -322,10 +322,17 @@ def _rrr_rate(Q, T, iA, a0, a1, iC, c0, c1, i1, i2, ba0, ba1, bc0, bc1, mid, hd2
                                             s2, ba0, ba1, bc0, bc1, mid, hd2, unreliable)
     _set_rates(Q, T, i1, a0, a1, n, vAx, vAy, aAx, aAy, om1, al1)
     _set_rates(Q, T, i2, c0, c1, n, vCx, vCy, aCx, aCy, om2, al2)
+    _dyad_error_2(Q, i1, i2, k, L, inv_omega, m, E, j, eps, n)
+    return k
+
+
+@_loop()
+def _dyad_error_2(Q, i1, i2, k, L, inv_omega, m, E, j, eps, n):
+    """The error bounds of a dyad of links i1, i2 with condition number k at sample n
+    (`_group_error_2` on the larger of the two links' sizes), in column j of m and E."""
     x0, x1, x2 = _sizes_2(Q, i1, n, L, inv_omega)
     y0, y1, y2 = _sizes_2(Q, i2, n, L, inv_omega)
     _group_error_2(k, m, E, j, eps, max(x0, y0), max(x1, y1), max(x2, y2))
-    return k
 
 
 @_loop()
@@ -437,9 +444,7 @@ def _rrp_rate(Q, T, iA, a0, a1, ig, p0, p1, e00, e01, ap0, ap1, length, ir, ib, 
                                                     sn, ex, ey, ap0, ap1, og, length, unreliable)
     _set_rates(Q, T, ir, a0, a1, n, vAx, vAy, aAx, aAy, om, al)
     _set_rates(Q, T, ib, p0, p1, n, vPx, vPy, aPx, aPy, og, ag)
-    x0, x1, x2 = _sizes_2(Q, ir, n, L, inv_omega)
-    y0, y1, y2 = _sizes_2(Q, ib, n, L, inv_omega)
-    _group_error_2(k, m, E, j, eps, max(x0, y0), max(x1, y1), max(x2, y2))
+    _dyad_error_2(Q, ir, ib, k, L, inv_omega, m, E, j, eps, n)
     return k
 
 
