@@ -57,16 +57,6 @@ def test_a_residual_above_rounding_is_counted():
     assert np.isnan(got[5])
 
 
-@pytest.fixture
-def newton(monkeypatch):
-    """Every group but the driver solved by Newton's method (its dyad by the continuation)."""
-    monkeypatch.setattr(groups, "_classify",
-                        lambda mech, g: ("driver", {}) if g.drivers and g.size == 1 else ("generic", {}))
-    solver.plan.cache_clear()
-    yield
-    solver.plan.cache_clear()
-
-
 def _rockers(count: int, seed: int = 5) -> list:
     """Random four-bars whose crank rocks (dead centres in its input), well drawn, no
     change-point chain; drawn at sizes 1e-3 … 1e4 (as test_precision's)."""

@@ -15,28 +15,21 @@ import pytest
 
 import linkwork
 from linkwork import Status
-from linkwork.kinematics import groups, solver
+from linkwork.kinematics import solver
 from linkwork.kinematics.motion import input_limits
 from mechanism_texts import four_bar_text, joint, mechanism_text, revolute, two_crank_five_bar_text
 
 
-def _generic_kind(mech, group):
-    return ("driver", {}) if group.drivers and group.size == 1 else ("generic", {})
-
-
 @pytest.fixture
-def newton(monkeypatch):
-    """Load mechanism texts whose groups (but the driver's) are all solved by Newton's method."""
-    monkeypatch.setattr(groups, "_classify", _generic_kind)
-    solver.plan.cache_clear()
-
+def newton(newton):
+    """Load mechanism texts whose groups (but the driver's) are all solved by Newton's method
+    (the `newton` fixture of conftest.py, with a loader that checks it)."""
     def load(text):
         mech = linkwork.load_text(text)
         assert {s.kind for s in solver.plan(mech)} == {"driver", "generic"}
         return mech
 
-    yield load
-    solver.plan.cache_clear()
+    return load
 
 
 def _wrap(a: np.ndarray) -> np.ndarray:

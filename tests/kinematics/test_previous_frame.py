@@ -16,7 +16,7 @@ import pytest
 
 import linkwork
 from linkwork import Status
-from linkwork.kinematics import continuation, groups, solver
+from linkwork.kinematics import continuation, solver
 from linkwork.kinematics.branches import branch_schedule
 from linkwork.model import Mechanism
 from mechanism_texts import four_bar_text
@@ -32,19 +32,6 @@ def with_points(mech: Mechanism, **points) -> Mechanism:
 
 def poses(sol) -> np.ndarray:
     return np.array([sol.pose_derivatives(ln)[0] for ln in sol.mechanism.link_names])
-
-
-def _generic_kind(mech, group):
-    return ("driver", {}) if group.drivers and group.size == 1 else ("generic", {})
-
-
-@pytest.fixture
-def newton(monkeypatch):
-    """Every group but the driver's solved by Newton's method (as test_continuation does)."""
-    monkeypatch.setattr(groups, "_classify", _generic_kind)
-    solver.plan.cache_clear()
-    yield
-    solver.plan.cache_clear()
 
 
 def _cross(a, b):

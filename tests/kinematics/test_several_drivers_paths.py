@@ -18,7 +18,7 @@ import pytest
 
 import linkwork
 from linkwork import Status
-from linkwork.kinematics import groups, solver
+from linkwork.kinematics import solver
 from mechanism_texts import hinged_loop_text, two_crank_five_bar_text
 
 O2, A0, C0, O5 = np.array([0.0, 0.0]), np.array([0.0, 10.0]), np.array([40.0, 15.0]), np.array([40.0, 0.0])
@@ -159,16 +159,6 @@ def test_chunks_flip_where_the_one_piece_solve_flips(five_bar):
     _assert_same(whole, parts, five_bar)
     A, C = _crank_points(turn1, 0.0 * turn1)
     np.testing.assert_allclose(whole.point("P").position, A + C, atol=1e-6)
-
-
-@pytest.fixture
-def newton(monkeypatch):
-    """Groups (but the drivers') solved by Newton's method: the continuation is followed."""
-    monkeypatch.setattr(groups, "_classify",
-                        lambda mech, g: ("driver", {}) if g.drivers and g.size == 1 else ("generic", {}))
-    solver.plan.cache_clear()
-    yield
-    solver.plan.cache_clear()
 
 
 def test_chunks_continue_the_march_of_newton_groups(newton):
