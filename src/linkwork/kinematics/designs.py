@@ -25,7 +25,7 @@ from . import kernels
 from .fused import Tables, solve_blocks, tables
 
 #: bisection steps per batch of the limit search over designs (every midpoint those steps may
-#: visit solved at once, as `motion._bisect` does three at a time): 31 samples per limit and
+#: visit solved at once, as `motion.bisect_brackets` does three at a time for one design): 31 samples per limit and
 #: batch, twelve batches for the sixty steps, each batch one pass over all designs
 TREE = 5
 #: designs per batch of `whole_motions`: a design's plan, tables and change points are cached
@@ -314,50 +314,13 @@ def _first_failures(designs: list[_Search], grids: list[np.ndarray], sign: float
     return [None if a.all() else int(np.argmin(a)) for a in oks]
 
 
-def _bisect(designs: list[_Search], u0: np.ndarray, sign: np.ndarray, lo: np.ndarray,
-            hi: np.ndarray, owner: np.ndarray) -> np.ndarray:
-    """`motion._bisect` of every bracket (lo, hi) at once (bracket p: design owner[p], offsets
-    from u0[p] in the direction sign[p]): the same midpoints in the same arithmetic, so the
-    same limits to the last bit; `TREE` steps per batch, each batch one pass over all
-    designs."""
-    from .motion import BISECTIONS
-
-    P = lo.size
-    rows = np.arange(P)
-    mine = [np.flatnonzero(owner == k) for k in range(len(designs))]
-    steps = BISECTIONS
-    while steps > 0:
-        depth = min(TREE, steps)
-        # level k of the tree holds the 2^k brackets that k steps can leave
-        los, his, mids = [lo[:, None]], [hi[:, None]], []
-        for k in range(depth):
-            m = 0.5 * (los[k] + his[k])
-            mids.append(m)
-            if k + 1 < depth:  # left child, right child
-                los.append(np.stack([los[k], m], axis=2).reshape(P, -1))
-                his.append(np.stack([m, his[k]], axis=2).reshape(P, -1))
-        flat = np.concatenate(mids, axis=1)
-        u = u0[:, None] + sign[:, None] * flat
-        oks = _assembles(designs, [u[p].ravel() for p in mine])
-        ok = np.empty(flat.shape, dtype=bool)
-        for p, a in zip(mine, oks):
-            ok[p] = a.reshape(len(p), -1)
-        node, start = np.zeros(P, dtype=int), 0
-        for k in range(depth):
-            i = start + node
-            good, at = ok[rows, i], flat[rows, i]
-            lo, hi = np.where(good, at, lo), np.where(good, hi, at)
-            node = 2 * node + good
-            start += 2 ** k
-        steps -= depth
-    return lo
-
-
 def _limits(designs: list[_Search]) -> list:
     """`motion.input_limits` of each design (closed-form groups, one driver), the scans and
     bisections of all designs batched: per design (lower, upper), None for a crank, or
     False where the search needs what only `input_limits` says (no limit on a side, or none
     at the design position itself: the design goes one by one, to its error or answer)."""
+    from .motion import bisect_brackets
+
     spans = [4 * s.mech.length_scale if s.prismatic else 2 * np.pi for s in designs]
     grids = [np.linspace(0.0, span, 1441) for span in spans]
     up = _first_failures(designs, grids, +1.0)
@@ -382,7 +345,15 @@ def _limits(designs: list[_Search]) -> list:
     u0 = np.array([designs[k].u0 for k, *_ in brackets])
     lo = np.array([grids[k][j - 1] for k, _, j in brackets])
     hi = np.array([grids[k][j] for k, _, j in brackets])
-    offset = _bisect([designs[k] for k in sub], u0, sign, lo, hi, owner)
+    mine = [np.flatnonzero(owner == k) for k in range(len(sub))]
+
+    def assembles(offsets: np.ndarray) -> np.ndarray:  # every design's brackets in one pass
+        u = u0[:, None] + sign[:, None] * offsets
+        ok = np.empty(offsets.shape, dtype=bool)
+        for p, a in zip(mine, _assembles([designs[k] for k in sub], [u[p].ravel() for p in mine])):
+            ok[p] = a.reshape(len(p), -1)
+        return ok
+    offset = bisect_brackets(assembles, lo, hi, TREE)
     limit = u0 + sign * offset
     for p in range(0, len(brackets), 2):
         out[brackets[p][0]] = (float(limit[p]), float(limit[p + 1]))

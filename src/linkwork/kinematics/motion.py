@@ -68,36 +68,36 @@ def _first_failure(mech: Mechanism, solvers, u0: float, sign: float,
     return None
 
 
-def _bisect(mech: Mechanism, solvers, u0: float, sign: float, lo: float, hi: float) -> float:
-    """`BISECTIONS` steps of bisection on the offset from u0 between lo (assembles) and hi
-    (does not), the same midpoints in the same floating-point arithmetic as one step at a time,
-    so the same limit to the last bit; but `DEPTH` steps per batch: every midpoint those steps
-    may visit (a full binary tree, level by level) is solved at once, then the tree is walked."""
+def bisect_brackets(assembles, lo: np.ndarray, hi: np.ndarray, depth: int = DEPTH) -> np.ndarray:
+    """`BISECTIONS` steps of bisection of every bracket p of offsets (lo[p] assembles, hi[p]
+    does not), all at once: the same midpoints in the same floating-point arithmetic as one
+    step at a time, so the same limits to the last bit; but `depth` steps per batch: every
+    midpoint those steps may visit (a full binary tree, level by level) is asked of
+    `assembles(offsets (P, M)) → (P, M) bool` at once, then the tree is walked."""
+    lo, hi = np.atleast_1d(np.asarray(lo, float)), np.atleast_1d(np.asarray(hi, float))
+    P = lo.size
+    rows = np.arange(P)
     steps = BISECTIONS
     while steps > 0:
-        depth = min(DEPTH, steps)
-        # level k of the tree holds the 2^k brackets (lo, hi) that k steps can leave
-        los, his, mids = [np.array([lo])], [np.array([hi])], []
-        for k in range(depth):
+        d = min(depth, steps)
+        # level k of the tree holds the 2^k brackets that k steps can leave
+        los, his, mids = [lo[:, None]], [hi[:, None]], []
+        for k in range(d):
             m = 0.5 * (los[k] + his[k])
             mids.append(m)
-            if k + 1 < depth:
-                los.append(np.stack([los[k], m], axis=1).ravel())  # left child, right child
-                his.append(np.stack([m, his[k]], axis=1).ravel())
-        flat = np.concatenate(mids)
-        ok = _assembles(mech, solvers, u0 + sign * flat)
-        node = 0  # index within the level
-        start = 0  # index of the level's first midpoint in `flat`
-        for k in range(depth):
+            if k + 1 < d:  # left child, right child
+                los.append(np.stack([los[k], m], axis=2).reshape(P, -1))
+                his.append(np.stack([m, his[k]], axis=2).reshape(P, -1))
+        flat = np.concatenate(mids, axis=1)
+        ok = assembles(flat)
+        node, start = np.zeros(P, dtype=int), 0
+        for k in range(d):
             i = start + node
-            if ok[i]:
-                lo = flat[i]
-                node = 2 * node + 1
-            else:
-                hi = flat[i]
-                node = 2 * node
+            good, at = ok[rows, i], flat[rows, i]
+            lo, hi = np.where(good, at, lo), np.where(good, hi, at)
+            node = 2 * node + good
             start += 2 ** k
-        steps -= depth
+        steps -= d
     return lo
 
 
@@ -123,7 +123,9 @@ def input_limits(mech: Mechanism, *, resolution: float | None = None) -> tuple[f
         if k is None:
             raise InputError(f"driver '{d.joint}': no limit position within ±{span:g} of the design "
                              "position; give --sweep explicitly")
-        limits.append(u0 + sign * _bisect(mech, solvers, u0, sign, grid[k - 1], grid[k]))
+        offset = bisect_brackets(lambda x: _assembles(mech, solvers, u0 + sign * x.ravel())[None],
+                                 grid[k - 1], grid[k])
+        limits.append(u0 + sign * offset[0])
     return limits[0], limits[1]
 
 
