@@ -124,6 +124,7 @@ function showError(message: string): void {
 }
 
 function clearError(): void {
+  if (ui.error.hidden) return; // every drawing clears it: no write when there is nothing to clear
   ui.error.textContent = "";
   ui.error.hidden = true;
 }
