@@ -385,6 +385,10 @@ class VelocityConstruction(_SlidingGroups):
     def _slid(self, joint, X, pin_img, guide_img) -> None:
         self.sliding[joint.name] = self.velocity(self.pos[X], pin_img) - self.velocity(self.pos[X], guide_img)
 
+    def _g_intermittent(self, gs) -> None:
+        from ._intermittent import velocity_images
+        velocity_images(self, gs)
+
 
 class AccelerationConstruction(_SlidingGroups):
     """The polar acceleration plan (space ``acceleration``), built on a finished polar
@@ -576,6 +580,10 @@ class AccelerationConstruction(_SlidingGroups):
         "RPR": "The lever's point under the pin {X}: a_{X} = a* + 2\u03c9_{link}\u00d7v_rel (Coriolis) + "
                "a_rel(\u2225 {link}).",
     }
+
+    def _g_intermittent(self, gs) -> None:
+        from ._intermittent import acceleration_images
+        acceleration_images(self, gs)
 
     def _sliding_words(self, guide: str) -> dict[str, str]:
         # a guide on the frame does not turn: no Coriolis component to name
