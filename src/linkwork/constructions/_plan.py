@@ -268,6 +268,7 @@ class VelocityConstruction(_SlidingGroups):
     # ------------------------------------------------------------------ groups
     def run(self) -> None:
         from ._direct import draw_given, draw_group
+        from ._inner_driver import velocity_images
 
         self.scripts = []
         given = bool(self.mech.given or getattr(self.sol, "given", ()))
@@ -275,8 +276,12 @@ class VelocityConstruction(_SlidingGroups):
             # no driver: the whole chain from its given point velocities by Rosenauer's rule
             self.scripts.append(draw_given(self))
         # triads and larger groups, gears: Rosenauer's auxiliary points (`_direct`)
-        self._walk((() if given else group_plan(self.mech)), lambda g, solved: self.scripts.append(
-            draw_group(self, g.links, g.joints, solved, g.drivers)), self.measured_omega)
+        def fallback(g, solved):
+            if g.drivers and velocity_images(self, g, solved):  # driven from inside
+                return
+            self.scripts.append(draw_group(self, g.links, g.joints, solved, g.drivers))
+
+        self._walk((() if given else group_plan(self.mech)), fallback, self.measured_omega)
 
     def _g_driver(self, gs) -> None:
         mech, sol = self.mech, self.sol
@@ -481,6 +486,7 @@ class AccelerationConstruction(_SlidingGroups):
 
     def run(self) -> None:
         from ._direct import draw_group_acceleration
+        from ._inner_driver import acceleration_images
 
         if self.mech.given or getattr(self.sol, "given", ()):
             raise InputError(f"the acceleration plan of '{self.mech.name}', a chain driven by given "
@@ -488,8 +494,11 @@ class AccelerationConstruction(_SlidingGroups):
                              "kinematics.point_inputs.solve_given)")
         # the groups the velocity plan drew with auxiliary points: the same script on the plan
         # of relative normal accelerations (`_direct`)
-        self._walk(group_plan(self.mech), lambda g, solved: draw_group_acceleration(
-            self, g.links, g.joints, solved, g.drivers), self.measured_alpha)
+        def fallback(g, solved):
+            if not (g.drivers and acceleration_images(self, g, solved)):
+                draw_group_acceleration(self, g.links, g.joints, solved, g.drivers)
+
+        self._walk(group_plan(self.mech), fallback, self.measured_alpha)
 
     def _g_driver(self, gs) -> None:
         mech, sol = self.mech, self.sol
