@@ -485,13 +485,25 @@ class AccelerationConstruction(_SlidingGroups):
         return img
 
     def run(self) -> None:
-        from ._direct import draw_group_acceleration
+        from ._direct import draw_given_acceleration, draw_group_acceleration
         from ._inner_driver import acceleration_images
 
-        if self.mech.given or getattr(self.sol, "given", ()):
-            raise InputError(f"the acceleration plan of '{self.mech.name}', a chain driven by given "
-                             "point velocities, is not drawn (its accelerations are solved: "
-                             "kinematics.point_inputs.solve_given)")
+        data = getattr(self.sol, "given", ()) or self.mech.given
+        if data:
+            # a chain driven by given point velocities: from their accelerations (paper 4)
+            missing = [g for g in data if (g.acceleration if g.kind == "velocity" else g.curvature) is None]
+            if missing or self.sol.order < 2:
+                raise InputError(
+                    f"the acceleration plan of '{self.mech.name}', a chain driven by given point "
+                    "velocities, needs " + ", ".join(
+                        f"the acceleration of {g.point}" if g.kind == "velocity" else
+                        f"the curvature of the path of {g.point}" for g in missing or data)
+                    + " (its file gives " + ("none" if len(missing) == len(data) else "not all")
+                    + ": add acceleration = [x, y] to each [[given]] velocity, curvature to each "
+                    "direction)")
+            draw_given_acceleration(self)
+            self._walk((), None, self.measured_alpha)
+            return
         # the groups the velocity plan drew with auxiliary points: the same script on the plan
         # of relative normal accelerations (`_direct`)
         def fallback(g, solved):
