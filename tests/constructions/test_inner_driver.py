@@ -96,3 +96,15 @@ def test_other_groups_driven_from_inside_are_refused_by_name(tmp_path):
     for build in (velocity_plan, acceleration_plan):
         with pytest.raises(InputError, match=r"driver B \(inside the group, between moving links\)"):
             build(mech, np.array([x0]))
+
+
+def test_two_points_on_the_trammel_keeps_its_digits():
+    """The rod's inflection and Bresse circles from A and P over a whole turn (the plans above
+    give the vectors). The input turns uniformly, so γ = 0 at every position: the compass copy
+    of the zero angle must not lose half the digits (it did, 2e-8, before the chord's height
+    was computed without cancellation)."""
+    from linkwork.constructions import inflection_from_two_points
+    mech, theta = trammel()
+    con = inflection_from_two_points(mech, theta)
+    con.check()
+    assert con.max_error() <= 1e-12
