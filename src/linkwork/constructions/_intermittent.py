@@ -25,7 +25,7 @@ import numpy as np
 from ..model import Revolute
 from ..model.intermittent import DWELL, GEAR, PHASES, SLOT_PHASES, indexing_schedule
 from ..topology.constructibility import lower, pitch_point_name, upper
-from ._common import norm
+from ._common import norm, perp
 
 #: the Pöschl section of each drive
 _SOURCE = {"geneva": "Geneva wheel, Pöschl §25a", "star-wheel": "star wheel, Pöschl §25b"}
@@ -81,7 +81,16 @@ class _Pair:
         else:
             self.second = f"{self.wheel}*"
         self.X2 = np.where(self.slot[:, None], self.B, np.where(self.gear[:, None], self.T, self.R))
+        with np.errstate(invalid="ignore", divide="ignore"):
+            self.axis = (self.B - Cx) / norm(self.B - Cx)[:, None]  # the slot's, radial
         self.source = _SOURCE.get(j.kind, j.kind)
+
+    def at_pins(self, n: int, value) -> np.ndarray:
+        """``value(pin)`` (N, 2) of the pin on the slot at each sample (NaN off the slots)."""
+        out = np.full((n, 2), np.nan)
+        for q, on in self.pin_of.items():
+            out = np.where(on[:, None], value(q), out)
+        return out
 
     def pin_words(self) -> str:
         return ", ".join(upper(p) for p in self.pins)
@@ -111,9 +120,7 @@ def velocity_images(vc, gs) -> None:
     parts = []
     if p.slot.any():
         B = p.B
-        pin_img = np.full((n, 2), np.nan)
-        for q, on in p.pin_of.items():
-            pin_img = np.where(on[:, None], vc.image(Dr, q), pin_img)
+        pin_img = p.at_pins(n, lambda q: vc.image(Dr, q))
         lab = (vc.lbl(p.pins[0]) if len(p.pins) == 1 else "b") + "*"
         pins = p.pin_words()
         vc.b.step(
@@ -123,9 +130,7 @@ def velocity_images(vc, gs) -> None:
             f"{upper(p.C)}{pins}. Through {vc.lbl(p.C)} draw the {vc.rel_words()} to "
             f"{upper(p.C)}{pins}, through the pin's image the {'parallel' if plan else 'perpendicular'} "
             f"to the slot; they meet in {lab}.")
-        with np.errstate(invalid="ignore", divide="ignore"):
-            axis = (B - C) / norm(B - C)[:, None]
-        img = vc._slide(f"v.{W}.{p.name}.slot", B, _mask(p.slot, c), B - C, pin_img, axis, lab,
+        img = vc._slide(f"v.{W}.{p.name}.slot", B, _mask(p.slot, c), B - C, pin_img, p.axis, lab,
                         f"wheel {W}")
         parts.append((p.slot, img))
     if p.gear.any():
@@ -162,14 +167,10 @@ def acceleration_images(ac, gs) -> None:
     parts = []
     if p.slot.any():
         B = p.B
-        pin_img = np.full((n, 2), np.nan)
-        v_pin = np.full((n, 2), np.nan)
-        for q, on in p.pin_of.items():
-            pin_img = np.where(on[:, None], ac.image(Dr, q), pin_img)
-            v_pin = np.where(on[:, None], vc.velocity(vc.pos[q], vc.images[(Dr, q)]), v_pin)
-        v_star = vc.velocity(p.X2, vc.images[(W, p.second)])
-        v_rel = v_pin - v_star
-        cor = 2 * w[:, None] * np.stack([-v_rel[:, 1], v_rel[:, 0]], axis=-1)
+        pin_img = p.at_pins(n, lambda q: ac.image(Dr, q))
+        v_pin = p.at_pins(n, lambda q: vc.velocity(vc.pos[q], vc.images[(Dr, q)]))
+        v_rel = v_pin - vc.velocity(p.X2, vc.images[(W, p.second)])
+        cor = 2 * w[:, None] * perp(v_rel)
         pins = p.pin_words()
         lab = (ac.lbl(p.pins[0]) if len(p.pins) == 1 else "b'") + "*"
         ac.b.step(
@@ -179,9 +180,7 @@ def acceleration_images(ac, gs) -> None:
             f"{upper(p.C)}{pins}): from {ac.lbl(p.C)} lay off the normal component towards "
             f"{upper(p.C)} and draw the perpendicular to {upper(p.C)}{pins}; from the pin's image "
             f"take away the Coriolis component and draw the parallel to the slot; they meet in {lab}.")
-        with np.errstate(invalid="ignore", divide="ignore"):
-            axis = (B - C) / norm(B - C)[:, None]
-        img = ac._slide(f"a.{W}.{p.name}.slot", B, _mask(p.slot, c), C, pin_img, -cor, axis, w, lab)
+        img = ac._slide(f"a.{W}.{p.name}.slot", B, _mask(p.slot, c), C, pin_img, -cor, p.axis, w, lab)
         parts.append((p.slot, img))
     if p.gear.any():
         T, t = p.T, p.T_name
