@@ -70,9 +70,13 @@ def test_the_free_triad_draws_from_its_file():
     texts = [s.text for s in con.steps]
     for p in "KLM":
         assert any(f"given: the acceleration a_{p}, laid off at {p.lower()}" in t for t in texts)
-    # the auxiliary point Q of ABC carries its acceleration too, checked against the engine
-    assert "a_Q@ABC" in con.results
-    assert any(t.startswith("Accelerations, the same lines") and "Q = KA ∩ LB" in t for t in texts)
+    # paper 4, Ex. III: locus lines through the ends of j_K, j_L, j_M perpendicular to KA, LB,
+    # MC, and the triangle A₁B₁C₁ inscribed with its sides perpendicular to ABC's
+    assert any(t.startswith("Locus lines (paper 4)") and "perpendiculars to KA, LB, MC: α–α, β–β, γ–γ" in t
+               for t in texts)
+    assert any(t.startswith("Inscribed triangle") for t in texts)
+    for p in "ABC":
+        assert f"a_{p}" in con.results
 
 
 def test_a_given_direction_uses_the_paths_curvature():

@@ -503,10 +503,21 @@ def draw_given_acceleration(ac) -> VelocityScript:
     from j_K, j_L, j_M), by false position where the velocities needed it."""
     script = ac.vc.scripts[0]
     links = set(ac.mech.moving_links)
+    solved = {ac.mech.frame}
     if script.by_two_trials:
-        AccelerationTrialDrawer(ac, script, {ac.mech.frame}).run(links)
-    else:
-        AccelerationDrawer(ac, script, {ac.mech.frame}).run(links)
+        AccelerationTrialDrawer(ac, script, solved).run(links)
+        return script
+    chain = Chain.from_mechanism(ac.mech, getattr(ac.sol, "given", None) or None)
+    triad = _triad(chain, links, solved)
+    drawer = TriangleDrawer(ac, script, solved) if triad is not None else AccelerationDrawer(ac, script, solved)
+    if triad is not None:
+        # the given accelerations first, then the inscribed triangle (paper 4, Ex. III)
+        for st in script.steps:
+            if st.kind == "given":
+                drawer._one(st)
+        if drawer.draw(links, *triad):
+            return script
+    AccelerationDrawer.run(drawer, links)
     return script
 
 
@@ -691,6 +702,8 @@ class AccelerationDrawer(ScriptDrawer):
         self._step = st
         if st.kind != "given":
             super()._one(st)
+            return
+        if (st.link, st.point) in self.E:  # drawn before an inscribed triangle was tried
             return
         # a given velocity's point: its given acceleration, laid off at its plan point
         ac = self.ac
@@ -937,7 +950,7 @@ def _triad(chain: Chain, links, solved):
         if len(rest) != 3:
             continue
         arms = []
-        for B in rest:
+        for B in (ln for ln in chain.links if ln in rest):  # the chain's order: stable labels
             pts = list(dict.fromkeys(chain.links[B]))
             if len(pts) != 2:
                 break
@@ -948,6 +961,8 @@ def _triad(chain: Chain, links, solved):
             Y = pts[1] if pts[0] == X else pts[0]
             K = next((a if b == B else b for q, a, b in chain.hinges
                       if q == Y and B in (a, b) and (a if b == B else b) in solved), None)
+            if K is None and Y in chain.given:
+                K = B  # a free end with its given velocity and acceleration (paper 4, Ex. III)
             if K is None:
                 break
             arms.append((X, B, Y, K))
