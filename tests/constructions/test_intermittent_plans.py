@@ -104,3 +104,18 @@ def test_star_wheel_step_texts_per_phase():
     assert sum("radial slot" in t for t in texts) == 1
     assert sum("Pin gear" in t for t in texts) == 1
     assert sum("rests" in t for t in texts) == 1
+
+
+@pytest.mark.parametrize("name, pair", [("geneva-4", "pin"), ("geneva-6", "pin"), ("star-wheel", "index")])
+def test_phase_boundaries(name, pair):
+    """Exactly where a phase begins (a pin at the slot's mouth or foot, the wheel coming to
+    rest), the sample takes the phase that begins there; the plans draw that phase's law."""
+    from linkwork.model.intermittent import indexing_schedule
+    mech = linkwork.load(f"library:{name}")
+    sch = indexing_schedule(mech, mech.joint(pair))
+    x0 = mech.driver_input_at_design(mech.drivers[0])
+    drawn = solve(mech, np.array([x0])).joint(pair)["driver_angle"][0]
+    at = np.array([x0 - drawn + sch.origin + ph.start for ph in sch.phases])
+    sol = solve(mech, at, order=2)
+    assert list(sol.joint(pair)["phase"]) == [ph.kind for ph in sch.phases]
+    acceleration_plan(mech, sol).check()
