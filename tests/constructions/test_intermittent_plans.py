@@ -19,6 +19,8 @@ from linkwork.constructions import acceleration_plan, rotated_velocities, veloci
 from linkwork.kinematics import solve
 from linkwork.model.intermittent import DWELL, ENGAGED, ENTRY, EXIT, GEAR
 
+from intermittent_mechanisms import D, geneva, tan_formula
+
 TURN = np.linspace(0.0, 2 * np.pi, 121)[:-1]
 
 
@@ -119,3 +121,23 @@ def test_phase_boundaries(name, pair):
     sol = solve(mech, at, order=2)
     assert list(sol.joint(pair)["phase"]) == [ph.kind for ph in sch.phases]
     acceleration_plan(mech, sol).check()
+
+
+@pytest.mark.parametrize("n, r", [(3, None), (4, 80.0), (5, 90.0), (8, None)],
+                         ids=["3-shock-free", "4-entering-at-an-angle", "5-entering-at-an-angle", "8-shock-free"])
+def test_geneva_wheels_of_any_slots_against_the_slotted_crank_formula(n, r):
+    """Wheels of 3 to 8 slots, shock-free or with a pin entering at an angle (a velocity jump
+    at entry): every sample drawn and checked; while engaged the wheel's constructed ω is the
+    slotted crank's, dψ/dφ of tan ψ = λ sin φ/(1 − λ cos φ) (Pöschl §25a), by central
+    differences of that closed form."""
+    mech = geneva(n, r)
+    phi = np.linspace(-np.pi, np.pi, 181)
+    sol = solve(mech, phi, order=2)
+    con = acceleration_plan(mech, sol)
+    con.check()
+    engaged = sol.joint("G")["phase"] == ENGAGED
+    lam = (D * np.sin(np.pi / n) if r is None else r) / D
+    h = 1e-6
+    dpsi = (tan_formula(phi + h, lam) - tan_formula(phi - h, lam)) / (2 * h)
+    w = con.results["omega_wheel"].constructed
+    np.testing.assert_allclose(w[engaged], -dpsi[engaged], rtol=1e-7, atol=1e-9)  # unit driver speed
