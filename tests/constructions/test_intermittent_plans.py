@@ -141,3 +141,14 @@ def test_geneva_wheels_of_any_slots_against_the_slotted_crank_formula(n, r):
     dpsi = (tan_formula(phi + h, lam) - tan_formula(phi - h, lam)) / (2 * h)
     w = con.results["omega_wheel"].constructed
     np.testing.assert_allclose(w[engaged], -dpsi[engaged], rtol=1e-7, atol=1e-9)  # unit driver speed
+
+
+def test_slide_pairs_refuses_the_pins_by_name():
+    """Paper 3's slide-pair parallelogram needs the sliding link to turn with the guide (a block);
+    a Geneva pin turns relative to the wheel: refused, naming the pair and why."""
+    from linkwork.constructions import slide_pairs
+    from linkwork.errors import InputError
+    mech = linkwork.load("library:geneva-4")
+    with pytest.raises(InputError, match="the geneva pair 'pin' slide in the wheel's slots but turn "
+                                         "relative to the wheel"):
+        slide_pairs(mech, np.array([mech.driver_input_at_design(mech.drivers[0])]))

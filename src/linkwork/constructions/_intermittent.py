@@ -31,13 +31,11 @@ from ._common import norm, perp
 _SOURCE = {"geneva": "Geneva wheel, Pöschl §25a", "star-wheel": "star wheel, Pöschl §25b"}
 
 
-class _Pair:
+class PairPhases:
     """What the plans need of the pair at each sample: driver, wheel, carrier and their pivots;
     the phase; on a slot the pin (its position), in the pin gear the pitch point T."""
 
-    def __init__(self, con, gs) -> None:
-        mech, sol = con.mech, con.sol
-        j = gs.parts["pair"]
+    def __init__(self, mech, sol, pos, j) -> None:
         self.j, self.name = j, j.name
         self.driver, self.wheel, self.carrier = j.links[0], j.links[1], j.carrier
         self.M, self.C = (next(r.point for r in mech.joints if isinstance(r, Revolute)
@@ -46,7 +44,7 @@ class _Pair:
         rep = sol.joint(j.name)
         self.kind = np.asarray(rep["phase"])
         _, _, idx = sch.locate(np.asarray(rep["driver_angle"], float))
-        n = con.n
+        n = len(sol)
         pins = np.array([p.pin or "" for p in sch.phases], dtype=object)[idx]
         radius = np.array([p.radius for p in sch.phases])[idx]
         self.slot = np.isin(self.kind, SLOT_PHASES)
@@ -54,7 +52,6 @@ class _Pair:
         self.dwell = self.kind == DWELL
         self.pins = [p for p in sch.pins if np.any(self.slot & (pins == p))]
         self.pin_of = {p: self.slot & (pins == p) for p in self.pins}
-        pos = con.pos
         Mx, Cx = pos[self.M], pos[self.C]
         self.B = np.full((n, 2), np.nan)
         for p, on in self.pin_of.items():
@@ -113,7 +110,7 @@ def _select(n: int, *parts) -> np.ndarray:
 
 def velocity_images(vc, gs) -> None:
     """The wheel's images in a `VelocityConstruction` (polar plan or rotated velocities)."""
-    p = _Pair(vc, gs)
+    p = PairPhases(vc.mech, vc.sol, vc.pos, gs.parts["pair"])
     n, C, W, Dr = vc.n, vc.pos[p.C], p.wheel, p.driver
     c = vc.image(p.carrier, p.C)
     plan = vc.mode == "plan"
@@ -160,7 +157,7 @@ def acceleration_images(ac, gs) -> None:
     """The wheel's acceleration images in an `AccelerationConstruction` (its velocity plan
     drawn)."""
     vc = ac.vc
-    p = _Pair(ac, gs)
+    p = PairPhases(ac.mech, ac.sol, ac.pos, gs.parts["pair"])
     n, C, W, Dr = ac.n, ac.pos[p.C], p.wheel, p.driver
     c = ac.image(p.carrier, p.C)
     w = ac.w(W)
