@@ -126,3 +126,9 @@ def test_a_missing_curvature_is_named():
 def replace_given(sol, given):
     sol.given = tuple(given)
     return sol
+
+
+def test_a_velocity_solve_is_refused_for_the_accelerations():
+    mech = linkwork.load("library:rosenauer-free-triad")
+    with pytest.raises(InputError, match="solved to velocities only"):
+        acceleration_plan(mech, solve_given(mech, order=1))

@@ -492,12 +492,16 @@ class AccelerationConstruction(_SlidingGroups):
         if data:
             # a chain driven by given point velocities: from their accelerations (paper 4)
             missing = [g for g in data if (g.acceleration if g.kind == "velocity" else g.curvature) is None]
-            if missing or self.sol.order < 2:
+            if not missing and self.sol.order < 2:
+                raise InputError(f"the acceleration plan of '{self.mech.name}' needs its accelerations: "
+                                 "the solution given was solved to velocities only (solve_given with "
+                                 "order=2)")
+            if missing:
                 raise InputError(
                     f"the acceleration plan of '{self.mech.name}', a chain driven by given point "
                     "velocities, needs " + ", ".join(
                         f"the acceleration of {g.point}" if g.kind == "velocity" else
-                        f"the curvature of the path of {g.point}" for g in missing or data)
+                        f"the curvature of the path of {g.point}" for g in missing)
                     + " (its file gives " + ("none" if len(missing) == len(data) else "not all")
                     + ": add acceleration = [x, y] to each [[given]] velocity, curvature to each "
                     "direction)")
