@@ -604,7 +604,7 @@ def _finish_inset(fig: Figure) -> None:
         if p.space in ("mechanism", "inset") and p.kind in ("circle", "dot"):
             q = fig._world_points(p)
             if p.kind == "dot" or p.data["r"] < reach:
-                pts += q
+                pts.extend(q)
     pts = np.array([q for q in pts if np.all(np.isfinite(q))]).reshape(-1, 2)
     size = pts.max(0) - pts.min(0)
     fig.view["inset"] = (pts.min(0), pts.max(0))
