@@ -941,16 +941,41 @@ def _polyline(xy: np.ndarray) -> str:
 
 
 def _inside_counts(pts: np.ndarray, boxes: np.ndarray) -> np.ndarray:
-    """How many of the points (n, 2) lie in each box (m, 4: x0, y0, x1, y1, edges included):
-    with the points sorted by x, a box's x range is one slice of them, whose y are tested."""
-    order = np.argsort(pts[:, 0], kind="stable")
-    xs, ys = pts[order, 0], pts[order, 1]
-    lo = np.searchsorted(xs, boxes[:, 0], "left")
-    span = np.maximum(np.searchsorted(xs, boxes[:, 2], "right") - lo, 0)
-    box_of = np.repeat(np.arange(len(boxes)), span)  # the slices one after another
-    start = np.cumsum(span) - span
-    y = ys[np.arange(len(box_of)) - start[box_of] + lo[box_of]]
-    ok = (y >= boxes[box_of, 1]) & (y <= boxes[box_of, 3])
+    """How many of the points (n, 2) lie in each box (m, 4: x0, y0, x1, y1, edges included).
+
+    The points are cut into horizontal bands as tall as the tallest box (a box meets at most
+    two) and sorted by band, then by x: a box's points are within one slice of each band it
+    meets, found by one search on the key band·S + x (S wider than the points' spread, so
+    that bands keep apart; rounding the key keeps its order, so a slice holds every point it
+    must), and each point of the slices is tested exactly."""
+    if len(pts) == 0 or len(boxes) == 0:
+        return np.zeros(len(boxes), dtype=np.intp)
+    x, y = pts[:, 0], pts[:, 1]
+    x_min, y_min = x.min(), y.min()
+    spread = float(x.max() - x_min)
+    tall = max(float(np.max(boxes[:, 3] - boxes[:, 1])), 1e-3 * (spread + 1.0))
+    bands = int((float(y.max()) - float(y_min)) // tall) + 1
+    step = spread + 10.0
+    band = np.floor((y - y_min) / tall).astype(np.intp)
+    key = band * step + (x - x_min)
+    order = np.argsort(key, kind="stable")
+    key, xs, ys = key[order], x[order], y[order]
+    # the bands each box meets (none for a box above or below all the points)
+    first = np.maximum(np.floor((boxes[:, 1] - y_min) / tall), 0)
+    last = np.minimum(np.floor((boxes[:, 3] - y_min) / tall), bands - 1)
+    n_bands = np.maximum(last - first + 1, 0).astype(np.intp)
+    box_q = np.repeat(np.arange(len(boxes)), n_bands)
+    band_q = first[box_q] + (np.arange(len(box_q)) - np.repeat(np.cumsum(n_bands) - n_bands, n_bands))
+    # the box's x range, clipped to the points' (which keeps the slice's points the same)
+    x0 = np.clip(boxes[box_q, 0] - x_min, -1.0, spread + 1.0)
+    x1 = np.clip(boxes[box_q, 2] - x_min, -1.0, spread + 1.0)
+    lo = np.searchsorted(key, band_q * step + x0, "left")
+    span = np.maximum(np.searchsorted(key, band_q * step + x1, "right") - lo, 0)
+    query = np.repeat(np.arange(len(box_q)), span)
+    at = np.arange(len(query)) - np.repeat(np.cumsum(span) - span, span) + lo[query]
+    box_of = box_q[query]
+    b = boxes[box_of]
+    ok = (xs[at] >= b[:, 0]) & (xs[at] <= b[:, 2]) & (ys[at] >= b[:, 1]) & (ys[at] <= b[:, 3])
     return np.bincount(box_of[ok], minlength=len(boxes))
 
 
