@@ -16,8 +16,9 @@ order 2. Every link's cos θ and sin θ are kept once in `State.T`.
 
 from __future__ import annotations
 
+from collections import OrderedDict
 from dataclasses import dataclass, field, replace
-from functools import cached_property, lru_cache
+from functools import cached_property
 from math import factorial
 
 import numpy as np
@@ -190,15 +191,66 @@ PAIR_TABLES = True
 
 
 def pair_table_of(mech: Mechanism, group: Group) -> PairTable | None:
-    """The group's `PairTable` (built once per mechanism and group), or None: it has pairs
+    """The group's `PairTable` (built once per mechanism and group, or taken over from a
+    mechanism that draws the group alike: `GroupSolver`'s `like`), or None: it has pairs
     the tables do not cover, or `PAIR_TABLES` is off."""
     return _pair_table(mech, group) if PAIR_TABLES else None
 
 
-@lru_cache(maxsize=256)
+#: (mechanism, group) -> its pair table; -> a mechanism whose table of the group it may take
+_tables: OrderedDict = OrderedDict()
+_tables_like: OrderedDict = OrderedDict()
+TABLES_KEPT = 256
+
+
 def _pair_table(mech: Mechanism, group: Group) -> PairTable | None:
-    return pair_table(mech, group.links, group.joints, group.drivers, group.wedge_pairs,
-                      contact.row_index(mech))
+    key = (mech, group)
+    try:
+        return _tables[key]
+    except KeyError:
+        pass
+    like = _tables_like.get(key)
+    table = _tables.get((like, group), _NONE) if like is not None else _NONE
+    if table is _NONE:
+        table = pair_table(mech, group.links, group.joints, group.drivers, group.wedge_pairs,
+                           contact.row_index(mech))
+    _tables[key] = table
+    while len(_tables) > TABLES_KEPT:
+        _tables.popitem(last=False)
+    return table
+
+
+_NONE = object()
+
+
+def drawn_alike(a: Mechanism, b: Mechanism, group: Group) -> bool:
+    """Whether two mechanisms of one structure (their links, pairs and contact rows in the
+    same order) draw `group` alike: the same length scale, the same pair and driver objects,
+    and the same coordinates of every point its links carry and its pairs and drivers name —
+    everything its per-drawing constants (`GroupSolver.fast`, its `PairTable`) read. A drag
+    that moves one point changes few groups; the others keep their constants."""
+    if a.length_scale != b.length_scale or a.link_names != b.link_names or \
+            contact.rows(a) != contact.rows(b):
+        return False
+    names: set[str] = set()
+    for j in group.joints:
+        ja, jb = a.joint(j), b.joint(j)
+        if ja is not jb:
+            return False
+        names.update(v for v in vars(ja).values() if isinstance(v, str) and v in a.points)
+    for d in group.drivers:
+        da = next((x for x in a.drivers if x.joint == d), None)
+        db = next((x for x in b.drivers if x.joint == d), None)
+        if da is not db:
+            return False
+        if da is not None and da.reference:
+            names.add(da.reference)
+    for ln in group.links:
+        if ln in a.link_index:
+            if a.link(ln).points != b.link(ln).points:
+                return False
+            names.update(a.link(ln).points)
+    return all(n in b.points and np.array_equal(a.points[n], b.points[n]) for n in names)
 
 
 def _pose_fn(state: State, group_links: tuple[str, ...], U: np.ndarray | None, order: int):
@@ -453,7 +505,7 @@ def _design_branch(b: float) -> float:
 class GroupSolver:
     """Solves one group: positions (closed form or Newton) and derivatives."""
 
-    def __init__(self, mech: Mechanism, group: Group) -> None:
+    def __init__(self, mech: Mechanism, group: Group, like: "GroupSolver | None" = None) -> None:
         # a group's higher pairs bring their contact coordinates as rows of their own
         extra = tuple(contact.row_name(mech.joint(j)) for j in group.joints
                       if contact.is_higher(mech.joint(j)))
@@ -462,6 +514,14 @@ class GroupSolver:
         # a cam follower is solved in its own two unknowns (`cam_group`); the continuation still
         # treats it as generic (its rows are the generic rows)
         self.cam = cam_group.recognise(mech, group) if self.kind == "generic" else None
+        if like is not None and like.group == self.group and like.kind == self.kind and \
+                drawn_alike(like.mech, mech, self.group):
+            # the group drawn as in `like`'s mechanism (a drag's previous frame): its constants
+            # are the same numbers, taken over instead of computed again
+            self.__dict__["fast"] = like.fast
+            _tables_like[(mech, self.group)] = like.mech
+            while len(_tables_like) > TABLES_KEPT:
+                _tables_like.popitem(last=False)
         self.fast  # noqa: B018  (computed once here; `plan` keeps the solver per mechanism)
 
     @property

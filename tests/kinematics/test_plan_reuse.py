@@ -1,0 +1,74 @@
+"""A drag's frame (a mechanism that follows the previous one, `continuation.follow`) takes over
+the per-drawing constants of the groups the two draw alike (`solver.plan`,
+`groups.drawn_alike`): the very numbers a plan from scratch computes, checked against one; the
+groups whose drawing changed compute theirs anew."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import linkwork
+from linkwork.kinematics import groups, solver
+from linkwork.kinematics.continuation import follow
+from linkwork.kinematics.groups import GroupSolver, drawn_alike
+from linkwork.web.sources import moved
+
+
+def same(a, b) -> bool:
+    """Equal to the bit (dicts of numbers, arrays and names; None)."""
+    if isinstance(a, dict):
+        return isinstance(b, dict) and a.keys() == b.keys() and all(same(a[k], b[k]) for k in a)
+    if isinstance(a, np.ndarray) or isinstance(b, np.ndarray):
+        return np.array_equal(np.asarray(a), np.asarray(b))
+    return a == b
+
+
+def table_arrays(t) -> dict:
+    return {k: v for k, v in vars(t).items() if isinstance(v, (np.ndarray, float, int))}
+
+
+@pytest.mark.parametrize("name,point,kept", [
+    ("crank-rocker", "C", {"driver", "table"}),  # the coupler point: on the dyad's coupler only
+    ("heusinger-valve-gear", "P45", {"driver", "RRP", "table"}),  # eccentric rod, slotted link
+    ("heusinger-valve-gear", "P23", set()),  # the drawing's extent (its length scale) changes
+])
+def test_a_frame_takes_the_constants_of_the_groups_drawn_alike(name, point, kept):
+    base = linkwork.load(f"library:{name}")
+    before = solver.plan(base)
+    for s in before:  # the previous frame's tables, as its solve builds them
+        groups.pair_table_of(base, s.group)
+    m = moved(base, {point: base.points[point] + np.array([0.7, -0.4])})
+    follow(m, base)
+    after = solver.plan(m)
+    taken, computed = set(), set()
+    for old, new in zip(before, after):
+        assert same(new.fast, GroupSolver(m, new.group).fast)  # what a plan from scratch has
+        alike = drawn_alike(base, m, new.group)
+        if old.fast is not None:
+            assert (new.fast is old.fast) == alike
+            (taken if alike else computed).add(new.kind)
+        table = groups.pair_table_of(m, new.group)
+        if table is not None:
+            want = groups.pair_table(m, new.group.links, new.group.joints, new.group.drivers,
+                                     new.group.wedge_pairs, groups.contact.row_index(m))
+            assert table_arrays(table).keys() == table_arrays(want).keys()
+            for k, v in table_arrays(want).items():
+                assert same(table_arrays(table)[k], v), k
+            assert (table is groups.pair_table_of(base, new.group)) == alike
+            (taken if alike else computed).add("table")
+    assert taken == kept and computed
+
+
+def test_a_closed_form_frame_solves_to_the_bit_as_from_scratch():
+    base = linkwork.load("library:crank-rocker")
+    u = np.linspace(0.0, 6.0, 7)
+    linkwork.solve(base, u)
+    m = moved(base, {"C": base.points["C"] + np.array([0.6, 0.2])})
+    got = linkwork.solve(m, u, previous=base)
+    want = linkwork.solve(moved(m, {}), u)  # a new object: nothing taken over
+    for p in m.points:
+        assert np.array_equal(got.point(p).position, want.point(p).position)
+        assert np.array_equal(got.point(p).acceleration, want.point(p).acceleration)
+    assert np.array_equal(got.condition, want.condition, equal_nan=True)
+    assert np.array_equal(got.errors, want.errors, equal_nan=True)
