@@ -26,7 +26,9 @@ keep the design's signs (their change points form curves in the input space).
 
 from __future__ import annotations
 
+import threading
 import warnings
+from collections import OrderedDict
 from dataclasses import dataclass
 from functools import lru_cache
 
@@ -35,7 +37,7 @@ import numpy as np
 from ..errors import LinkworkWarning
 from ..model import Mechanism
 from .contact import rows
-from .groups import GroupSolver, State, input_coefficients
+from .groups import GroupSolver, State, drawn_alike, input_coefficients
 
 BRANCHING = ("RRR", "RRP", "rod-in-slot")  # closed forms that choose between two assemblies
 SCAN = 2048  # input samples per turn (or per 8 length scales of a prismatic input)
@@ -132,12 +134,52 @@ def _positions(mech: Mechanism, solvers: tuple[GroupSolver, ...], upto: GroupSol
 @lru_cache(maxsize=64)
 def branch_schedule(mech: Mechanism) -> dict:
     """Group → `Schedule` for the two-assembly groups of a one-driver mechanism that have change
-    points (groups not listed keep their design sign everywhere)."""
+    points (groups not listed keep their design sign everywhere). A mechanism that follows
+    another (`continuation.follow`: a drag's frames) whose every group the two draw alike
+    (`groups.drawn_alike`: a tracer point moved) has that one's schedule: the scan would find
+    the same numbers."""
+    from .continuation import lineage
     from .solver import plan  # the solver imports this module
 
     solvers = plan(mech)
     if len(mech.drivers) != 1 or not any(s.kind in BRANCHING for s in solvers):
         return {}
+    groups = tuple(s.group for s in solvers)
+    previous = lineage(mech)
+    kept = _schedules.get(previous) if previous is not None else None
+    if kept is not None and kept[0] == groups and \
+            all(drawn_alike(previous, mech, g) for g in groups):
+        found, flagged = kept[1], kept[2]
+        for s in solvers:
+            if s.group in flagged:
+                _warn_drawn_at_change(mech, s)
+    else:
+        found, flagged = _scan_schedule(mech, solvers)
+    with _schedules_lock:
+        _schedules[mech] = (groups, found, flagged)
+        while len(_schedules) > SCHEDULES_KEPT:
+            _schedules.popitem(last=False)
+    return found
+
+
+#: mechanism -> (its groups, its schedule, the groups drawn at a change point), the last few
+_schedules: OrderedDict = OrderedDict()
+_schedules_lock = threading.Lock()
+SCHEDULES_KEPT = 8
+
+
+def _warn_drawn_at_change(mech: Mechanism, s: GroupSolver) -> None:
+    warnings.warn(
+        f"mechanism '{mech.name}': the drawing has the group {', '.join(s.group.links)} "
+        "at a change or dead position (its pivots in line), so it does not define the "
+        "assembly branch there; linkwork takes one side and follows it continuously",
+        LinkworkWarning, stacklevel=3)
+
+
+def _scan_schedule(mech: Mechanism, solvers) -> tuple[dict, set]:
+    """`branch_schedule` found by scanning the input, and the groups the drawing has at a
+    change point (warned of)."""
+    flagged: set = set()
     d = mech.drivers[0]
     u0 = mech.driver_input_at_design(d)
     revolute = mech.joint(d.joint).kind == "revolute"
@@ -158,11 +200,8 @@ def branch_schedule(mech: Mechanism) -> dict:
             return s.discriminant(placed_at(u))
 
         if abs(h2(np.array([u0]))[0]) < CHANGE:
-            warnings.warn(
-                f"mechanism '{mech.name}': the drawing has the group {', '.join(s.group.links)} "
-                "at a change or dead position (its pivots in line), so it does not define the "
-                "assembly branch there; linkwork takes one side and follows it continuously",
-                LinkworkWarning, stacklevel=2)
+            flagged.add(s.group)
+            _warn_drawn_at_change(mech, s)
         def gap(u: np.ndarray) -> np.ndarray:
             return s.pivot_gap(placed_at(u))
 
@@ -174,7 +213,7 @@ def branch_schedule(mech: Mechanism) -> dict:
             found[s.group] = Schedule(s.design_sign, tuple(sorted(points)), period, u0)
             if revolute and len(points) % 2 == 1:
                 period *= 2  # downstream groups see the chain repeat after two turns
-    return found
+    return found, flagged
 
 
 def chain_period(mech: Mechanism) -> float | None:

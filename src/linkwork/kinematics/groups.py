@@ -23,7 +23,7 @@ from math import factorial
 
 import numpy as np
 
-from ..model import ConstantSpeed, Driver, Mechanism, Prismatic, Revolute, Slot
+from ..model import CircularSlot, ConstantSpeed, Driver, Gear, Mechanism, Prismatic, Revolute, Slot
 from ..topology import Group
 from . import cam_group, contact, intermittent
 from .constraints import PairTable, driver_residual, joint_residuals, pair_table
@@ -223,33 +223,36 @@ def _pair_table(mech: Mechanism, group: Group) -> PairTable | None:
 _NONE = object()
 
 
+#: the pairs whose equations read the drawing only through the points they name (and their
+#: own fields): a group of these is drawn alike where those points are
+_PLAIN_PAIRS = (Revolute, Prismatic, Slot, CircularSlot, Gear)
+
+
 def drawn_alike(a: Mechanism, b: Mechanism, group: Group) -> bool:
-    """Whether two mechanisms of one structure (their links, pairs and contact rows in the
-    same order) draw `group` alike: the same length scale, the same pair and driver objects,
-    and the same coordinates of every point its links carry and its pairs and drivers name —
-    everything its per-drawing constants (`GroupSolver.fast`, its `PairTable`) read. A drag
-    that moves one point changes few groups; the others keep their constants."""
+    """Whether two mechanisms of one structure (their links and contact rows in the same order)
+    draw `group` alike, so that it is solved to the same numbers in both: the same length
+    scale, the same pair and driver objects, and the same coordinates of every point its pairs
+    name (a revolute's hinge, a guide's point, a circular slot's centre) and of its drivers'
+    reference points — everything its per-drawing constants (`GroupSolver.fast`, its
+    `PairTable`) and its positions read. Only groups of lower pairs and gear pairs of two wheels
+    (higher pairs read profiles, intermittent pairs their wheels' drawings). A drag that
+    moves one point changes few groups, a point no pair names (a coupler's tracer point) none."""
     if a.length_scale != b.length_scale or a.link_names != b.link_names or \
             contact.rows(a) != contact.rows(b):
         return False
     names: set[str] = set()
     for j in group.joints:
-        ja, jb = a.joint(j), b.joint(j)
-        if ja is not jb:
+        ja = a.joint(j)
+        if ja is not b.joint(j) or not isinstance(ja, _PLAIN_PAIRS) or \
+                (isinstance(ja, Gear) and ja.gear_kind == "rack"):
             return False
         names.update(v for v in vars(ja).values() if isinstance(v, str) and v in a.points)
     for d in group.drivers:
         da = next((x for x in a.drivers if x.joint == d), None)
-        db = next((x for x in b.drivers if x.joint == d), None)
-        if da is not db:
+        if da is None or da is not next((x for x in b.drivers if x.joint == d), None):
             return False
-        if da is not None and da.reference:
+        if da.reference:
             names.add(da.reference)
-    for ln in group.links:
-        if ln in a.link_index:
-            if a.link(ln).points != b.link(ln).points:
-                return False
-            names.update(a.link(ln).points)
     return all(n in b.points and np.array_equal(a.points[n], b.points[n]) for n in names)
 
 
