@@ -94,3 +94,25 @@ def test_a_frame_drawn_alike_takes_the_change_points_of_the_previous(point, by, 
     for p in m.points:
         assert np.array_equal(got.point(p).position, sol.point(p).position, equal_nan=True)
     assert np.array_equal(got.status, sol.status)
+
+
+def test_a_path_of_two_drivers_takes_the_change_points_of_the_groups_drawn_alike():
+    base = linkwork.load("library:heusinger-valve-gear")
+    design = np.array([base.driver_input_at_design(d) for d in base.drivers])
+    at = (design + [0.4, 0.0])[None]
+    linkwork.solve(base, at)
+    before = branches._path_schedules[base][3]
+    m = moved(base, {"P45": base.points["P45"] + np.array([0.7, -0.4])})
+    follow(m, base)
+    solvers = solver.plan(m)
+    got, lam, _ = branches.path_schedule(m, solvers, at)
+    fresh = moved(m, {})  # a new object: scanned from scratch
+    want, lam_fresh, _ = branches.path_schedule(fresh, solver.plan(fresh), at)
+    assert got == want and np.array_equal(lam, lam_fresh)
+    alike, kinds = True, {}
+    for s in solvers:
+        alike = alike and drawn_alike(base, m, s.group)
+        if s.kind in branches.BRANCHING:
+            assert (got[s.group] is before[s.group]) == alike
+            kinds[s.kind] = alike
+    assert kinds == {"RRP": True, "RRR": False}  # P45 is a hinge of the RRR dyad

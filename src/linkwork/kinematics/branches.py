@@ -347,8 +347,12 @@ def path_schedule(mech: Mechanism, solvers: tuple[GroupSolver, ...], values: np.
     first carries the dyad through its change position, or cranks coupled so that they do —
     and flips the group's assembly there as the real motion does. A path that crosses them
     leaves the group unreachable on the far side. Groups below a Newton-solved one keep the
-    sign they start with (their scan would need a continuation of its own)."""
-    from .continuation import InputPath, input_weights
+    sign they start with (their scan would need a continuation of its own).
+
+    A mechanism that follows another (`continuation.follow`: a drag's frames) along the same
+    path takes that one's schedule of every group drawn alike by both, itself and all groups
+    before it (`groups.drawn_alike`): the scan would find the same numbers."""
+    from .continuation import InputPath, input_weights, lineage
 
     w = input_weights(mech)
     if start is None:
@@ -365,6 +369,13 @@ def path_schedule(mech: Mechanism, solvers: tuple[GroupSolver, ...], values: np.
     found: dict = {}
     if not any(s.kind in BRANCHING for s in solvers):
         return found, lam_samples, path
+    groups = tuple(s.group for s in solvers)
+    previous = lineage(mech) if start is None else None
+    kept = _path_schedules.get(previous) if previous is not None else None
+    if kept is not None and (kept[0] != groups or not np.array_equal(kept[1], path.knots)
+                             or not np.array_equal(kept[2], path.vertices)):
+        kept = None
+    alike = kept is not None  # every group so far drawn alike by both
     grid, _ = path.grid(2 * np.pi / SCAN)
     if start is not None and start.previous is not None:
         first_new = int(np.flatnonzero(grid >= path.knots[1])[0])  # the earlier solve's end
@@ -376,7 +387,11 @@ def path_schedule(mech: Mechanism, solvers: tuple[GroupSolver, ...], values: np.
     generic_above = False
     for s in solvers:
         generic_above |= s.kind == "generic"
+        alike = alike and drawn_alike(previous, mech, s.group)
         if s.kind not in BRANCHING:
+            continue
+        if alike and s.group in kept[3]:
+            found[s.group] = kept[3][s.group]
             continue
         before = start.schedules.get(s.group) if start is not None else None
         sign = s.design_sign if before is None else float(before.signs(np.array([lam0]))[0])
@@ -405,4 +420,14 @@ def path_schedule(mech: Mechanism, solvers: tuple[GroupSolver, ...], values: np.
                 _touches(fn, grid, first_new, new, merge)
             points += [c for c in new if not any(abs(c - p) < merge for p in points)]
         found[s.group] = PathSchedule(sign, tuple(sorted(points)))
+    if start is None:
+        with _schedules_lock:
+            _path_schedules[mech] = (groups, path.knots, path.vertices, dict(found))
+            while len(_path_schedules) > SCHEDULES_KEPT:
+                _path_schedules.popitem(last=False)
     return found, lam_samples, path
+
+
+#: mechanism -> (its groups, the knots and vertices of its last path from the design input,
+#: the schedule along it), the last few
+_path_schedules: OrderedDict = OrderedDict()
