@@ -351,6 +351,12 @@ def follow(mech: Mechanism, previous: Mechanism) -> None:
             _lineage.popitem(last=False)
 
 
+def lineage(mech: Mechanism) -> Mechanism | None:
+    """The mechanism `mech` follows (`follow`), if any."""
+    with _lock:
+        return _lineage.get(mech)
+
+
 def carried(mech: Mechanism) -> Carried | None:
     """How the march of `mech` began from a previous mechanism's (None: it was not asked to)."""
     with _lock:

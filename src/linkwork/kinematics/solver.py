@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import sys
 import threading
+from collections import OrderedDict
 from functools import lru_cache
 
 import numpy as np
@@ -20,7 +21,7 @@ from ..topology import solution_order
 from .branches import branch_schedule, path_schedule
 from . import fused, kernels
 from .contact import interference, rows
-from .continuation import PathEnd, continuation_guesses, follow
+from .continuation import PathEnd, continuation_guesses, follow, lineage
 from .groups import GroupSolver, State, input_coefficients
 from .precision import POLISH_LIMIT, TOLERANCE, ErrorBudget, polish, polishable
 from .solution import Solution, Status
@@ -40,7 +41,9 @@ FUSED = True
 @lru_cache(maxsize=64)
 def plan(mech: Mechanism) -> tuple[GroupSolver, ...]:
     """The group solvers of `mech` in solution order (computed once per mechanism); an
-    over-closed chain is ordered by `overclosed` (its redundant links last, least squares)."""
+    over-closed chain is ordered by `overclosed` (its redundant links last, least squares).
+    A mechanism that follows another (`continuation.follow`: a drag's frames) takes over the
+    constants of the groups the two draw alike (`groups.drawn_alike`)."""
     try:
         order = solution_order(mech)
     except StructureError as exc:
@@ -48,7 +51,21 @@ def plan(mech: Mechanism) -> tuple[GroupSolver, ...]:
             raise
         from .overclosed import overclosed_order
         order = overclosed_order(mech, exc)
-    return tuple(GroupSolver(mech, g) for g in order)
+    previous = lineage(mech)
+    kept = _plans.get(previous) if previous is not None else None
+    like = {s.group: s for s in kept} if kept is not None else {}
+    out = tuple(GroupSolver(mech, g, like.get(g)) for g in order)
+    with _plans_lock:
+        _plans[mech] = out
+        while len(_plans) > PLANS_KEPT:
+            _plans.popitem(last=False)
+    return out
+
+
+#: the last plans made, for the next frame of a drag to take constants from (`plan`)
+_plans: OrderedDict = OrderedDict()
+_plans_lock = threading.Lock()
+PLANS_KEPT = 8
 
 
 #: pose arrays of this many bytes and more (up to `SPARE_UP_TO`) are taken from the memory of
