@@ -51,6 +51,15 @@ def _query(mechanism: Optional[str], workdir: Optional[Path]) -> tuple[str, Opti
     return "?" + urlencode({"file": path.relative_to(root).as_posix()}), root
 
 
+def server_options() -> dict:
+    """uvicorn's settings for `linkwork serve` besides host and port. A WebSocket message is
+    limited to the size of a request body (`web.app.MAX_BODY`), as HTTP's are: a larger one
+    closes the socket with code 1009 (message too big) before it is read whole, where
+    uvicorn's default would take messages of 16 MB into memory."""
+    from ..web.app import MAX_BODY
+    return {"log_level": "warning", "ws_max_size": MAX_BODY}
+
+
 def register(app: typer.Typer) -> None:
     @app.command()
     def serve(
@@ -91,4 +100,4 @@ def register(app: typer.Typer) -> None:
                 typer.echo(f"working folder: {root}")
             if open_browser:
                 webbrowser.open(url)
-            uvicorn.run(create_app(root, compiled=True), host=host, port=port, log_level="warning")
+            uvicorn.run(create_app(root, compiled=True), host=host, port=port, **server_options())

@@ -26,7 +26,9 @@ keep the design's signs (their change points form curves in the input space).
 
 from __future__ import annotations
 
+import threading
 import warnings
+from collections import OrderedDict
 from dataclasses import dataclass
 from functools import lru_cache
 
@@ -35,7 +37,7 @@ import numpy as np
 from ..errors import LinkworkWarning
 from ..model import Mechanism
 from .contact import rows
-from .groups import GroupSolver, State, input_coefficients
+from .groups import GroupSolver, State, drawn_alike, input_coefficients
 
 BRANCHING = ("RRR", "RRP", "rod-in-slot")  # closed forms that choose between two assemblies
 SCAN = 2048  # input samples per turn (or per 8 length scales of a prismatic input)
@@ -132,12 +134,52 @@ def _positions(mech: Mechanism, solvers: tuple[GroupSolver, ...], upto: GroupSol
 @lru_cache(maxsize=64)
 def branch_schedule(mech: Mechanism) -> dict:
     """Group → `Schedule` for the two-assembly groups of a one-driver mechanism that have change
-    points (groups not listed keep their design sign everywhere)."""
+    points (groups not listed keep their design sign everywhere). A mechanism that follows
+    another (`continuation.follow`: a drag's frames) whose every group the two draw alike
+    (`groups.drawn_alike`: a tracer point moved) has that one's schedule: the scan would find
+    the same numbers."""
+    from .continuation import lineage
     from .solver import plan  # the solver imports this module
 
     solvers = plan(mech)
     if len(mech.drivers) != 1 or not any(s.kind in BRANCHING for s in solvers):
         return {}
+    groups = tuple(s.group for s in solvers)
+    previous = lineage(mech)
+    kept = _schedules.get(previous) if previous is not None else None
+    if kept is not None and kept[0] == groups and \
+            all(drawn_alike(previous, mech, g) for g in groups):
+        found, flagged = kept[1], kept[2]
+        for s in solvers:
+            if s.group in flagged:
+                _warn_drawn_at_change(mech, s)
+    else:
+        found, flagged = _scan_schedule(mech, solvers)
+    with _schedules_lock:
+        _schedules[mech] = (groups, found, flagged)
+        while len(_schedules) > SCHEDULES_KEPT:
+            _schedules.popitem(last=False)
+    return found
+
+
+#: mechanism -> (its groups, its schedule, the groups drawn at a change point), the last few
+_schedules: OrderedDict = OrderedDict()
+_schedules_lock = threading.Lock()
+SCHEDULES_KEPT = 8
+
+
+def _warn_drawn_at_change(mech: Mechanism, s: GroupSolver) -> None:
+    warnings.warn(
+        f"mechanism '{mech.name}': the drawing has the group {', '.join(s.group.links)} "
+        "at a change or dead position (its pivots in line), so it does not define the "
+        "assembly branch there; linkwork takes one side and follows it continuously",
+        LinkworkWarning, stacklevel=3)
+
+
+def _scan_schedule(mech: Mechanism, solvers) -> tuple[dict, set]:
+    """`branch_schedule` found by scanning the input, and the groups the drawing has at a
+    change point (warned of)."""
+    flagged: set = set()
     d = mech.drivers[0]
     u0 = mech.driver_input_at_design(d)
     revolute = mech.joint(d.joint).kind == "revolute"
@@ -158,11 +200,8 @@ def branch_schedule(mech: Mechanism) -> dict:
             return s.discriminant(placed_at(u))
 
         if abs(h2(np.array([u0]))[0]) < CHANGE:
-            warnings.warn(
-                f"mechanism '{mech.name}': the drawing has the group {', '.join(s.group.links)} "
-                "at a change or dead position (its pivots in line), so it does not define the "
-                "assembly branch there; linkwork takes one side and follows it continuously",
-                LinkworkWarning, stacklevel=2)
+            flagged.add(s.group)
+            _warn_drawn_at_change(mech, s)
         def gap(u: np.ndarray) -> np.ndarray:
             return s.pivot_gap(placed_at(u))
 
@@ -174,7 +213,7 @@ def branch_schedule(mech: Mechanism) -> dict:
             found[s.group] = Schedule(s.design_sign, tuple(sorted(points)), period, u0)
             if revolute and len(points) % 2 == 1:
                 period *= 2  # downstream groups see the chain repeat after two turns
-    return found
+    return found, flagged
 
 
 def chain_period(mech: Mechanism) -> float | None:
@@ -308,8 +347,12 @@ def path_schedule(mech: Mechanism, solvers: tuple[GroupSolver, ...], values: np.
     first carries the dyad through its change position, or cranks coupled so that they do —
     and flips the group's assembly there as the real motion does. A path that crosses them
     leaves the group unreachable on the far side. Groups below a Newton-solved one keep the
-    sign they start with (their scan would need a continuation of its own)."""
-    from .continuation import InputPath, input_weights
+    sign they start with (their scan would need a continuation of its own).
+
+    A mechanism that follows another (`continuation.follow`: a drag's frames) along the same
+    path takes that one's schedule of every group drawn alike by both, itself and all groups
+    before it (`groups.drawn_alike`): the scan would find the same numbers."""
+    from .continuation import InputPath, input_weights, lineage
 
     w = input_weights(mech)
     if start is None:
@@ -326,6 +369,13 @@ def path_schedule(mech: Mechanism, solvers: tuple[GroupSolver, ...], values: np.
     found: dict = {}
     if not any(s.kind in BRANCHING for s in solvers):
         return found, lam_samples, path
+    groups = tuple(s.group for s in solvers)
+    previous = lineage(mech) if start is None else None
+    kept = _path_schedules.get(previous) if previous is not None else None
+    if kept is not None and (kept[0] != groups or not np.array_equal(kept[1], path.knots)
+                             or not np.array_equal(kept[2], path.vertices)):
+        kept = None
+    alike = kept is not None  # every group so far drawn alike by both
     grid, _ = path.grid(2 * np.pi / SCAN)
     if start is not None and start.previous is not None:
         first_new = int(np.flatnonzero(grid >= path.knots[1])[0])  # the earlier solve's end
@@ -337,7 +387,11 @@ def path_schedule(mech: Mechanism, solvers: tuple[GroupSolver, ...], values: np.
     generic_above = False
     for s in solvers:
         generic_above |= s.kind == "generic"
+        alike = alike and drawn_alike(previous, mech, s.group)
         if s.kind not in BRANCHING:
+            continue
+        if alike and s.group in kept[3]:
+            found[s.group] = kept[3][s.group]
             continue
         before = start.schedules.get(s.group) if start is not None else None
         sign = s.design_sign if before is None else float(before.signs(np.array([lam0]))[0])
@@ -366,4 +420,14 @@ def path_schedule(mech: Mechanism, solvers: tuple[GroupSolver, ...], values: np.
                 _touches(fn, grid, first_new, new, merge)
             points += [c for c in new if not any(abs(c - p) < merge for p in points)]
         found[s.group] = PathSchedule(sign, tuple(sorted(points)))
+    if start is None:
+        with _schedules_lock:
+            _path_schedules[mech] = (groups, path.knots, path.vertices, dict(found))
+            while len(_path_schedules) > SCHEDULES_KEPT:
+                _path_schedules.popitem(last=False)
     return found, lam_samples, path
+
+
+#: mechanism -> (its groups, the knots and vertices of its last path from the design input,
+#: the schedule along it), the last few
+_path_schedules: OrderedDict = OrderedDict()

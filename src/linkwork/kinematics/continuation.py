@@ -34,7 +34,10 @@ other dimensions. `solve(..., previous=)` starts its march from the previous fra
 old poses, and taken in order for as long as each step passes the tests a march's step must
 pass (a contracting corrector, the step bound, smooth both ways). A change of assembly branch
 fails them as it fails a march, and from there the march goes on as it does after a rejected
-step; `carried(mech)` says how far the old march was taken and why not further. Starting values
+step, across to the failed point; the old points beyond are then offered again from the
+marched one, each step checked the same way (a step the old march passed only just can fail
+by a hair for the new dimensions, and the rest of the old march still serves); `carried(mech)`
+says how much of the old march was taken and where it was not. Starting values
 from a carried march differ from a fresh one's at the level of the march's accuracy, so the
 solutions agree to rounding, not bit for bit.
 """
@@ -303,20 +306,25 @@ class Carried:
     (`solve(..., previous=)`, the frames of a drag): `carried` of the `points` accepted points
     offered were taken over; `failed_at` is the input (one value per driver) of the first one
     that was not and `reason` says why (None, None: all of them). From there the march went on
-    as a march from the design position goes on after a rejected step."""
+    as a march from the design position goes on after a rejected step, across `gaps` stretches
+    after which the old march's points were taken up again (`resumed` of them)."""
 
     carried: int
     points: int
     failed_at: tuple | None = None
     reason: str | None = None
+    gaps: int = 0     # stretches marched across where a carried step failed ...
+    resumed: int = 0  # ... and the points carried over after them
 
     def __str__(self) -> str:
         if self.reason is None:
             return f"continued from the previous mechanism ({self.carried} points)"
         at = "" if self.failed_at is None else \
             " at input " + ", ".join(f"{v:.6g}" for v in self.failed_at)
+        again = "" if not self.resumed else \
+            f"; taken up again after {self.gaps} stretch{'es' if self.gaps > 1 else ''} marched"
         return (f"marched again from the design position's branch{at}: {self.reason} "
-                f"({self.carried} of {self.points} points carried over)")
+                f"({self.carried} of {self.points} points carried over{again})")
 
 
 #: mechanism -> the `Carried` of its march; mechanism -> its last march of several drivers;
@@ -327,6 +335,9 @@ PATHS_KEPT = 4
 #: a carried step may be this much longer than the step bound the march keeps to
 #: (`MAX_POSE_CHANGE`): the poses' speed differs a little from the previous mechanism's
 CARRY_STEP_SLACK = 1.5
+#: where a carried step fails, the lane marches across to the failed point and the old march's
+#: points beyond are offered again: at most this many times per lane and carry
+MAX_GAPS = 8
 _lock = Lock()
 
 
@@ -338,6 +349,12 @@ def follow(mech: Mechanism, previous: Mechanism) -> None:
         _lineage[mech] = previous
         while len(_lineage) > CACHE_SIZE:
             _lineage.popitem(last=False)
+
+
+def lineage(mech: Mechanism) -> Mechanism | None:
+    """The mechanism `mech` follows (`follow`), if any."""
+    with _lock:
+        return _lineage.get(mech)
 
 
 def carried(mech: Mechanism) -> Carried | None:
@@ -417,6 +434,8 @@ def _carry_ahead(mech: Mechanism, solvers, gen: "_Generic", lanes: list, reach: 
         if ln.pending is None or ln.stopped or ln.reached(reach[ln.sense]):
             continue
         old, start = ln.pending
+        if ln.lam:  # (a march across a gap may have gone past some of them)
+            start += int(np.searchsorted(np.asarray(old.lam[start:]), ln.lam[-1], side="right"))
         lam = np.asarray(old.lam[start:], dtype=float)
         past = np.flatnonzero(lam >= reach[ln.sense])
         m = int(past[0]) + 1 if past.size else lam.size
@@ -427,7 +446,7 @@ def _carry_ahead(mech: Mechanism, solvers, gen: "_Generic", lanes: list, reach: 
             was = _carried.get(mech)
         if was is not None and was.reason is None:
             _note(mech, Carried(was.carried + more.carried, was.points + more.points,
-                                more.failed_at, more.reason))
+                                more.failed_at, more.reason, more.gaps, more.resumed))
 
 
 def _carry_points(mech: Mechanism, solvers, gen: "_Generic", lanes: list) -> Carried:
@@ -451,53 +470,53 @@ def _carry_points(mech: Mechanism, solvers, gen: "_Generic", lanes: list) -> Car
     pred = np.array([r[2] for r in rows])
     ok, q, t_arrive, t_leave, jacobians = _attempt(mech, solvers, gen, schedule, u, lams,
                                                    arrive, leave, pred)
-    taken, failed = 0, None
+    taken, failed, gaps, resumed = 0, None, 0, 0
     for n, (old, new, _, _, after) in enumerate(lanes):
         idx = np.flatnonzero(lane_of == n)
         new.pending = None
-        if idx.size == 0:
-            continue
-        # every step's tests at once (each needs its two ends only): converged, not longer than
-        # the bound the march keeps to, smooth both ways; a lane marched already steps from its
-        # last point
-        head = bool(new.lam)
-        L = np.concatenate([new.lam[-1:], lams[idx]])
-        Q = np.concatenate([np.array(new.P[-1:]).reshape(-1, gen.size, 3), q[idx]])
-        TL = np.concatenate([np.array(new.T[-1:]).reshape(-1, gen.size, 3), t_leave[idx]])
-        h = L[1:] - L[:-1]
-        tn = gen.norm(TL[:-1])
-        known = np.isfinite(tn) & (tn > 0)
-        bound = np.where(known, np.maximum(MAX_POSE_CHANGE * gen.L / np.where(known, tn, 1.0),
-                                           MIN_STEP * CONTINUATION_STEP), np.inf)
-        tangent = np.isfinite(TL[:-1]).all(axis=(1, 2))[:, None, None]
-        pred = np.where(tangent, Q[:-1] + h[:, None, None] * TL[:-1], Q[:-1])
-        arriving = t_arrive[idx] if head else t_arrive[idx[1:]]
-        why = np.full(idx.size, None, dtype=object)
-        stepped = why[0 if head else 1:]  # the rows a step arrives at (a view)
-        stepped[~_smooth(gen, Q[:-1], pred, Q[1:], h, arriving)] = (
-            "the poses do not follow on smoothly there (another assembly branch, or a fast swing)")
-        stepped[h > CARRY_STEP_SLACK * bound] = "the poses move faster there than the previous step allows"
-        if not head and lams[idx[0]] != new.knots[0]:
-            why[0] = "the previous march does not start at the design position"
-        why[~ok[idx]] = "the previous poses do not converge there (no assembly near them)"
-        bad = np.flatnonzero(why != None)  # noqa: E711 (an object array, compared elementwise)
-        k = int(bad[0]) if bad.size else idx.size
-        if bad.size and failed is None:
-            failed = (tuple(float(v) for v in u[idx[k]]), why[k])
-        for i in idx[:k]:
-            new._append(float(lams[i]), q[i].copy(), t_leave[i].copy())
-        if k:
-            new.started = True
-            last = idx[k - 1]
-            new.last = (arrive[last], {g: J[last:last + 1].copy() for g, J in jacobians.items()})
-            taken += k
-        if not new.lam:
-            continue
-        if k < idx.size:  # as a march goes on after a rejected step
-            new.h = (lams[idx[k]] - new.lam[-1]) / 2
+        pos, crossed = 0, 0  # the first row not yet taken; gaps marched across in this lane
+        while pos < idx.size:
+            sub = idx[pos:]
+            why = _carry_faults(gen, new, lams[sub], q[sub], t_leave[sub], t_arrive[sub], ok[sub])
+            bad = np.flatnonzero(why != None)  # noqa: E711 (an object array, compared elementwise)
+            k = int(bad[0]) if bad.size else sub.size
+            if bad.size and failed is None:
+                failed = (tuple(float(v) for v in u[sub[k]]), why[k])
+            for i in sub[:k]:
+                new._append(float(lams[i]), q[i].copy(), t_leave[i].copy())
+            if k:
+                new.started = True
+                last = sub[k - 1]
+                new.last = (arrive[last], {g: J[last:last + 1].copy() for g, J in jacobians.items()})
+                taken += k
+                resumed += k if crossed else 0
+            if k == sub.size or not new.lam:
+                pos = idx.size
+                break
+            # as a march goes on after a rejected step: the step halved ...
+            new.h = (lams[sub[k]] - new.lam[-1]) / 2
             new.halved = True
             new.stopped = new.h < MIN_STEP * CONTINUATION_STEP
-        elif after < len(old.lam):  # more to take when a march needs them
+            if new.stopped or crossed == MAX_GAPS:
+                pos += k
+                break
+            # ... and marched across the gap to the failed point's λ; then the points beyond
+            # the march's last one are offered again, each step checked as before (the first
+            # from the marched point): a step the march passed only just, made for the old
+            # dimensions, fails by a hair for the new ones, and the rest of the old march
+            # still serves (a march of its own costs milliseconds per step)
+            _march(mech, solvers, gen, [new], {new.sense: float(lams[sub[k]])})
+            crossed += 1
+            pos += int(np.searchsorted(lams[sub], new.lam[-1], side="right"))
+            if new.stopped:  # a limit position before the failed point: the march ends there
+                pos = min(pos, idx.size - 1)
+                break
+        gaps += crossed
+        if not new.lam:
+            continue
+        if pos < idx.size:  # left as a march after a rejected step (set above)
+            continue
+        if after < len(old.lam):  # more to take when a march needs them
             new.pending = (old, after)
             new.h = min(new.lam[-1] - new.lam[-2], CONTINUATION_STEP) if len(new.lam) > 1 \
                 else CONTINUATION_STEP
@@ -508,7 +527,37 @@ def _carry_points(mech: Mechanism, solvers, gen: "_Generic", lanes: list) -> Car
             new.halved = True
         else:
             new.h, new.halved = old.h, old.halved
-    return Carried(taken, len(rows), *(failed or (None, None)))
+    return Carried(taken, len(rows), *(failed or (None, None)), gaps, resumed)
+
+
+def _carry_faults(gen: "_Generic", new: "_Lane", lams: np.ndarray, q: np.ndarray,
+                  t_leave: np.ndarray, t_arrive: np.ndarray, ok: np.ndarray) -> np.ndarray:
+    """Why each carried point (its λ, poses, tangents leaving and arriving, whether it
+    converged) may not be taken as the lane's next step after the point before it (the first:
+    after the lane's last point, or as its design position): None where it may. Every step's
+    tests at once (each needs its two ends only): converged, not longer than the bound the
+    march keeps to, smooth both ways."""
+    head = bool(new.lam)
+    L = np.concatenate([new.lam[-1:], lams])
+    Q = np.concatenate([np.array(new.P[-1:]).reshape(-1, gen.size, 3), q])
+    TL = np.concatenate([np.array(new.T[-1:]).reshape(-1, gen.size, 3), t_leave])
+    h = L[1:] - L[:-1]
+    tn = gen.norm(TL[:-1])
+    known = np.isfinite(tn) & (tn > 0)
+    bound = np.where(known, np.maximum(MAX_POSE_CHANGE * gen.L / np.where(known, tn, 1.0),
+                                       MIN_STEP * CONTINUATION_STEP), np.inf)
+    tangent = np.isfinite(TL[:-1]).all(axis=(1, 2))[:, None, None]
+    pred = np.where(tangent, Q[:-1] + h[:, None, None] * TL[:-1], Q[:-1])
+    arriving = t_arrive if head else t_arrive[1:]
+    why = np.full(lams.size, None, dtype=object)
+    stepped = why[0 if head else 1:]  # the rows a step arrives at (a view)
+    stepped[~_smooth(gen, Q[:-1], pred, Q[1:], h, arriving)] = (
+        "the poses do not follow on smoothly there (another assembly branch, or a fast swing)")
+    stepped[h > CARRY_STEP_SLACK * bound] = "the poses move faster there than the previous step allows"
+    if not head and lams[0] != new.knots[0]:
+        why[0] = "the previous march does not start at the design position"
+    why[~ok] = "the previous poses do not converge there (no assembly near them)"
+    return why
 
 
 class _Generic:

@@ -16,13 +16,14 @@ order 2. Every link's cos θ and sin θ are kept once in `State.T`.
 
 from __future__ import annotations
 
+from collections import OrderedDict
 from dataclasses import dataclass, field, replace
-from functools import cached_property, lru_cache
+from functools import cached_property
 from math import factorial
 
 import numpy as np
 
-from ..model import ConstantSpeed, Driver, Mechanism, Prismatic, Revolute, Slot
+from ..model import CircularSlot, ConstantSpeed, Driver, Gear, Mechanism, Prismatic, Revolute, Slot
 from ..topology import Group
 from . import cam_group, contact, intermittent
 from .constraints import PairTable, driver_residual, joint_residuals, pair_table
@@ -38,7 +39,7 @@ ROUNDING_RESIDUAL = 8.0
 UNRELIABLE_CONDITION = 1e14
 
 
-def backward_error(mech: Mechanism, residual: np.ndarray) -> np.ndarray:
+def backward_error(mech: Mechanism, residual: np.ndarray, eps: float | None = None) -> np.ndarray:
     """Newton's final residual (a length, per sample) as the error budget takes it
     (`precision.ErrorBudget`, the group's backward error over L). A residual at the level of
     the equations' rounding (`ROUNDING_RESIDUAL`·ε·the drawing's coordinates) counts as none:
@@ -47,12 +48,15 @@ def backward_error(mech: Mechanism, residual: np.ndarray) -> np.ndarray:
     noise that differs with the path Newton came along (a march carried over from a drag's
     previous frame or marched afresh, 0.3 … 3 ε·m₀ at the same sample): added to the bound it
     moved samples whose bound lies near the tolerance between ok and singular. A larger
-    residual (a limit position, an over-closed group's least squares) is counted in full."""
+    residual (a limit position, an over-closed group's least squares) is counted in full.
+    `eps`: the unit roundoff of the arithmetic Newton ran in (double unless given; the polish
+    in long double, `precision._newton`, gives its own)."""
     from .precision import EPS, coordinate_size  # (precision imports this module)
 
     r = residual / mech.length_scale
     with np.errstate(invalid="ignore"):
-        return np.where(r <= ROUNDING_RESIDUAL * EPS * coordinate_size(mech), 0.0, r)
+        return np.where(r <= ROUNDING_RESIDUAL * (EPS if eps is None else eps) *
+                        coordinate_size(mech), 0.0, r)
 
 
 def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
@@ -190,15 +194,69 @@ PAIR_TABLES = True
 
 
 def pair_table_of(mech: Mechanism, group: Group) -> PairTable | None:
-    """The group's `PairTable` (built once per mechanism and group), or None: it has pairs
+    """The group's `PairTable` (built once per mechanism and group, or taken over from a
+    mechanism that draws the group alike: `GroupSolver`'s `like`), or None: it has pairs
     the tables do not cover, or `PAIR_TABLES` is off."""
     return _pair_table(mech, group) if PAIR_TABLES else None
 
 
-@lru_cache(maxsize=256)
+#: (mechanism, group) -> its pair table; -> a mechanism whose table of the group it may take
+_tables: OrderedDict = OrderedDict()
+_tables_like: OrderedDict = OrderedDict()
+TABLES_KEPT = 256
+
+
 def _pair_table(mech: Mechanism, group: Group) -> PairTable | None:
-    return pair_table(mech, group.links, group.joints, group.drivers, group.wedge_pairs,
-                      contact.row_index(mech))
+    key = (mech, group)
+    try:
+        return _tables[key]
+    except KeyError:
+        pass
+    like = _tables_like.get(key)
+    table = _tables.get((like, group), _NONE) if like is not None else _NONE
+    if table is _NONE:
+        table = pair_table(mech, group.links, group.joints, group.drivers, group.wedge_pairs,
+                           contact.row_index(mech))
+    _tables[key] = table
+    while len(_tables) > TABLES_KEPT:
+        _tables.popitem(last=False)
+    return table
+
+
+_NONE = object()
+
+
+#: the pairs whose equations read the drawing only through the points they name (and their
+#: own fields): a group of these is drawn alike where those points are
+_PLAIN_PAIRS = (Revolute, Prismatic, Slot, CircularSlot, Gear)
+
+
+def drawn_alike(a: Mechanism, b: Mechanism, group: Group) -> bool:
+    """Whether two mechanisms of one structure (their links and contact rows in the same order)
+    draw `group` alike, so that it is solved to the same numbers in both: the same length
+    scale, the same pair and driver objects, and the same coordinates of every point its pairs
+    name (a revolute's hinge, a guide's point, a circular slot's centre) and of its drivers'
+    reference points — everything its per-drawing constants (`GroupSolver.fast`, its
+    `PairTable`) and its positions read. Only groups of lower pairs and gear pairs of two wheels
+    (higher pairs read profiles, intermittent pairs their wheels' drawings). A drag that
+    moves one point changes few groups, a point no pair names (a coupler's tracer point) none."""
+    if a.length_scale != b.length_scale or a.link_names != b.link_names or \
+            contact.rows(a) != contact.rows(b):
+        return False
+    names: set[str] = set()
+    for j in group.joints:
+        ja = a.joint(j)
+        if ja is not b.joint(j) or not isinstance(ja, _PLAIN_PAIRS) or \
+                (isinstance(ja, Gear) and ja.gear_kind == "rack"):
+            return False
+        names.update(v for v in vars(ja).values() if isinstance(v, str) and v in a.points)
+    for d in group.drivers:
+        da = next((x for x in a.drivers if x.joint == d), None)
+        if da is None or da is not next((x for x in b.drivers if x.joint == d), None):
+            return False
+        if da.reference:
+            names.add(da.reference)
+    return all(n in b.points and np.array_equal(a.points[n], b.points[n]) for n in names)
 
 
 def _pose_fn(state: State, group_links: tuple[str, ...], U: np.ndarray | None, order: int):
@@ -453,7 +511,7 @@ def _design_branch(b: float) -> float:
 class GroupSolver:
     """Solves one group: positions (closed form or Newton) and derivatives."""
 
-    def __init__(self, mech: Mechanism, group: Group) -> None:
+    def __init__(self, mech: Mechanism, group: Group, like: "GroupSolver | None" = None) -> None:
         # a group's higher pairs bring their contact coordinates as rows of their own
         extra = tuple(contact.row_name(mech.joint(j)) for j in group.joints
                       if contact.is_higher(mech.joint(j)))
@@ -462,6 +520,14 @@ class GroupSolver:
         # a cam follower is solved in its own two unknowns (`cam_group`); the continuation still
         # treats it as generic (its rows are the generic rows)
         self.cam = cam_group.recognise(mech, group) if self.kind == "generic" else None
+        if like is not None and like.group == self.group and like.kind == self.kind and \
+                drawn_alike(like.mech, mech, self.group):
+            # the group drawn as in `like`'s mechanism (a drag's previous frame): its constants
+            # are the same numbers, taken over instead of computed again
+            self.__dict__["fast"] = like.fast
+            _tables_like[(mech, self.group)] = like.mech
+            while len(_tables_like) > TABLES_KEPT:
+                _tables_like.popitem(last=False)
         self.fast  # noqa: B018  (computed once here; `plan` keeps the solver per mechanism)
 
     @property

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import sys
 import threading
+from collections import OrderedDict
 from functools import lru_cache
 
 import numpy as np
@@ -20,7 +21,7 @@ from ..topology import solution_order
 from .branches import branch_schedule, path_schedule
 from . import fused, kernels
 from .contact import interference, rows
-from .continuation import PathEnd, continuation_guesses, follow
+from .continuation import PathEnd, continuation_guesses, follow, lineage
 from .groups import GroupSolver, State, input_coefficients
 from .precision import POLISH_LIMIT, TOLERANCE, ErrorBudget, polish, polishable
 from .solution import Solution, Status
@@ -40,7 +41,9 @@ FUSED = True
 @lru_cache(maxsize=64)
 def plan(mech: Mechanism) -> tuple[GroupSolver, ...]:
     """The group solvers of `mech` in solution order (computed once per mechanism); an
-    over-closed chain is ordered by `overclosed` (its redundant links last, least squares)."""
+    over-closed chain is ordered by `overclosed` (its redundant links last, least squares).
+    A mechanism that follows another (`continuation.follow`: a drag's frames) takes over the
+    constants of the groups the two draw alike (`groups.drawn_alike`)."""
     try:
         order = solution_order(mech)
     except StructureError as exc:
@@ -48,7 +51,21 @@ def plan(mech: Mechanism) -> tuple[GroupSolver, ...]:
             raise
         from .overclosed import overclosed_order
         order = overclosed_order(mech, exc)
-    return tuple(GroupSolver(mech, g) for g in order)
+    previous = lineage(mech)
+    kept = _plans.get(previous) if previous is not None else None
+    like = {s.group: s for s in kept} if kept is not None else {}
+    out = tuple(GroupSolver(mech, g, like.get(g)) for g in order)
+    with _plans_lock:
+        _plans[mech] = out
+        while len(_plans) > PLANS_KEPT:
+            _plans.popitem(last=False)
+    return out
+
+
+#: the last plans made, for the next frame of a drag to take constants from (`plan`)
+_plans: OrderedDict = OrderedDict()
+_plans_lock = threading.Lock()
+PLANS_KEPT = 8
 
 
 #: pose arrays of this many bytes and more (up to `SPARE_UP_TO`) are taken from the memory of
@@ -81,8 +98,23 @@ def _pose_memory(size: int, key=None) -> tuple[np.ndarray, bool]:
         # references: the slot, `buf` and getrefcount's argument
         if buf is not None and size <= buf.size <= 2 * size and sys.getrefcount(buf) == 3:
             return buf[:size], key is not None and zero == key
+        _raise_mmap_threshold()
         _SPARE[0] = np.empty(size)
         return _SPARE[0], False
+
+
+#: glibc serves requests above its mmap threshold with fresh pages from the system (paid page
+#: by page on first touch) and raises that threshold to the size of such a block when it is
+#: freed, up to 32 MiB. The spare is never freed, so without a freed block of its own a process
+#: whose first large array is the spare kept every other large array of each solve (cos θ,
+#: sin θ, the points) above the threshold: 1 600 page faults and 60 % more time per solve and
+#: read of Jansen's linkage in a loop, measured. A block just under the limit, never touched,
+#: costs one mmap and munmap.
+_MMAP_RAISE = 30 << 20
+
+
+def _raise_mmap_threshold() -> None:
+    np.empty(_MMAP_RAISE // 8)
 
 
 def _pose_array(order: int, N: int, n_links: int, frame: int) -> np.ndarray:

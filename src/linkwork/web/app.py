@@ -15,6 +15,7 @@ import time
 import tomllib
 import warnings
 from contextlib import asynccontextmanager, contextmanager
+from contextvars import ContextVar
 from importlib import resources
 from pathlib import Path
 from typing import Iterator
@@ -26,16 +27,18 @@ from fastapi.encoders import jsonable_encoder
 from fastapi.exceptions import RequestValidationError
 from fastapi.responses import FileResponse, JSONResponse, Response
 from fastapi.staticfiles import StaticFiles
+from starlette.concurrency import run_in_threadpool
 from pydantic import ValidationError
 
 from ..errors import LinkworkError, LinkworkWarning, InputError, UnknownMechanismError
 from ..kinematics import Solution, Status, compiled_loops, solve, solve_at, whole_motion
 from ..kinematics.export import to_document
 from ..kinematics import warmup
+from ..kinematics.solver import plan
 from ..kinematics.warmup import compile_kernels
 from ..model import Mechanism, Prismatic
 from . import models as m
-from .sources import Sources
+from .sources import Loaded, Sources
 
 #: the largest request body accepted (a mechanism text of MAX_TEXT and its options)
 MAX_BODY = 1_000_000
@@ -115,6 +118,23 @@ class Stages:
     def __init__(self) -> None:
         self.ms: dict[str, float] = {}
         self.cpu0 = time.thread_time()
+        self._cpu_before = 0.0  # ms of CPU in the thread the request left (`handed_over`)
+        self._cpu_total: float | None = None
+
+    def handed_over(self, cpu_before: float) -> None:
+        """The request's work goes on in this thread (a worker's) after `cpu_before` ms of CPU
+        in the event loop's; the CPU time is taken at `done`, in this thread."""
+        self._cpu_before, self.cpu0 = cpu_before, time.thread_time()
+
+    def done(self) -> None:
+        """The work is done: the CPU time is what it is now (read in any thread after)."""
+        self._cpu_total = self.cpu()
+
+    def cpu(self) -> float:
+        """CPU ms of the request so far."""
+        if self._cpu_total is not None:
+            return self._cpu_total
+        return self._cpu_before + (time.thread_time() - self.cpu0) * 1e3
 
     @contextmanager
     def __call__(self, name: str) -> Iterator[None]:
@@ -125,7 +145,7 @@ class Stages:
             self.ms[name] = self.ms.get(name, 0.0) + (time.perf_counter() - t) * 1e3
 
     def header(self) -> str:
-        ms = {**self.ms, "cpu": (time.thread_time() - self.cpu0) * 1e3}
+        ms = {**self.ms, "cpu": self.cpu()}
         return ", ".join(f"{k};dur={v:.2f}" for k, v in ms.items())
 
 
@@ -141,17 +161,52 @@ def _validation_message(exc: RequestValidationError | ValidationError | list) ->
     return "; ".join(parts)
 
 
+#: the warnings list of the request this thread (or task) works for, if any (`_warnings`)
+_COLLECTING: ContextVar[list[str] | None] = ContextVar("linkwork_request_warnings", default=None)
+_ROUTER_LOCK = threading.Lock()
+_shown_before = warnings.showwarning  # where the warnings of no request go (`_route_warnings`)
+
+
+def _routed(message, category, filename, lineno, file=None, line=None):
+    """`warnings.showwarning` of the server: a LinkworkWarning raised for a request goes to that
+    request's list; any other warning where it went before."""
+    out = _COLLECTING.get()
+    if out is not None and issubclass(category, LinkworkWarning):
+        out.append(str(message))
+    else:
+        _shown_before(message, category, filename, lineno, file, line)
+
+
+def _route_warnings() -> None:
+    """Put `_routed` in place (again, if a `warnings.catch_warnings` around the server, as a
+    test's, restored another), with every LinkworkWarning shown each time it is raised."""
+    global _shown_before
+    with _ROUTER_LOCK:
+        if warnings.showwarning is not _routed:
+            _shown_before, warnings.showwarning = warnings.showwarning, _routed
+        always = ("always", None, LinkworkWarning, None, 0)
+        if not warnings.filters or warnings.filters[0] != always:
+            warnings.filterwarnings("always", category=LinkworkWarning)
+
+
 @contextmanager
 def _warnings(compiled: bool = False) -> Iterator[list[str]]:
     """Collect the LinkworkWarnings raised inside (as the command line prints them); the
-    kinematics' loops run compiled inside once the server has them (`compile_kernels`)."""
+    kinematics' loops run compiled inside once the server has them (`compile_kernels`).
+
+    Not `warnings.catch_warnings`: it swaps the module's global state in and out, so two
+    requests in two threads (a long drawing in a worker thread, a drag's frame in the event
+    loop) could take each other's warnings or leave a dead list in place. The list is a context
+    variable instead, which each thread and task has its own of."""
     out: list[str] = []
-    with warnings.catch_warnings(record=True) as caught, \
-            compiled_loops(True if compiled and warmup.READY.is_set() else None):
-        warnings.simplefilter("always", LinkworkWarning)
-        yield out
-        out.extend(dict.fromkeys(str(w.message) for w in caught
-                                 if issubclass(w.category, LinkworkWarning)))
+    _route_warnings()
+    token = _COLLECTING.set(out)
+    try:
+        with compiled_loops(True if compiled and warmup.READY.is_set() else None):
+            yield out
+    finally:
+        _COLLECTING.reset(token)
+    out[:] = dict.fromkeys(out)
 
 
 def _finite(x) -> float | None:
@@ -188,9 +243,10 @@ def _json(doc) -> str:
                       separators=(",", ":"))
 
 
-def _socket_drawing(message: dict, answer) -> tuple[int, "Stages", str]:
-    """One drawing request of the socket answered as `/api/drawing` answers it: (status, the
-    stages, the JSON body), an error as its exception handlers write it."""
+async def _socket_drawing(message: dict, answer) -> tuple[int, "Stages", str]:
+    """One drawing request of the socket answered as `/api/drawing` answers it (`answer`, a
+    coroutine function of the request): (status, the stages, the JSON body), an error as its
+    exception handlers write it."""
     stage = Stages()
     data = message.get("text")
     if data is None:
@@ -209,7 +265,7 @@ def _socket_drawing(message: dict, answer) -> tuple[int, "Stages", str]:
         except ValueError as exc:  # not JSON, or bytes that are not UTF-8
             errors = [{"loc": ("body", getattr(exc, "pos", 0)), "msg": "JSON decode error"}]
         else:
-            text, stage = answer(req)
+            text, stage = await answer(req)
             return 200, stage, text
         return 422, stage, _json({"error": _validation_message(errors),
                                   "kind": "RequestValidationError"})
@@ -241,6 +297,18 @@ def mechanism_info(loaded, warned: list[str]) -> dict:
         "constructions": list(CONSTRUCTIONS),
         "warnings": warned,
     }
+
+
+def long_drawing(loaded: Loaded, req: m.DrawingRequest) -> bool:
+    """Whether the drawing asks for work that may take long (seconds for a large mechanism),
+    by what it asks, not by a clock: the whole motion (`motion`), or a position away from the
+    design one of a mechanism with Newton-solved groups and no previous frame whose march it
+    carries over (its march from the design position: a drag's frames carry theirs)."""
+    if req.motion:
+        return True
+    if loaded.previous is not None or (req.at is None and req.times is None):
+        return False
+    return any(s.kind == "generic" for s in plan(loaded.mechanism))
 
 
 def drawing(mech: Mechanism, req: m.DrawingRequest, previous: Mechanism | None = None,
@@ -467,25 +535,39 @@ def create_app(workdir: str | Path | None = None, *, compiled: bool = False) -> 
         return {"name": req.name, "title": con.title, "steps": [s.text for s in con.steps],
                 "description": con.describe(), "warnings": warned}
 
-    def drawing_answer(req: m.DrawingRequest) -> tuple[str, Stages]:
-        """The answer of `/api/drawing` (its JSON text) and where its time went."""
-        stage = Stages()
-        with _warnings(compiled) as warned:
-            with stage("load"):
-                loaded = load(req.source)
+    def drawn(req: m.DrawingRequest, loaded: Loaded, warned: list[str], stage: Stages,
+              cpu_before: float | None = None) -> tuple[str, Stages]:
+        """The drawing of a loaded request as JSON text (`cpu_before`: the request began in
+        another thread, see `Stages.handed_over`)."""
+        if cpu_before is not None:
+            stage.handed_over(cpu_before)
+        with _warnings(compiled) as more:
             doc = drawing(loaded.mechanism, req, loaded.previous, stage)
         with stage("encode"):
-            text = _json({**doc, "warnings": warned})
+            text = _json({**doc, "warnings": list(dict.fromkeys(warned + more))})
+        stage.done()
         return text, stage
 
-    # run in the event loop itself, not handed to a worker thread and back: a drag's frame is a
-    # few milliseconds of work, and on a loaded machine each hand-over waits for a core to wake
-    # the other thread (the GIL lets no two requests compute at once anyway)
+    async def drawing_answer(req: m.DrawingRequest) -> tuple[str, Stages]:
+        """The answer of `/api/drawing` (its JSON text) and where its time went.
+
+        A drag's frame is computed in the event loop itself, not handed to a worker thread and
+        back: it is a few milliseconds of work, and on a loaded machine each hand-over waits
+        for a core to wake the other thread (the GIL lets no two requests compute at once
+        anyway). What may take long (`long_drawing`: the whole motion, or a march from the
+        design position) goes to a worker thread, so that it holds no other request up."""
+        stage = Stages()
+        with _warnings(compiled) as warned, stage("load"):
+            loaded = load(req.source)
+        if long_drawing(loaded, req):
+            return await run_in_threadpool(drawn, req, loaded, warned, stage, stage.cpu())
+        return drawn(req, loaded, warned, stage)
+
     @app.post("/api/drawing", response_model=m.Drawing, responses=errors)
     async def drawing_(req: m.DrawingRequest):
         """The SVG of `linkwork draw` at one position, with the layers and construction asked,
         the point positions drawn and how the drawing maps world to SVG coordinates."""
-        text, stage = drawing_answer(req)
+        text, stage = await drawing_answer(req)
         return Response(text, media_type="application/json",
                         headers={"Server-Timing": stage.header()})
 
@@ -507,8 +589,8 @@ def create_app(workdir: str | Path | None = None, *, compiled: bool = False) -> 
                 if message["type"] == "websocket.disconnect":
                     return
                 t0 = time.perf_counter()
-                status, stage, body = _socket_drawing(message, drawing_answer)
-                timing = {**stage.ms, "cpu": (time.thread_time() - stage.cpu0) * 1e3,
+                status, stage, body = await _socket_drawing(message, drawing_answer)
+                timing = {**stage.ms, "cpu": stage.cpu(),
                           "app": (time.perf_counter() - t0) * 1e3}
                 await ws.send_text(f'{{"status":{status},"timing":{_json(timing)},"body":{body}}}')
         except WebSocketDisconnect:
