@@ -16,6 +16,7 @@ order 2. Every link's cos θ and sin θ are kept once in `State.T`.
 
 from __future__ import annotations
 
+import threading
 from collections import OrderedDict
 from dataclasses import dataclass, field, replace
 from functools import cached_property
@@ -201,6 +202,7 @@ def pair_table_of(mech: Mechanism, group: Group) -> PairTable | None:
 _tables: OrderedDict = OrderedDict()
 _tables_like: OrderedDict = OrderedDict()
 TABLES_KEPT = 256
+_tables_lock = threading.Lock()
 
 
 def _pair_table(mech: Mechanism, group: Group) -> PairTable | None:
@@ -214,9 +216,10 @@ def _pair_table(mech: Mechanism, group: Group) -> PairTable | None:
     if table is _NONE:
         table = pair_table(mech, group.links, group.joints, group.drivers, group.wedge_pairs,
                            contact.row_index(mech))
-    _tables[key] = table
-    while len(_tables) > TABLES_KEPT:
-        _tables.popitem(last=False)
+    with _tables_lock:  # (a server solves in several threads)
+        _tables[key] = table
+        while len(_tables) > TABLES_KEPT:
+            _tables.popitem(last=False)
     return table
 
 
@@ -522,9 +525,10 @@ class GroupSolver:
             # the group drawn as in `like`'s mechanism (a drag's previous frame): its constants
             # are the same numbers, taken over instead of computed again
             self.__dict__["fast"] = like.fast
-            _tables_like[(mech, self.group)] = like.mech
-            while len(_tables_like) > TABLES_KEPT:
-                _tables_like.popitem(last=False)
+            with _tables_lock:
+                _tables_like[(mech, self.group)] = like.mech
+                while len(_tables_like) > TABLES_KEPT:
+                    _tables_like.popitem(last=False)
         self.fast  # noqa: B018  (computed once here; `plan` keeps the solver per mechanism)
 
     @property
