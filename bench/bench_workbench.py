@@ -121,7 +121,10 @@ def screen_of(page, xy) -> tuple[float, float]:
 
 
 def drag_frames(page, url: str, name: str, point: str, radius: float, place: float,
-                frames: int, warmup: int, transport: str) -> dict[str, np.ndarray]:
+                frames: int, warmup: int, transport: str, traced: int = 0,
+                browser=None) -> tuple[dict[str, np.ndarray], list[str]]:
+    """The stages of `frames` drag frames after `warmup`; with `traced`, that many frames more
+    recorded in a Chromium trace (`browser`'s), and the lines summing it up."""
     page.goto(f"{url}/?library={name}")
     page.wait_for_selector("body[data-ready=true]", timeout=120_000)
     if place:  # the slider to that sample, and its drawing shown
@@ -142,19 +145,85 @@ def drag_frames(page, url: str, name: str, point: str, radius: float, place: flo
     # the drag started on), so the screen places are taken once
     centre = np.asarray(xy, float)
     targets = [screen_of(page, centre + radius * np.array([math.cos(a), math.sin(a)]))
-               for a in np.linspace(0, 2 * math.pi * (frames + warmup) / 24, frames + warmup)]
-    for target in targets:
+               for a in np.linspace(0, 2 * math.pi * (frames + warmup + traced) / 24,
+                                    frames + warmup + traced)]
+    trace = None
+    for i, target in enumerate(targets):
+        if traced and i == warmup + frames:  # the frames timed are not traced: tracing slows them
+            browser.start_tracing(page=page, categories=TRACE_CATEGORIES)
         # the page says when a frame is recorded: waiting for it costs the page nothing (a
         # poll by animation frames or timers would run in the page during the frame timed)
         page.evaluate(NEXT_FRAME)
         page.mouse.move(*target)
         page.evaluate("() => window.nextFrame")
+    if traced:  # before the pointer's release asks for the whole motion
+        trace = browser.stop_tracing()
     page.mouse.up()
-    timed = page.evaluate("window.linkworkFrames")[-frames:]
+    timed = page.evaluate("window.linkworkFrames")[-(frames + traced):][:frames]
     came = {f["via"] for f in timed}
     if came != {transport}:
         raise SystemExit(f"{name}: frames came over {came}, not {transport}")
-    return stages(timed)
+    return stages(timed), trace_summary(trace, traced) if trace else []
+
+
+#: what a trace records: the events of the Performance panel of Chromium's developer tools (the
+#: page's script, parsing, style, layout, paint, commit; raster), the display compositor's draw
+TRACE_CATEGORIES = ["devtools.timeline", "disabled-by-default-devtools.timeline", "viz"]
+#: the renderer's main-thread events summed by their own time (less the events inside them)
+MAIN_EVENTS = {"FunctionCall": "script", "EvaluateScript": "script", "RunMicrotasks": "script",
+               "TimerFire": "script", "FireAnimationFrame": "script", "EventDispatch": "script",
+               "v8.callFunction": "script", "ParseHTML": "parse", "UpdateLayoutTree": "style",
+               "Layout": "layout", "PrePaint": "prepaint", "Paint": "paint",
+               "Layerize": "layerize", "Commit": "commit", "HitTest": "hit test",
+               "MinorGC": "gc", "MajorGC": "gc"}
+
+
+def trace_summary(data: bytes, frames: int) -> list[str]:
+    """A Chromium trace of `frames` drag frames summed up: the renderer main thread's time by
+    what it did (own time, ms per frame), how much of the page each layout and paint covered,
+    the tiles rastered and the display compositor's drawing (ms per frame)."""
+    doc = json.loads(data)
+    events = doc["traceEvents"] if isinstance(doc, dict) else doc
+    threads = {(e["pid"], e["tid"]): e["args"]["name"] for e in events
+               if e.get("ph") == "M" and e.get("name") == "thread_name"}
+    # the page's renderer: the process whose main thread received the drawings
+    pid = next(e["pid"] for e in events if e.get("name") == "WebSocketReceive"
+               or e.get("name") == "ResourceReceiveResponse")
+    main = [e for e in events if e.get("ph") == "X" and e["pid"] == pid
+            and threads.get((pid, e["tid"])) == "CrRendererMain"]
+    own: dict[str, float] = {}
+    stack: list[tuple[float, str]] = []  # (end, what) of the events open, outermost first
+    busy = 0.0
+    for e in sorted(main, key=lambda e: (e["ts"], -e.get("dur", 0))):
+        while stack and stack[-1][0] <= e["ts"]:
+            stack.pop()
+        if e["name"] == "RunTask" and not stack:
+            busy += e.get("dur", 0)
+        what = MAIN_EVENTS.get(e["name"])
+        if what is None:
+            continue
+        inner = [s for s in stack if s[1] != "task"]
+        if inner:  # the enclosing event's own time loses this one
+            own[inner[-1][1]] -= e.get("dur", 0)
+        own[what] = own.get(what, 0.0) + e.get("dur", 0)
+        stack.append((e["ts"] + e.get("dur", 0), what))
+    per = 1e-3 / frames
+    layouts = [e["args"]["beginData"] for e in main if e["name"] == "Layout"]
+    paints = [e["args"]["data"].get("clip", []) for e in main if e["name"] == "Paint"]
+    area = sum(abs((c[4] - c[0]) * (c[5] - c[1])) for c in paints if len(c) == 8)
+    raster = [e for e in events if e.get("name") == "RasterTask" and e.get("ph") == "X"]
+    draw = [e for e in events if e.get("name") == "Display::DrawAndSwap" and e.get("ph") == "X"]
+    lines = [f"  trace of {frames} frames, ms per frame: main thread busy {busy * per:.2f}: "
+             + ", ".join(f"{k} {v * per:.2f}" for k, v in sorted(own.items(), key=lambda kv: -kv[1])
+                         if v * per >= 0.01)]
+    lines.append(
+        f"  {len(layouts) / frames:.1f} layouts a frame, objects laid out (median) "
+        f"{np.median([b.get('dirtyObjects', 0) for b in layouts]) if layouts else 0:.0f} of "
+        f"{np.median([b.get('totalObjects', 0) for b in layouts]) if layouts else 0:.0f}; "
+        f"{len(paints) / frames:.1f} paints a frame, {area / frames / 1e3:.0f} kpx; "
+        f"raster {sum(e['dur'] for e in raster) * per:.2f} ({len(raster) / frames:.1f} tiles); "
+        f"display draw {sum(e['dur'] for e in draw) * per:.2f}")
+    return lines
 
 
 #: how the page sends a drag's drawings: its WebSocket, or (the socket taken away before the
@@ -189,6 +258,9 @@ def main() -> None:
                     help="seconds to wait at most for the server's compiled loops")
     ap.add_argument("--transport", choices=list(TRANSPORTS), action="append",
                     help="how the page sends the drag's drawings (default: both, socket first)")
+    ap.add_argument("--trace", type=int, default=0, metavar="FRAMES",
+                    help="after the frames timed, record a Chromium trace of this many frames "
+                         "more and print where the page's time went")
     args = ap.parse_args()
     if not Path(CHROMIUM).is_file():
         raise SystemExit("needs Debian's chromium (apt-get install chromium)")
@@ -212,11 +284,14 @@ def main() -> None:
                     print(f"{'mechanism':21} {'at':>4} {'p50':>6} {'p95':>6} |"
                           + "".join(f"{c:>8}" for c in cols))
                     for name, point, radius, place in CASES:
-                        t = drag_frames(page, url, name, point, radius, place, args.frames,
-                                        args.warmup, transport)
+                        t, traced = drag_frames(page, url, name, point, radius, place,
+                                                args.frames, args.warmup, transport, args.trace,
+                                                browser)
                         print(f"{name:21} {place:4.2f} {np.percentile(t['frame'], 50):6.1f} "
                               f"{np.percentile(t['frame'], 95):6.1f} |"
                               + "".join(f"{np.nanmedian(t[c]):8.1f}" for c in cols))
+                        for line in traced:
+                            print(line)
                     page.close()
                 browser.close()
     finally:

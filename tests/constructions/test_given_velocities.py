@@ -274,9 +274,11 @@ def test_a_batch_of_given_velocity_sets_is_constructed_sample_by_sample():
         assert con.max_error() <= 1e-9 and len(con.degenerate) == 5
 
 
-def test_acceleration_plan_is_refused_with_its_reason():
-    with pytest.raises(linkwork.LinkworkError, match="driven by given point velocities, is not drawn"):
-        acceleration_plan(load("rosenauer-free-triad"), None)
+def test_acceleration_plan_without_given_accelerations_is_refused_with_its_reason():
+    """The Watt chain's file gives velocities only (the acceleration plans of given chains are
+    in test_given_accelerations.py)."""
+    with pytest.raises(linkwork.LinkworkError, match="needs the acceleration of A, the acceleration of B"):
+        acceleration_plan(load("rosenauer-free-watt-chain"), None)
 
 
 # ------------------------------------------------------------------ the commands

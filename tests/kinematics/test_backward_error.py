@@ -55,6 +55,11 @@ def test_a_residual_above_rounding_is_counted():
     np.testing.assert_array_equal(got[:3], 0.0)
     np.testing.assert_allclose(got[3:5], r[3:] / L, rtol=1e-15)
     assert np.isnan(got[5])
+    # the long-double polish (precision._newton) measures against its own unit roundoff
+    ld = float(np.finfo(np.longdouble).eps)
+    got = groups.backward_error(mech, r * ld / EPS, ld)
+    np.testing.assert_array_equal(got[:3], 0.0)
+    np.testing.assert_allclose(got[3:5], r[3:] * ld / EPS / L, rtol=1e-15)
 
 
 def _rockers(count: int, seed: int = 5) -> list:

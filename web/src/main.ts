@@ -235,9 +235,9 @@ function show(d: Drawing, req: DrawingRequest): void {
   ui.drawing.dataset.transform = JSON.stringify(t);
   ui.drawing.dataset.input = JSON.stringify(d.input);
   ui.drawing.dataset.moved = JSON.stringify(req.source.points ?? {});
-  ui.inputValue.textContent = inputText(d.input);
-  ui.sampleStatus.textContent = d.status;
-  ui.sampleStatus.className = d.status;
+  setText(ui.inputValue, inputText(d.input));
+  setText(ui.sampleStatus, d.status);
+  if (ui.sampleStatus.className !== d.status) ui.sampleStatus.className = d.status;
   numbers(d);
   void plot();
   void selected(d, req);
@@ -314,17 +314,21 @@ function numbers(d: Drawing): void {
       const row = body.insertRow();
       row.dataset.point = name;
       row.insertCell().textContent = name;
-      row.insertCell();
-      row.insertCell();
+      // each number in a box of its own size (class num): a number that changes is laid out
+      // in its box alone, not the page (which would lay the drawing out again too)
+      for (const _ of [0, 1]) row.insertCell().innerHTML = `<span class="num"></span>`;
     }
   }
   points.forEach(([, xy], k) => {
     const cells = rows[k].cells;
-    for (const i of [0, 1]) {
-      const text = xy ? xy[i].toFixed(4) : "—";
-      if (cells[i + 1].textContent !== text) cells[i + 1].textContent = text;
-    }
+    for (const i of [0, 1]) setText(cells[i + 1].firstElementChild as HTMLElement, xy ? xy[i].toFixed(4) : "—");
   });
+}
+
+/** Write `text` into `el` if it shows another: an unchanged text is left alone (writing it
+ * again would replace its text node and lay the page out again). */
+function setText(el: HTMLElement, text: string): void {
+  if (el.textContent !== text) el.textContent = text;
 }
 
 // ------------------------------------------------------------------ quantities and plots

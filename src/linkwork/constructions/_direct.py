@@ -149,7 +149,8 @@ class ScriptDrawer:
         lab = self.s.labels.get((st.link, st.point), st.point)
         # images of earlier links that the step starts from are drawn first, in their own steps
         for pl in st.lines:
-            self.img(pl.anchor)
+            if pl.anchor[0] != POLE:  # a given direction's line starts at the pole
+                self.img(pl.anchor)
         for n in st.base:
             self.img((st.link, n))
         vc.b.step(self.text(st))
@@ -495,6 +496,31 @@ def draw_given(vc) -> VelocityScript:
     return script
 
 
+def draw_given_acceleration(ac) -> VelocityScript:
+    """The accelerations of a chain driven by given point velocities and accelerations (and
+    the curvatures of given directions' paths): its velocity script (`draw_given`) performed on
+    the plan of relative normal accelerations (Rosenauer 1937, paper 4, Ex. III: the free triad
+    from j_K, j_L, j_M), by false position where the velocities needed it."""
+    script = ac.vc.scripts[0]
+    links = set(ac.mech.moving_links)
+    solved = {ac.mech.frame}
+    if script.by_two_trials:
+        AccelerationTrialDrawer(ac, script, solved).run(links)
+        return script
+    chain = Chain.from_mechanism(ac.mech, getattr(ac.sol, "given", None) or None)
+    triad = _triad(chain, links, solved)
+    drawer = TriangleDrawer(ac, script, solved) if triad is not None else AccelerationDrawer(ac, script, solved)
+    if triad is not None:
+        # the given accelerations first, then the inscribed triangle (paper 4, Ex. III)
+        for st in script.steps:
+            if st.kind == "given":
+                drawer._one(st)
+        if drawer.draw(links, *triad):
+            return script
+    AccelerationDrawer.run(drawer, links)
+    return script
+
+
 class AccelerationDrawer(ScriptDrawer):
     """The same script performed on accelerations: Rosenauer's plan of relative normal
     accelerations (1937, paper 4; digest 000 §2.5), in the books' chained layout.
@@ -542,17 +568,18 @@ class AccelerationDrawer(ScriptDrawer):
         c = {self.mech.frame: zero}
         self.tree: set[tuple[str, str, str]] = set()
         edges = list(self._edges())
-        grown = True
-        while grown:
-            grown = False
-            for P, a, b in edges:
-                for L, T in ((a, b), (b, a)):
-                    if L in c and T not in c:
-                        c[T] = c[L] + (self.w2(L) - self.w2(T)) * self.where(P)
-                        self.tree.add((P, L, T))
-                        grown = True
-        for ln in self.chain.links:
-            c.setdefault(ln, zero)
+        # a free chain has no pair with the frame: its plan starts at its first link's o'
+        for seed in [self.mech.frame] + list(self.chain.links):
+            c.setdefault(seed, zero)
+            grown = True
+            while grown:
+                grown = False
+                for P, a, b in edges:
+                    for L, T in ((a, b), (b, a)):
+                        if L in c and T not in c:
+                            c[T] = c[L] + (self.w2(L) - self.w2(T)) * self.where(P)
+                            self.tree.add((P, L, T))
+                            grown = True
         return c
 
     def w2(self, link: str) -> np.ndarray:
@@ -666,9 +693,52 @@ class AccelerationDrawer(ScriptDrawer):
         if (ln, p) not in self.ac.images:
             self.ac.set_known(ln, self.where(p), image - self.normal(ln, self.where(p)), p)
 
+    def datum(self, point: str):
+        """The given condition at ``point`` as the solve took it (acceleration, curvature)."""
+        data = getattr(self.vcv.sol, "given", ()) or self.mech.given
+        return next(g for g in data if g.point == point)
+
+    def _one(self, st) -> None:
+        self._step = st
+        if st.kind != "given":
+            super()._one(st)
+            return
+        if (st.link, st.point) in self.E:  # drawn before an inscribed triangle was tried
+            return
+        # a given velocity's point: its given acceleration, laid off at its plan point
+        ac = self.ac
+        X = self.where(st.point)
+        acc = np.broadcast_to(np.asarray(self.datum(st.point).acceleration, float), (ac.n, 2))
+        x = self.normal(st.link, X)
+        key = f"{self.prefix}.given.{st.link}.{st.point}"
+        ac.b.step(f"given: the acceleration a_{upper(st.point)}, laid off at {lower(st.point)} in the "
+                  "plan of relative normal accelerations")
+        ac.b.point(key + ".plan", _pt(x), label=lower(st.point), space="acceleration")
+        ac.b.arrow(key, _pt(x), _pt(x + acc), Role.GIVEN, f"a_{upper(st.point)}", kind="acceleration",
+                   space="acceleration")
+        ac.b.point(key + ".acc", _pt(acc), Role.GIVEN, ac.lbl(st.point), space="acceleration")
+        self.keep(st.link, st.point, x + acc)
+
+    def _pole_anchor(self, pl) -> np.ndarray:
+        """A given direction of motion at X: the acceleration's normal component is κ·v² (the
+        path's curvature κ, to the left of the direction), its tangential one unknown, so the
+        ends lie on the parallel to the direction through x + κ·v²·n."""
+        X = pl.anchor[1]
+        L = pl.via[0][0] if pl.via else self._step.link
+        g = self.datum(X)
+        if g.curvature is None:
+            raise InputError(f"the acceleration plan needs the curvature of the path of {X} (its "
+                             "velocity's direction is given, its acceleration's normal component is "
+                             "not)")
+        e = np.broadcast_to(np.asarray(g.direction, float), (self.ac.n, 2))
+        e = e / norm(e)[:, None]
+        v = self._v(L, X)
+        kappa = np.broadcast_to(np.asarray(g.curvature, float), (self.ac.n,))
+        return self.normal(L, self.where(X)) + (kappa * dot(v, v))[:, None] * perp(e)
+
     def plan_line(self, pl, key: str) -> tuple[np.ndarray, np.ndarray]:
         p, d = self.line(pl.line)
-        through = self.img(pl.anchor)
+        through = self._pole_anchor(pl) if pl.anchor[0] == POLE else self.img(pl.anchor)
         for L, T, x in pl.via:
             through = through + self.transfer(L, T, x)
         direction = perp(d)
@@ -693,7 +763,11 @@ class AccelerationDrawer(ScriptDrawer):
     def text(self, st) -> str:
         return ("Accelerations, the same lines through the ends of the accelerations laid off at the "
                 "plan of relative normal accelerations (ends transferred across each pair): "
-                + st.text + f"; the acceleration of {st.point} runs from its plan point to the end")
+                + st.text + f"; the acceleration of {st.point} runs from its plan point to the end"
+                + "".join(f"; the line \u2225 v_{upper(pl.anchor[1])} runs through the end of the normal "
+                          f"component \u03ba\u00b7v_{upper(pl.anchor[1])}\u00b2 (\u03ba the given curvature "
+                          f"of {upper(pl.anchor[1])}'s path) laid off at {lower(pl.anchor[1])}"
+                          for pl in st.lines if pl.anchor[0] == POLE))
 
     def run(self, links: set[str]) -> None:
         super().run(links)
@@ -784,11 +858,16 @@ class AccelerationTrialDrawer(AccelerationDrawer):
         O, R = self.where(t_pivot), self.where(t_ref)
         w2 = self.w2(t_link)
         # the trial rates: of the order of the crank's ω² (any two distinct values would do)
-        d_link = self.s.scale_by[0]
-        size = w2[:, 0] + abs(self.ac.measured_alpha(d_link)) + np.where(w2[:, 0] == 0, 1.0, 0.0)
-        a_ref = w2 * (O - R) + (sign * size)[:, None] * perp(R - O)
-        self.keep(t_link, t_pivot, self.normal(t_link, O))
-        end = a_ref + self.normal(t_link, R)
+        size = w2[:, 0] + np.where(w2[:, 0] == 0, 1.0, 0.0)
+        if self.s.scale_by is not None:
+            size = size + abs(self.ac.measured_alpha(self.s.scale_by[0]))
+        if t_pivot in self.chain.given:
+            pivot = self.img((t_link, t_pivot))  # a given point's end, drawn before
+        else:  # a frame pivot: no acceleration
+            pivot = self.normal(t_link, O)
+            self.keep(t_link, t_pivot, pivot)
+        # within a link the ends differ by α·J(R − O)
+        end = pivot + (sign * size)[:, None] * perp(R - O)
         self.keep(t_link, t_ref, end)
         b = self.ac.b
         b.point(f"{self.prefix}.{t_link}.{t_ref}", _pt(end), label=self.ac.lbl(t_ref) + self.star,
@@ -871,7 +950,7 @@ def _triad(chain: Chain, links, solved):
         if len(rest) != 3:
             continue
         arms = []
-        for B in rest:
+        for B in (ln for ln in chain.links if ln in rest):  # the chain's order: stable labels
             pts = list(dict.fromkeys(chain.links[B]))
             if len(pts) != 2:
                 break
@@ -882,6 +961,8 @@ def _triad(chain: Chain, links, solved):
             Y = pts[1] if pts[0] == X else pts[0]
             K = next((a if b == B else b for q, a, b in chain.hinges
                       if q == Y and B in (a, b) and (a if b == B else b) in solved), None)
+            if K is None and Y in chain.given:
+                K = B  # a free end with its given velocity and acceleration (paper 4, Ex. III)
             if K is None:
                 break
             arms.append((X, B, Y, K))

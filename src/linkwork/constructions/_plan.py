@@ -268,6 +268,7 @@ class VelocityConstruction(_SlidingGroups):
     # ------------------------------------------------------------------ groups
     def run(self) -> None:
         from ._direct import draw_given, draw_group
+        from ._inner_driver import velocity_images
 
         self.scripts = []
         given = bool(self.mech.given or getattr(self.sol, "given", ()))
@@ -275,8 +276,12 @@ class VelocityConstruction(_SlidingGroups):
             # no driver: the whole chain from its given point velocities by Rosenauer's rule
             self.scripts.append(draw_given(self))
         # triads and larger groups, gears: Rosenauer's auxiliary points (`_direct`)
-        self._walk((() if given else group_plan(self.mech)), lambda g, solved: self.scripts.append(
-            draw_group(self, g.links, g.joints, solved, g.drivers)), self.measured_omega)
+        def fallback(g, solved):
+            if g.drivers and velocity_images(self, g, solved):  # driven from inside
+                return
+            self.scripts.append(draw_group(self, g.links, g.joints, solved, g.drivers))
+
+        self._walk((() if given else group_plan(self.mech)), fallback, self.measured_omega)
 
     def _g_driver(self, gs) -> None:
         mech, sol = self.mech, self.sol
@@ -385,6 +390,10 @@ class VelocityConstruction(_SlidingGroups):
     def _slid(self, joint, X, pin_img, guide_img) -> None:
         self.sliding[joint.name] = self.velocity(self.pos[X], pin_img) - self.velocity(self.pos[X], guide_img)
 
+    def _g_intermittent(self, gs) -> None:
+        from ._intermittent import velocity_images
+        velocity_images(self, gs)
+
 
 class AccelerationConstruction(_SlidingGroups):
     """The polar acceleration plan (space ``acceleration``), built on a finished polar
@@ -476,16 +485,36 @@ class AccelerationConstruction(_SlidingGroups):
         return img
 
     def run(self) -> None:
-        from ._direct import draw_group_acceleration
+        from ._direct import draw_given_acceleration, draw_group_acceleration
+        from ._inner_driver import acceleration_images
 
-        if self.mech.given or getattr(self.sol, "given", ()):
-            raise InputError(f"the acceleration plan of '{self.mech.name}', a chain driven by given "
-                             "point velocities, is not drawn (its accelerations are solved: "
-                             "kinematics.point_inputs.solve_given)")
+        data = getattr(self.sol, "given", ()) or self.mech.given
+        if data:
+            # a chain driven by given point velocities: from their accelerations (paper 4)
+            missing = [g for g in data if (g.acceleration if g.kind == "velocity" else g.curvature) is None]
+            if not missing and self.sol.order < 2:
+                raise InputError(f"the acceleration plan of '{self.mech.name}' needs its accelerations: "
+                                 "the solution given was solved to velocities only (solve_given with "
+                                 "order=2)")
+            if missing:
+                raise InputError(
+                    f"the acceleration plan of '{self.mech.name}', a chain driven by given point "
+                    "velocities, needs " + ", ".join(
+                        f"the acceleration of {g.point}" if g.kind == "velocity" else
+                        f"the curvature of the path of {g.point}" for g in missing)
+                    + " (its file gives " + ("none" if len(missing) == len(data) else "not all")
+                    + ": add acceleration = [x, y] to each [[given]] velocity, curvature to each "
+                    "direction)")
+            draw_given_acceleration(self)
+            self._walk((), None, self.measured_alpha)
+            return
         # the groups the velocity plan drew with auxiliary points: the same script on the plan
         # of relative normal accelerations (`_direct`)
-        self._walk(group_plan(self.mech), lambda g, solved: draw_group_acceleration(
-            self, g.links, g.joints, solved, g.drivers), self.measured_alpha)
+        def fallback(g, solved):
+            if not (g.drivers and acceleration_images(self, g, solved)):
+                draw_group_acceleration(self, g.links, g.joints, solved, g.drivers)
+
+        self._walk(group_plan(self.mech), fallback, self.measured_alpha)
 
     def _g_driver(self, gs) -> None:
         mech, sol = self.mech, self.sol
@@ -576,6 +605,10 @@ class AccelerationConstruction(_SlidingGroups):
         "RPR": "The lever's point under the pin {X}: a_{X} = a* + 2\u03c9_{link}\u00d7v_rel (Coriolis) + "
                "a_rel(\u2225 {link}).",
     }
+
+    def _g_intermittent(self, gs) -> None:
+        from ._intermittent import acceleration_images
+        acceleration_images(self, gs)
 
     def _sliding_words(self, guide: str) -> dict[str, str]:
         # a guide on the frame does not turn: no Coriolis component to name

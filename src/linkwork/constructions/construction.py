@@ -573,7 +573,11 @@ class Builder:
         d = np.linalg.norm(Y1 - Wx, axis=-1)
         with np.errstate(invalid="ignore", divide="ignore"):
             a = (d * d - chord * chord + rho * rho) / (2 * d)
-            h = np.sqrt(np.maximum(rho * rho - a * a, 0.0))
+            # ρ² − a² as the product (ρ − a)(ρ + a), each written without cancellation: a small
+            # angle (a short chord) keeps its digits instead of half of them
+            lo = (chord * chord - (d - rho) ** 2) / (2 * d)
+            hi = ((d + rho) ** 2 - chord * chord) / (2 * d)
+            h = np.sqrt(np.maximum(lo * hi, 0.0))
         u = unit(Y1 - Wx)
         nrm = np.stack([-u[:, 1], u[:, 0]], axis=-1)
         o1 = np.sign((X1 - Vx)[:, 0] * (X2 - Vx)[:, 1] - (X1 - Vx)[:, 1] * (X2 - Vx)[:, 0])

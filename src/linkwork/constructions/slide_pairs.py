@@ -37,6 +37,7 @@ import numpy as np
 from .construction import Builder, Construction, Role, pt
 from ..errors import InputError
 from ..model import Mechanism, Prismatic, Slot
+from ..model.intermittent import is_intermittent
 from ..topology.constructibility import lower, upper
 from ._common import as_solution, dot, material_point, norm, perp, singular_positions
 from ._plan import AccelerationConstruction, VelocityConstruction, _meet
@@ -52,8 +53,13 @@ def _unit(v: np.ndarray) -> np.ndarray:
 def _pairs(mech: Mechanism) -> list:
     out = [j for j in mech.joints if isinstance(j, (Prismatic, Slot)) and mech.frame not in j.links]
     if not out:
+        pins = [j for j in mech.joints if is_intermittent(j)]
         raise InputError(f"{mech.name}: no sliding pair between two moving links (papers 3 and 5 "
-                         "treat slides in moving planes)")
+                         "treat slides in moving planes)" + "".join(
+                             f"; the pins of the {j.kind} pair '{j.name}' slide in the wheel's slots "
+                             "but turn relative to the wheel (no block turning with it), so the "
+                             "slide-pair parallelogram does not apply: the velocity and acceleration "
+                             "plans draw the pair" for j in pins))
     return out
 
 

@@ -12,6 +12,9 @@ are listed in the legend instead of being drawn.
 
 from __future__ import annotations
 
+from dataclasses import fields
+from functools import lru_cache
+
 import numpy as np
 
 from ..constructions.construction import literal
@@ -133,14 +136,54 @@ def _pole_line(fig: Figure, sc, o: np.ndarray, d: np.ndarray, span: list, ends: 
             fig.path(np.array([o + a * u, o + b * u]), style=style, layer="pole-lines")
 
 
+class _Structure:
+    """A mechanism as a cache key: equal to another when their links and pairs are, every
+    field of every pair by value (their coordinates aside, which a drag changes)."""
+
+    def __init__(self, mech) -> None:
+        self.mech = mech
+        self.key = (mech.frame, mech.links, tuple(
+            (type(j).__name__,) + tuple(_value(getattr(j, f.name)) for f in fields(j))
+            for j in mech.joints))
+
+    def __hash__(self) -> int:
+        return hash(self.key)
+
+    def __eq__(self, other) -> bool:
+        return isinstance(other, _Structure) and self.key == other.key
+
+
+def _value(v):
+    """A pair's field as a hashable value (axes are arrays)."""
+    if isinstance(v, np.ndarray):
+        return v.shape, tuple(v.ravel().tolist())
+    if isinstance(v, (list, tuple)):
+        return tuple(_value(x) for x in v)
+    return v
+
+
+@lru_cache(maxsize=32)
+def _schedule(structure: _Structure):
+    return pole_schedule(structure.mech)
+
+
+def schedule_of(mech):
+    """`instant.pole_schedule(mech)` (the topology alone: the same for every frame of a drag,
+    which moves points only), computed once for each structure."""
+    try:
+        return _schedule(_Structure(mech))
+    except TypeError:  # a pair with a field that is no value (unhashable): not cached
+        return pole_schedule(mech)
+
+
 def draw_instant(fig: Figure, sc, layer: str) -> None:
     sol, i, mech = sc.sol, sc.index, sc.mech
     if layer in ("poles", "pole-lines"):
-        ps = poles(sol)
+        ps = sc.shared(("poles",), lambda: poles(sol))
         if layer == "poles":
             fig.note("poles: " + ", ".join(f"{k + 1} = {literal(ln)}" for k, ln in enumerate(ps.links)))
         if layer == "pole-lines":
-            sch = pole_schedule(mech)
+            sch = schedule_of(mech)
             for st in sch.derived:
                 for src in st.lines[:2]:
                     if src.poles is None:
@@ -172,7 +215,7 @@ def draw_instant(fig: Figure, sc, layer: str) -> None:
     links = curvature_links(sc)
     ext = sc.extent()
     for ln in links:
-        ins = instant(sol, ln)
+        ins = sc.shared(("instant", ln), lambda: instant(sol, ln))
         P = ins.pole[i]
         if not P.is_finite:
             fig.note(f"{literal(ln)}: translating instantaneously (pole at infinity), no {layer} drawn")

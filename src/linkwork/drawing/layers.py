@@ -60,6 +60,8 @@ class Scene:
     #: the motions of the named points asked for so far (the layers, the scales and the box ask
     #: for the same points again and again)
     _points: dict = field(default_factory=dict, init=False, repr=False, compare=False)
+    #: what several layers compute from the solution, computed once (see `shared`)
+    _shared: dict = field(default_factory=dict, init=False, repr=False, compare=False)
 
     @cached_property
     def motion(self) -> Solution | None:
@@ -73,6 +75,13 @@ class Scene:
         if m is None:
             m = self._points[name] = self.sol.point(name)
         return m
+
+    def shared(self, key: tuple, make):
+        """``make()``, computed once for this scene under ``key``: what several layers draw from
+        the same solution (its poles, a link's instantaneous invariants)."""
+        if key not in self._shared:
+            self._shared[key] = make()
+        return self._shared[key]
 
     def pos(self, name: str) -> np.ndarray:
         return self._point(name).position[self.index]
@@ -604,7 +613,7 @@ def _finish_inset(fig: Figure) -> None:
         if p.space in ("mechanism", "inset") and p.kind in ("circle", "dot"):
             q = fig._world_points(p)
             if p.kind == "dot" or p.data["r"] < reach:
-                pts += q
+                pts.extend(q)
     pts = np.array([q for q in pts if np.all(np.isfinite(q))]).reshape(-1, 2)
     size = pts.max(0) - pts.min(0)
     fig.view["inset"] = (pts.min(0), pts.max(0))

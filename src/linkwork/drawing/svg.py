@@ -59,12 +59,19 @@ class Style:
     opacity: float = 1.0
 
     def attrs(self) -> str:
-        a = f'stroke="{self.stroke}" stroke-width="{sym._f(self.width)}" fill="{self.fill}"'
-        if self.dash:
-            a += f' stroke-dasharray="{self.dash}"'
-        if self.opacity != 1.0:
-            a += f' opacity="{self.opacity}"'
-        return a
+        return _style_attrs(self)
+
+
+@lru_cache(maxsize=256)
+def _style_attrs(style: Style) -> str:
+    """The SVG attributes of a style (a frozen value: the few styles of a drawing are written
+    once, whatever the number of primitives and frames)."""
+    a = f'stroke="{style.stroke}" stroke-width="{sym._f(style.width)}" fill="{style.fill}"'
+    if style.dash:
+        a += f' stroke-dasharray="{style.dash}"'
+    if style.opacity != 1.0:
+        a += f' opacity="{style.opacity}"'
+    return a
 
 
 #: colours by the kind of quantity, weights by role (books: given heavy, construction lines
@@ -201,11 +208,22 @@ def _advance(text: str, size: float, italic: bool) -> float:
     return px / 100.0 * size
 
 
-def _layout_runs(text: str, size: float, italic: bool) -> list[tuple[str, int, float, float, float]]:
+#: labels laid out and written, by (text, size, italic): a drawing's labels are the same from
+#: frame to frame (and from drawing to drawing), only their places change
+TEXT_CACHE = 4096
+
+
+@lru_cache(maxsize=TEXT_CACHE)
+def _segments(text: str) -> tuple[tuple[str, int], ...]:
+    return tuple(segments(text))
+
+
+@lru_cache(maxsize=TEXT_CACHE)
+def _layout_runs(text: str, size: float, italic: bool) -> tuple[tuple[str, int, float, float, float], ...]:
     """(text, level, x, width, font size) of each run; a superscript right after a subscript (or
     the other way round) is stacked on it, as the books set b_B^(n) and a^n_A."""
     runs, x, last = [], 0.0, None
-    for t, level in segments(text):
+    for t, level in _segments(text):
         fs = size if level == 0 else SCRIPT * size
         w = _advance(t, fs, italic)
         if level and last is not None and last[1] == -level:
@@ -216,9 +234,10 @@ def _layout_runs(text: str, size: float, italic: bool) -> list[tuple[str, int, f
             runs.append((t, level, x, w, fs))
             x += w
         last = runs[-1]
-    return runs
+    return tuple(runs)
 
 
+@lru_cache(maxsize=TEXT_CACHE)
 def label_markup(text: str, size: float = LABEL_SIZE, italic: bool = False) -> str:
     """SVG text content for a label in the books' notation (see :func:`segments`), sub- and
     superscripts as shifted tspans placed at measured positions (mm for a label of ``size``)."""
@@ -240,9 +259,10 @@ def label_markup(text: str, size: float = LABEL_SIZE, italic: bool = False) -> s
 
 def plain(text: str) -> str:
     """The label as plain text (for titles, XML ids and reports)."""
-    return "".join(t for t, _ in segments(text))
+    return "".join(t for t, _ in _segments(text))
 
 
+@lru_cache(maxsize=TEXT_CACHE)
 def text_width(text: str, size: float, italic: bool = False) -> float:
     """Width of a label (mm) measured from the font's metrics, sub- and superscripts included."""
     runs = _layout_runs(text, size, italic)
@@ -349,32 +369,36 @@ class Figure:
             self.legend.append(text)
 
     # ------------------------------------------------------------------ layout
-    def _world_points(self, p: Prim) -> list[np.ndarray]:
+    def _world_points(self, p: Prim) -> np.ndarray:
+        """The world points (n, 2) that a primitive's extent is made of."""
         d = p.data
         if p.kind == "path":
-            return list(d["xy"])
+            return d["xy"].reshape(-1, 2)
         if p.kind == "line":
-            return list(d["span"]) + [d["point"]]
+            return np.array([*d["span"], d["point"]], float).reshape(-1, 2)
         if p.kind == "circle":
             if d["arcs"]:
-                return list(d["arcs"])
-            c, r = d["centre"], d["r"]
-            return [c + r * np.array(v) for v in ((1, 0), (-1, 0), (0, 1), (0, -1))]
+                return np.array(d["arcs"], float).reshape(-1, 2)
+            return d["centre"] + d["r"] * _COMPASS
         if p.kind == "arrow":
-            return [d["tail"], d["head"]]
+            return np.array([d["tail"], d["head"]])
         if p.kind == "dot":
-            return [d["xy"]]
+            return d["xy"].reshape(-1, 2)
         if p.kind == "symbol":
-            return [np.asarray(v, float) for k, v in d["args"].items()
-                    if k in ("at", "to", "points", "start", "end") for v in np.atleast_2d(v)]
-        return []
+            return _stacked([np.asarray(v, float).reshape(-1, 2) for k, v in d["args"].items()
+                             if k in ("at", "to", "points", "start", "end")])
+        return NONE
+
+    def _space_points(self, name: str) -> np.ndarray:
+        """The world points (n, 2) of the primitives drawn in space ``name``, in their order."""
+        return _stacked([self._world_points(p) for p in self.prims if p.space == name])
 
     def _layout(self) -> tuple[dict, float, float]:
         boxes = {}
         for name, scale in self.spaces.items():
-            pts = [q for p in self.prims if p.space == name for q in self._world_points(p)]
-            pts += [lab.xy for lab in self.labels if lab.space == name]
-            pts = np.array([q for q in pts if np.all(np.isfinite(q))]).reshape(-1, 2)
+            pts = np.concatenate([self._space_points(name)]
+                                 + [lab.xy.reshape(-1, 2) for lab in self.labels if lab.space == name])
+            pts = pts[np.all(np.isfinite(pts), axis=1)]
             if name in self.clip:
                 clo, chi = self.clip[name]
                 pts = pts[np.all((pts >= clo) & (pts <= chi), axis=1)]
@@ -420,12 +444,14 @@ class Figure:
 
     @staticmethod
     def _tf(panel: dict):
-        lo, hi, s = panel["lo"], panel["hi"], panel["scale"].per_mm
-        ox, oy = panel["ox"], panel["oy"]
+        # x_svg = ox + (x − lo[0])/s, y_svg = oy + (hi[1] − y)/s, written as one expression on
+        # the whole array (the sign flip is exact, the origin is past the margin: not −0)
+        ref = np.array([panel["lo"][0], panel["hi"][1]], float)
+        origin = np.array([panel["ox"], panel["oy"]], float)
+        s = panel["scale"].per_mm
 
         def tf(p):
-            p = np.asarray(p, float)
-            return np.stack([ox + (p[..., 0] - lo[0]) / s, oy + (hi[1] - p[..., 1]) / s], axis=-1)
+            return origin + (np.asarray(p, float) - ref) * _FLIP_Y / s
         return tf
 
     # ------------------------------------------------------------------ rendering
@@ -457,8 +483,8 @@ class Figure:
             pnl = panels[p.space]
             x0, y0 = pnl["x"] - MARGIN, pnl["y"] - MARGIN
             x1, y1 = pnl["x"] + pnl["w"] + MARGIN, pnl["y"] + pnl["h"] + MARGIN
-            pts = [q for q in pts if x0 <= q[0] <= x1 and y0 <= q[1] <= y1]
-            samples += pts
+            pts = np.asarray(pts, float).reshape(-1, 2)
+            samples.append(pts[(x0 <= pts[:, 0]) & (pts[:, 0] <= x1) & (y0 <= pts[:, 1]) & (pts[:, 1] <= y1)])
             if animate and p.step is not None:
                 svg = _appear(svg, p.step, animate)
             elif self.current_step is not None and p.step is not None and p.step > self.current_step:
@@ -516,7 +542,7 @@ class Figure:
         if name not in self.framed or name not in self.clip:
             return False
         lo, hi = (np.asarray(v, float) for v in self.clip[name])
-        pts = np.array([q for p in self.prims if p.space == name for q in self._world_points(p)]).reshape(-1, 2)
+        pts = self._space_points(name)
         pts = pts[np.all(np.isfinite(pts), axis=1)]
         return bool(np.any((pts < lo) | (pts > hi)))
 
@@ -584,29 +610,22 @@ class Figure:
             far = _far(panel)
             ok = np.isfinite(xy).all(-1) & np.all((xy > far[0]) & (xy < far[1]), axis=-1)
             if ok.sum() < 2:
-                return "", []
-            runs, cur = [], []
-            for q, good in zip(xy, ok):
-                if good:
-                    cur.append(q)
-                elif cur:
-                    runs.append(cur)
-                    cur = []
-            if cur:
-                runs.append(cur)
-            runs = [r for r in runs if len(r) >= 2]
+                return "", NONE
+            # the runs of consecutive points kept, each drawn as one polyline
+            kept = np.flatnonzero(ok)
+            runs = [xy[r] for r in np.split(kept, np.flatnonzero(np.diff(kept) > 1) + 1) if len(r) >= 2]
             if not runs:
-                return "", []
-            dd = " ".join("M " + " L ".join(f"{sym._f(a)} {sym._f(b)}" for a, b in r) for r in runs)
+                return "", NONE
+            dd = " ".join(_polyline(r) for r in runs)
             if d["closed"] and len(runs) == 1 and ok.all():
                 dd += " Z"
-            pts = [q for r in runs for q in _resample(np.array(r))]
+            pts = np.concatenate([_resample(r) for r in runs])
             return f'<path{ident}{cls} d="{dd}" {st.attrs()} stroke-linejoin="round"/>', pts
         if p.kind == "line":
             pts = [q for q in d["span"] if np.all(np.isfinite(q))]
             u = d["direction"]
             if not np.all(np.isfinite(u)) or np.linalg.norm(u) == 0 or not np.all(np.isfinite(d["point"])):
-                return "", []
+                return "", NONE
             u = u / np.linalg.norm(u)
             o = d["point"]
             if not pts:
@@ -618,13 +637,13 @@ class Figure:
             a, b = o + (t.min() - over) * u, o + (t.max() + over) * u
             pa, pb = _clip_segment(tf(a), tf(b), _far(panel))
             if pa is None:
-                return "", []
+                return "", NONE
             return (f'<line{ident}{cls} x1="{sym._f(pa[0])}" y1="{sym._f(pa[1])}" x2="{sym._f(pb[0])}" '
                     f'y2="{sym._f(pb[1])}" {st.attrs()}/>', _resample(np.array([pa, pb])))
         if p.kind == "circle":
             c, r = d["centre"], d["r"]
             if not (np.all(np.isfinite(c)) and np.isfinite(r)):
-                return "", []
+                return "", NONE
             pc = tf(c)
             rp = r / panel["scale"].per_mm
             if rp > 4000.0:
@@ -638,7 +657,7 @@ class Figure:
                         f'y2="{sym._f(b[1])}" {st.attrs()}/>', _resample(np.array([a, b]), 2.0))
             if not d["arcs"]:
                 t = np.linspace(0, 2 * np.pi, max(12, int(2 * np.pi * rp / 0.8)))
-                pts = list(pc + rp * np.stack([np.cos(t), np.sin(t)], -1))
+                pts = pc + rp * np.stack([np.cos(t), np.sin(t)], -1)
                 return (f'<circle{ident}{cls} cx="{sym._f(pc[0])}" cy="{sym._f(pc[1])}" r="{sym._f(rp)}" '
                         f'{st.attrs()}/>', pts)
             parts, pts = [], []
@@ -650,16 +669,16 @@ class Figure:
                 half = min(math.pi, 5.0 / max(rp, 1e-9))
                 t = np.linspace(a0 - half, a0 + half, 16)
                 xy = pc + rp * np.stack([np.cos(t), np.sin(t)], -1)
-                parts.append("M " + " L ".join(f"{sym._f(x)} {sym._f(y)}" for x, y in xy))
-                pts += list(xy)
-            return f'<path{ident}{cls} d="{" ".join(parts)}" {st.attrs()}/>', pts
+                parts.append(_polyline(xy))
+                pts.append(xy)
+            return f'<path{ident}{cls} d="{" ".join(parts)}" {st.attrs()}/>', _stacked(pts)
         if p.kind == "arrow":
             a, b = tf(d["tail"]), tf(d["head"])
             if not (np.all(np.isfinite(a)) and np.all(np.isfinite(b))):
-                return "", []
+                return "", NONE
             L = float(np.linalg.norm(b - a))
             if L < 1e-6:
-                return f'<g{ident}{cls}/>', []
+                return f'<g{ident}{cls}/>', NONE
             u = (b - a) / L
             head = sym.arrowhead(a, b, st.width, st.stroke)
             b2 = b - u * min(1.5, 0.4 * L)
@@ -668,10 +687,10 @@ class Figure:
         if p.kind == "dot":
             c = tf(d["xy"])
             if not np.all(np.isfinite(c)):
-                return "", []
+                return "", NONE
             fill = st.stroke if d["filled"] else "#fff"
             return (f'<circle{ident}{cls} cx="{sym._f(c[0])}" cy="{sym._f(c[1])}" r="{sym._f(d["r"])}" '
-                    f'fill="{fill}" stroke="{st.stroke}" stroke-width="0.25"/>', [c])
+                    f'fill="{fill}" stroke="{st.stroke}" stroke-width="0.25"/>', c[None, :])
         if p.kind == "symbol":
             args = {}
             for k, v in d["args"].items():
@@ -687,10 +706,10 @@ class Figure:
                 else:
                     args[k] = v
             if any(not np.all(np.isfinite(v)) for k, v in args.items() if isinstance(v, np.ndarray)):
-                return "", []
+                return "", NONE
             svg, pts = _symbol(d["name"], args)
             return f'<g{ident} class="symbol {d["name"]}{(" " + p.cls) if p.cls else ""}">{svg}</g>', pts
-        return "", []
+        return "", NONE
 
     def _place_labels(self, tfs: dict, panels: dict, samples: list, animate: float | None,
                       cut: dict[str, bool]) -> list[str]:
@@ -716,7 +735,7 @@ class Figure:
             todo.append((lab, a, w, h, frame))
         if not todo:
             return []
-        ink = np.asarray(samples, float).reshape(-1, 2)
+        ink = _stacked(samples)
         ink = ink[np.all(np.isfinite(ink), axis=1)]
         points = np.array([t[1] for t in todo], float).reshape(-1, 2)
         placed = np.full((len(todo), 4), np.nan)  # the boxes chosen so far (x0, y0, x1, y1)
@@ -754,8 +773,9 @@ class Figure:
             """The candidate box of label i that covers least: its fixed costs and the area it
             shares with the other labels' boxes (all candidates at once)."""
             box, area, costs = scored[i]
-            others = np.delete(placed, i, axis=0)
-            others = others[np.isfinite(others[:, 0])]
+            keep = np.isfinite(placed[:, 0])
+            keep[i] = False
+            others = placed[keep]
             ow = np.minimum(box[:, None, 2], others[None, :, 2]) - np.maximum(box[:, None, 0], others[None, :, 0])
             oh = np.minimum(box[:, None, 3], others[None, :, 3]) - np.maximum(box[:, None, 1], others[None, :, 1])
             score = 40.0 * np.sum(np.clip(ow, 0, None) * np.clip(oh, 0, None), axis=1) / area
@@ -896,32 +916,80 @@ def _scale_value(s: Scale) -> str:
     return f"{SCALE_BAR * s.per_mm:.4g} {s.unit}"
 
 
-def _resample(xy: np.ndarray, step: float = 0.8) -> list[np.ndarray]:
-    out = []
-    for a, b in zip(xy[:-1], xy[1:]):
-        n = max(2, int(np.linalg.norm(b - a) / step) + 1)
-        out += list(a + np.linspace(0, 1, n)[:, None] * (b - a))
-    return out
+def _resample(xy: np.ndarray, step: float = 0.8) -> np.ndarray:
+    return sym.resample(xy, step)
+
+
+_FLIP_Y = np.array([1.0, -1.0])
+#: a circle's extent: its points east, west, north and south of the centre, per unit radius
+_COMPASS = np.array([(1, 0), (-1, 0), (0, 1), (0, -1)], float)
+
+#: no sample points
+NONE = np.empty((0, 2))
+NONE.flags.writeable = False
+
+
+def _stacked(parts: list[np.ndarray]) -> np.ndarray:
+    """Arrays of points (n, 2) one after another."""
+    return np.concatenate(parts) if parts else NONE
+
+
+def _polyline(xy: np.ndarray) -> str:
+    """SVG path data 'M x y L x y …' through the points (n, 2)."""
+    s = sym._fs(xy)
+    return "M " + " L ".join(f"{a} {b}" for a, b in zip(s[::2], s[1::2]))
 
 
 def _inside_counts(pts: np.ndarray, boxes: np.ndarray) -> np.ndarray:
-    """How many of the points (n, 2) lie in each box (m, 4: x0, y0, x1, y1, edges included):
-    with the points sorted by x, a box's x range is one slice of them, whose y are tested."""
-    order = np.argsort(pts[:, 0], kind="stable")
-    xs, ys = pts[order, 0], pts[order, 1]
-    lo = np.searchsorted(xs, boxes[:, 0], "left")
-    span = np.maximum(np.searchsorted(xs, boxes[:, 2], "right") - lo, 0)
-    box_of = np.repeat(np.arange(len(boxes)), span)  # the slices one after another
-    start = np.cumsum(span) - span
-    y = ys[np.arange(len(box_of)) - start[box_of] + lo[box_of]]
-    ok = (y >= boxes[box_of, 1]) & (y <= boxes[box_of, 3])
+    """How many of the points (n, 2) lie in each box (m, 4: x0, y0, x1, y1, edges included).
+
+    The points are cut into horizontal bands as tall as the tallest box (a box meets at most
+    two) and sorted by band, then by x: a box's points are within one slice of each band it
+    meets, found by one search on the key band·S + x (S wider than the points' spread, so
+    that bands keep apart; rounding the key keeps its order, so a slice holds every point it
+    must), and each point of the slices is tested exactly."""
+    if len(pts) == 0 or len(boxes) == 0:
+        return np.zeros(len(boxes), dtype=np.intp)
+    x, y = pts[:, 0], pts[:, 1]
+    x_min, y_min = x.min(), y.min()
+    spread = float(x.max() - x_min)
+    tall = max(float(np.max(boxes[:, 3] - boxes[:, 1])), 1e-3 * (spread + 1.0))
+    bands = int((float(y.max()) - float(y_min)) // tall) + 1
+    step = spread + 10.0
+    band = np.floor((y - y_min) / tall).astype(np.intp)
+    key = band * step + (x - x_min)
+    order = np.argsort(key, kind="stable")
+    key, xs, ys = key[order], x[order], y[order]
+    # the bands each box meets (none for a box above or below all the points)
+    first = np.maximum(np.floor((boxes[:, 1] - y_min) / tall), 0)
+    last = np.minimum(np.floor((boxes[:, 3] - y_min) / tall), bands - 1)
+    n_bands = np.maximum(last - first + 1, 0).astype(np.intp)
+    box_q = np.repeat(np.arange(len(boxes)), n_bands)
+    band_q = first[box_q] + (np.arange(len(box_q)) - np.repeat(np.cumsum(n_bands) - n_bands, n_bands))
+    # the box's x range, clipped to the points' (which keeps the slice's points the same)
+    x0 = np.clip(boxes[box_q, 0] - x_min, -1.0, spread + 1.0)
+    x1 = np.clip(boxes[box_q, 2] - x_min, -1.0, spread + 1.0)
+    lo = np.searchsorted(key, band_q * step + x0, "left")
+    span = np.maximum(np.searchsorted(key, band_q * step + x1, "right") - lo, 0)
+    query = np.repeat(np.arange(len(box_q)), span)
+    at = np.arange(len(query)) - np.repeat(np.cumsum(span) - span, span) + lo[query]
+    box_of = box_q[query]
+    b = boxes[box_of]
+    ok = (xs[at] >= b[:, 0]) & (xs[at] <= b[:, 2]) & (ys[at] >= b[:, 1]) & (ys[at] <= b[:, 3])
     return np.bincount(box_of[ok], minlength=len(boxes))
 
 
+#: the directions a label may be put in from its point (paper, y down), unit vectors
+_DIRECTIONS = [(dx / math.hypot(dx, dy), dy / math.hypot(dx, dy))
+               for dx, dy in [(1, -1), (1, 1), (-1, -1), (-1, 1), (1, 0), (-1, 0), (0, -1), (0, 1)]]
+
+
 def _candidates(prefer: np.ndarray | None) -> list[tuple[float, float]]:
-    dirs = [(1, -1), (1, 1), (-1, -1), (-1, 1), (1, 0), (-1, 0), (0, -1), (0, 1)]
-    dirs = [(dx / math.hypot(dx, dy), dy / math.hypot(dx, dy)) for dx, dy in dirs]
-    if prefer is not None and np.all(np.isfinite(prefer)) and np.linalg.norm(prefer) > 0:
-        p = np.asarray(prefer, float) / np.linalg.norm(prefer)
-        dirs.sort(key=lambda d: -(d[0] * p[0] + d[1] * p[1]))
+    """:data:`_DIRECTIONS`, those nearest ``prefer`` first."""
+    dirs = list(_DIRECTIONS)
+    if prefer is not None and np.all(np.isfinite(prefer)):
+        norm = np.linalg.norm(prefer)
+        if norm > 0:
+            px, py = (np.asarray(prefer, float) / norm).tolist()
+            dirs.sort(key=lambda d: -(d[0] * px + d[1] * py))
     return dirs

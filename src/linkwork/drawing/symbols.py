@@ -6,13 +6,16 @@ frame (hatched ground line, *Gestell*), binary and ternary links (bars and plate
 the block on a guide (*Schubgelenk*: a rectangle sliding on a line with hatching on the frame
 side), the pin in a slot (*Kurvengelenk/Kulisse*: a slot outline round the pin), and gear pitch
 circles (dash-dot). Each function takes paper coordinates (mm, y downwards) and returns
-``(svg_fragment, sample_points)``; the sample points let the label placer avoid the symbol.
+``(svg_fragment, sample_points)``, the sample points an (n, 2) array: they let the label placer
+avoid the symbol.
 
 Sizes follow the proportions of ISO 3952 drawings at textbook size: joint circles 2 mm in
 diameter, bearing blocks 5 mm wide, hatching at 45° every 1.2 mm.
 """
 
 from __future__ import annotations
+
+from functools import lru_cache
 
 import numpy as np
 
@@ -33,22 +36,72 @@ SLOT_W = 2.6
 
 
 def _f(v: float) -> str:
-    return f"{v:.3f}".rstrip("0").rstrip(".") if abs(v) < 1e6 else f"{v:.1f}"
+    """A number of the SVG text: mm to 3 decimals, trailing zeros dropped."""
+    return f"{v:.3f}".rstrip("0").rstrip(".") if -1e6 < v < 1e6 else f"{v:.1f}"
+
+
+def _fs(values) -> list[str]:
+    """:func:`_f` of every number of ``values`` (any shape, in C order), at once: a drawing
+    writes thousands of coordinates a frame, and one list of Python floats formats faster than
+    NumPy scalars one by one."""
+    return [f"{v:.3f}".rstrip("0").rstrip(".") if -1e6 < v < 1e6 else f"{v:.1f}"
+            for v in np.ravel(values).tolist()]
 
 
 def _pts(xy: np.ndarray) -> str:
-    return " ".join(f"{_f(x)},{_f(y)}" for x, y in xy)
+    s = _fs(xy)
+    return " ".join(f"{x},{y}" for x, y in zip(s[::2], s[1::2]))
 
 
 def _line(p, q, w=THIN, colour=INK, extra="") -> str:
-    return (f'<line x1="{_f(p[0])}" y1="{_f(p[1])}" x2="{_f(q[0])}" y2="{_f(q[1])}" '
-            f'stroke="{colour}" stroke-width="{_f(w)}" stroke-linecap="round"{extra}/>')
+    return _lines(np.concatenate((np.ravel(p), np.ravel(q))), w, colour, extra)
 
 
-def _samples(p, q, step=0.6) -> list[np.ndarray]:
+def _lines(ends: np.ndarray, w=THIN, colour=INK, extra="") -> str:
+    """Lines from p to q, one a row (x_p, y_p, x_q, y_q) of ``ends``, all of one weight."""
+    s = _fs(ends)
+    tail = f'stroke="{colour}" stroke-width="{_f(w)}" stroke-linecap="round"{extra}/>'
+    return "".join(f'<line x1="{s[k]}" y1="{s[k + 1]}" x2="{s[k + 2]}" y2="{s[k + 3]}" {tail}'
+                   for k in range(0, len(s), 4))
+
+
+@lru_cache(maxsize=512)
+def _fractions(n: int) -> np.ndarray:
+    """n fractions 0 … 1 as a column (read-only: shared by every caller)."""
+    t = np.linspace(0, 1, n)[:, None]
+    t.flags.writeable = False
+    return t
+
+
+def _samples(p, q, step=0.6) -> np.ndarray:
+    """Points (n, 2) along p–q about ``step`` apart, both ends included."""
     p, q = np.asarray(p, float), np.asarray(q, float)
     n = max(2, int(np.linalg.norm(q - p) / step) + 1)
-    return list(p + np.linspace(0, 1, n)[:, None] * (q - p))
+    return p + _fractions(n) * (q - p)
+
+
+def resample(xy: np.ndarray, step: float = 0.6) -> np.ndarray:
+    """:func:`_samples` along each segment of the polyline ``xy`` (n, 2), one after another, all
+    segments at once."""
+    xy = np.asarray(xy, float).reshape(-1, 2)
+    a, d = xy[:-1], xy[1:] - xy[:-1]
+    if len(a) == 0:
+        return np.empty((0, 2))
+    if not np.all(np.isfinite(d)):
+        return np.concatenate([_samples(p, q, step) for p, q in zip(xy[:-1], xy[1:])])
+    per = np.linalg.norm(d, axis=1) / step
+    counts = np.maximum(2, per.astype(int) + 1)
+    # a length a rounding away from a whole number of steps: counted as _samples counts it
+    # (the norm of one vector sums its squares in another order)
+    for k in np.flatnonzero(np.abs(per - np.rint(per)) <= 1e-9 * np.maximum(per, 1.0)):
+        counts[k] = max(2, int(np.linalg.norm(d[k]) / step) + 1)
+    t = np.concatenate([_fractions(n) for n in counts.tolist()])
+    return np.repeat(a, counts, axis=0) + t * np.repeat(d, counts, axis=0)
+
+
+def _outline_samples(v: np.ndarray) -> np.ndarray:
+    """:func:`_samples` along each edge of the closed polygon ``v``, one edge after another."""
+    return resample(np.concatenate((v, v[:1])))
 
 
 def hatch(p: np.ndarray, q: np.ndarray, side: np.ndarray, depth: float = GROUND_DEPTH,
@@ -60,15 +113,16 @@ def hatch(p: np.ndarray, q: np.ndarray, side: np.ndarray, depth: float = GROUND_
     if L == 0:
         return ""
     u = d / L
-    out = [_line(p, q, 0.35, colour)]
-    n = int(L / HATCH_STEP)
-    for k in range(n + 1):
-        a = p + u * (k * HATCH_STEP + 0.3)
-        if k * HATCH_STEP + 0.3 > L:
-            break
-        b = a + side * depth - u * depth * 0.8
-        out.append(_line(a, b, 0.18, colour))
-    return "".join(out)
+    # a stroke every HATCH_STEP from 0.3 on, as far as the line goes
+    at = np.arange(int(L / HATCH_STEP) + 1) * HATCH_STEP + 0.3
+    a = p + u * at[at <= L][:, None]
+    b = a + side * depth - u * depth * 0.8
+    return _line(p, q, 0.35, colour) + _lines(np.concatenate((a, b), axis=1), 0.18, colour)
+
+
+#: a joint circle's ring of sample points about its centre
+_RING_ANGLES = np.linspace(0.0, 2 * np.pi, 9)[:-1]
+_RING = JOINT_R * np.stack([np.cos(_RING_ANGLES), np.sin(_RING_ANGLES)], -1)
 
 
 def revolute(c: np.ndarray, colour: str = INK) -> tuple[str, list]:
@@ -76,8 +130,7 @@ def revolute(c: np.ndarray, colour: str = INK) -> tuple[str, list]:
     c = np.asarray(c, float)
     svg = (f'<circle cx="{_f(c[0])}" cy="{_f(c[1])}" r="{_f(JOINT_R)}" fill="#fff" '
            f'stroke="{colour}" stroke-width="0.35"/>')
-    t = np.linspace(0.0, 2 * np.pi, 9)[:-1]  # its ring, so that labels keep off the circle
-    return svg, [c] + list(c + JOINT_R * np.stack([np.cos(t), np.sin(t)], -1))
+    return svg, np.concatenate(([c], c + _RING))  # its ring, so that labels keep off the circle
 
 
 def bearing(c: np.ndarray, down: np.ndarray, unit: float = 1.0) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -108,7 +161,7 @@ def fixed_pivot(c: np.ndarray, down: np.ndarray = (0.0, 1.0), colour: str = INK)
            f'stroke-linejoin="round"/>')
     svg += hatch(g1, g0, down, colour=colour)
     s, pts = revolute(c, colour)
-    return svg + s, pts + _samples(c, base) + _samples(g0, g1)
+    return svg + s, np.concatenate((pts, _samples(c, base), _samples(g0, g1)))
 
 
 def ground(p: np.ndarray, q: np.ndarray, side: np.ndarray, colour: str = INK) -> tuple[str, list]:
@@ -126,10 +179,7 @@ def plate(vertices: np.ndarray, colour: str = INK, fill: str = "#ececec") -> tup
     v = np.asarray(vertices, float)
     svg = (f'<polygon points="{_pts(v)}" fill="{fill}" stroke="{colour}" '
            f'stroke-width="{_f(LINK_W * 0.8)}" stroke-linejoin="round"/>')
-    pts = []
-    for a, b in zip(v, np.roll(v, -1, axis=0)):
-        pts += _samples(a, b)
-    return svg, pts
+    return svg, _outline_samples(v)
 
 
 def block_corners(c: np.ndarray, axis: np.ndarray, unit: float = 1.0) -> np.ndarray:
@@ -146,10 +196,7 @@ def block(c: np.ndarray, axis: np.ndarray, colour: str = INK) -> tuple[str, list
     r = block_corners(c, axis)
     svg = (f'<polygon points="{_pts(r)}" fill="#fff" stroke="{colour}" stroke-width="0.5" '
            f'stroke-linejoin="round"/>')
-    pts = []
-    for a, b in zip(r, np.roll(r, -1, axis=0)):
-        pts += _samples(a, b)
-    return svg, pts
+    return svg, _outline_samples(r)
 
 
 def guide(p: np.ndarray, q: np.ndarray, side: np.ndarray, offset: float = GUIDE_OFFSET,
@@ -165,7 +212,7 @@ def slot(p: np.ndarray, q: np.ndarray, colour: str = INK, width: float = SLOT_W)
     d = q - p
     L = float(np.linalg.norm(d))
     if L == 0:
-        return "", []
+        return "", np.empty((0, 2))
     u = d / L
     n = np.array([-u[1], u[0]]) * width / 2
     r = width / 2
@@ -173,7 +220,7 @@ def slot(p: np.ndarray, q: np.ndarray, colour: str = INK, width: float = SLOT_W)
             f'A {_f(r)} {_f(r)} 0 0 0 {_f((q - n)[0])} {_f((q - n)[1])} '
             f'L {_f((p - n)[0])} {_f((p - n)[1])} A {_f(r)} {_f(r)} 0 0 0 {_f((p + n)[0])} {_f((p + n)[1])} Z')
     svg = f'<path d="{path}" fill="none" stroke="{colour}" stroke-width="0.45"/>'
-    return svg, _samples(p + n, q + n) + _samples(p - n, q - n)
+    return svg, np.concatenate((_samples(p + n, q + n), _samples(p - n, q - n)))
 
 
 def pitch_circle(c: np.ndarray, r: float, colour: str = INK) -> tuple[str, list]:
@@ -182,7 +229,7 @@ def pitch_circle(c: np.ndarray, r: float, colour: str = INK) -> tuple[str, list]
     svg = (f'<circle cx="{_f(c[0])}" cy="{_f(c[1])}" r="{_f(r)}" fill="none" stroke="{colour}" '
            f'stroke-width="0.35" stroke-dasharray="6 1.2 0.8 1.2"/>')
     t = np.linspace(0, 2 * np.pi, max(8, int(2 * np.pi * r / 0.8)))
-    return svg, list(c + r * np.stack([np.cos(t), np.sin(t)], -1))
+    return svg, c + r * np.stack([np.cos(t), np.sin(t)], -1)
 
 
 def arrowhead(tail: np.ndarray, head: np.ndarray, width: float, colour: str) -> str:

@@ -40,7 +40,7 @@ ROUNDING_RESIDUAL = 8.0
 UNRELIABLE_CONDITION = 1e14
 
 
-def backward_error(mech: Mechanism, residual: np.ndarray) -> np.ndarray:
+def backward_error(mech: Mechanism, residual: np.ndarray, eps: float | None = None) -> np.ndarray:
     """Newton's final residual (a length, per sample) as the error budget takes it
     (`precision.ErrorBudget`, the group's backward error over L). A residual at the level of
     the equations' rounding (`ROUNDING_RESIDUAL`·ε·the drawing's coordinates) counts as none:
@@ -49,12 +49,15 @@ def backward_error(mech: Mechanism, residual: np.ndarray) -> np.ndarray:
     noise that differs with the path Newton came along (a march carried over from a drag's
     previous frame or marched afresh, 0.3 … 3 ε·m₀ at the same sample): added to the bound it
     moved samples whose bound lies near the tolerance between ok and singular. A larger
-    residual (a limit position, an over-closed group's least squares) is counted in full."""
+    residual (a limit position, an over-closed group's least squares) is counted in full.
+    `eps`: the unit roundoff of the arithmetic Newton ran in (double unless given; the polish
+    in long double, `precision._newton`, gives its own)."""
     from .precision import EPS, coordinate_size  # (precision imports this module)
 
     r = residual / mech.length_scale
     with np.errstate(invalid="ignore"):
-        return np.where(r <= ROUNDING_RESIDUAL * EPS * coordinate_size(mech), 0.0, r)
+        return np.where(r <= ROUNDING_RESIDUAL * (EPS if eps is None else eps) *
+                        coordinate_size(mech), 0.0, r)
 
 
 def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:

@@ -29,7 +29,7 @@ from functools import lru_cache
 import numpy as np
 
 from ..model import Mechanism
-from .groups import (UNRELIABLE_CONDITION, GroupSolver, State, _scaled, least_squares,
+from .groups import (UNRELIABLE_CONDITION, GroupSolver, backward_error, State, _scaled, least_squares,
                      rate_residuals, residual_and_jacobian)
 
 #: the largest forward error (relative to the natural scale, or to the answer where that is
@@ -190,7 +190,7 @@ def _newton(mech: Mechanism, solvers, Qd: np.ndarray, inputs: dict, sel: np.ndar
         moved[..., 2] *= L
         drift = moved.max(axis=(1, 2), initial=0.0)
         good &= finite & (res <= 1e3 * EPS * P * L) & (drift <= (10 * bound + 1e3 * EPS * P) * L)
-        state.residuals[g] = res / L
+        state.residuals[g] = backward_error(mech, res, eps)
         usable = kappa < UNRELIABLE_CONDITION
         for k in range(1, K + 1):
             b = -rate_residuals(state, g, k)

@@ -98,8 +98,23 @@ def _pose_memory(size: int, key=None) -> tuple[np.ndarray, bool]:
         # references: the slot, `buf` and getrefcount's argument
         if buf is not None and size <= buf.size <= 2 * size and sys.getrefcount(buf) == 3:
             return buf[:size], key is not None and zero == key
+        _raise_mmap_threshold()
         _SPARE[0] = np.empty(size)
         return _SPARE[0], False
+
+
+#: glibc serves requests above its mmap threshold with fresh pages from the system (paid page
+#: by page on first touch) and raises that threshold to the size of such a block when it is
+#: freed, up to 32 MiB. The spare is never freed, so without a freed block of its own a process
+#: whose first large array is the spare kept every other large array of each solve (cos θ,
+#: sin θ, the points) above the threshold: 1 600 page faults and 60 % more time per solve and
+#: read of Jansen's linkage in a loop, measured. A block just under the limit, never touched,
+#: costs one mmap and munmap.
+_MMAP_RAISE = 30 << 20
+
+
+def _raise_mmap_threshold() -> None:
+    np.empty(_MMAP_RAISE // 8)
 
 
 def _pose_array(order: int, N: int, n_links: int, frame: int) -> np.ndarray:

@@ -15,6 +15,7 @@ import time
 import tomllib
 import warnings
 from contextlib import asynccontextmanager, contextmanager
+from contextvars import ContextVar
 from importlib import resources
 from pathlib import Path
 from typing import Iterator
@@ -161,17 +162,52 @@ def _validation_message(exc: RequestValidationError | ValidationError | list) ->
     return "; ".join(parts)
 
 
+#: the warnings list of the request this thread (or task) works for, if any (`_warnings`)
+_COLLECTING: ContextVar[list[str] | None] = ContextVar("linkwork_request_warnings", default=None)
+_ROUTER_LOCK = threading.Lock()
+_shown_before = warnings.showwarning  # where the warnings of no request go (`_route_warnings`)
+
+
+def _routed(message, category, filename, lineno, file=None, line=None):
+    """`warnings.showwarning` of the server: a LinkworkWarning raised for a request goes to that
+    request's list; any other warning where it went before."""
+    out = _COLLECTING.get()
+    if out is not None and issubclass(category, LinkworkWarning):
+        out.append(str(message))
+    else:
+        _shown_before(message, category, filename, lineno, file, line)
+
+
+def _route_warnings() -> None:
+    """Put `_routed` in place (again, if a `warnings.catch_warnings` around the server, as a
+    test's, restored another), with every LinkworkWarning shown each time it is raised."""
+    global _shown_before
+    with _ROUTER_LOCK:
+        if warnings.showwarning is not _routed:
+            _shown_before, warnings.showwarning = warnings.showwarning, _routed
+        always = ("always", None, LinkworkWarning, None, 0)
+        if not warnings.filters or warnings.filters[0] != always:
+            warnings.filterwarnings("always", category=LinkworkWarning)
+
+
 @contextmanager
 def _warnings(compiled: bool = False) -> Iterator[list[str]]:
     """Collect the LinkworkWarnings raised inside (as the command line prints them); the
-    kinematics' loops run compiled inside once the server has them (`compile_kernels`)."""
+    kinematics' loops run compiled inside once the server has them (`compile_kernels`).
+
+    Not `warnings.catch_warnings`: it swaps the module's global state in and out, so two
+    requests in two threads (a long drawing in a worker thread, a drag's frame in the event
+    loop) could take each other's warnings or leave a dead list in place. The list is a context
+    variable instead, which each thread and task has its own of."""
     out: list[str] = []
-    with warnings.catch_warnings(record=True) as caught, \
-            compiled_loops(True if compiled and warmup.READY.is_set() else None):
-        warnings.simplefilter("always", LinkworkWarning)
-        yield out
-        out.extend(dict.fromkeys(str(w.message) for w in caught
-                                 if issubclass(w.category, LinkworkWarning)))
+    _route_warnings()
+    token = _COLLECTING.set(out)
+    try:
+        with compiled_loops(True if compiled and warmup.READY.is_set() else None):
+            yield out
+    finally:
+        _COLLECTING.reset(token)
+    out[:] = dict.fromkeys(out)
 
 
 def _finite(x) -> float | None:
