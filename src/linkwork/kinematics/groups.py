@@ -244,7 +244,7 @@ def drawn_alike(a: Mechanism, b: Mechanism, group: Group) -> bool:
     (higher pairs read profiles, intermittent pairs their wheels' drawings). A drag that
     moves one point changes few groups, a point no pair names (a coupler's tracer point) none."""
     if a.length_scale != b.length_scale or a.link_names != b.link_names or \
-            contact.rows(a) != contact.rows(b):
+            contact.row_index(a) != contact.row_index(b):
         return False
     names: set[str] = set()
     for j in group.joints:
@@ -259,7 +259,9 @@ def drawn_alike(a: Mechanism, b: Mechanism, group: Group) -> bool:
             return False
         if da.reference:
             names.add(da.reference)
-    return all(n in b.points and np.array_equal(a.points[n], b.points[n]) for n in names)
+    pa, pb = a.points, b.points
+    # (two numbers each, compared as Python floats: a NumPy call per point costs more here)
+    return all(n in pb and pa[n].tolist() == pb[n].tolist() for n in names)
 
 
 def _pose_fn(state: State, group_links: tuple[str, ...], U: np.ndarray | None, order: int):
