@@ -21,6 +21,7 @@ with warnings.catch_warnings():
 
 import linkwork
 from linkwork.cli.serve_cmd import _free_port, server_options
+from linkwork.kinematics import continuation
 from linkwork.web import app as web_app
 from linkwork.web import create_app
 from linkwork.web.app import MAX_BODY
@@ -138,6 +139,50 @@ def test_the_worker_thread_is_chosen_by_what_a_drawing_asks(monkeypatch, request
 
     asyncio.run(run())
     assert [t is not threading.current_thread() for _, _, t in watched.threads] == worker
+
+
+def test_a_frame_that_would_wait_for_a_march_elsewhere_waits_in_a_worker(monkeypatch):
+    """A march in another thread (a long drawing's) holds every march until it is done: a
+    frame that marches waits for it in a worker thread, the others go on in the loop."""
+    watched = Watched(monkeypatch)
+    watched.release.set()
+    app = create_app(None)
+    held, done = threading.Event(), threading.Event()
+
+    def march_elsewhere():
+        with continuation._marching:
+            held.set()
+            done.wait(30)
+
+    elsewhere = threading.Thread(target=march_elsewhere)
+    elsewhere.start()
+    newton = {"source": {"library": "heusinger-valve-gear"}, "motion": False}
+
+    async def run():
+        transport = httpx.ASGITransport(app=app)
+        async with httpx.AsyncClient(transport=transport, base_url="http://test") as client:
+            waiting = asyncio.create_task(client.post("/api/drawing", json=newton))
+            deadline = time.monotonic() + 60
+            while not watched.threads:  # the Newton frame handed over
+                assert time.monotonic() < deadline
+                await asyncio.sleep(0.005)
+            quick = await client.post("/api/drawing", json=QUICK)
+            was_waiting = not waiting.done()
+            done.set()
+            return quick, was_waiting, await waiting
+
+    try:
+        assert held.wait(30)
+        quick, was_waiting, newton_frame = asyncio.run(run())
+    finally:
+        done.set()
+        elsewhere.join(30)
+    assert quick.status_code == 200 and newton_frame.status_code == 200
+    assert was_waiting
+    where = {name: thread for name, _, thread in watched.threads}
+    assert where["Heusinger (Walschaerts) valve gear"] is not threading.current_thread()
+    assert [t for name, _, t in watched.threads if name != "Heusinger (Walschaerts) valve gear"] \
+        == [threading.current_thread()]
 
 
 @pytest.fixture

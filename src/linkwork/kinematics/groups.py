@@ -16,6 +16,7 @@ order 2. Every link's cos θ and sin θ are kept once in `State.T`.
 
 from __future__ import annotations
 
+import threading
 from collections import OrderedDict
 from dataclasses import dataclass, field, replace
 from functools import cached_property
@@ -204,6 +205,7 @@ def pair_table_of(mech: Mechanism, group: Group) -> PairTable | None:
 _tables: OrderedDict = OrderedDict()
 _tables_like: OrderedDict = OrderedDict()
 TABLES_KEPT = 256
+_tables_lock = threading.Lock()
 
 
 def _pair_table(mech: Mechanism, group: Group) -> PairTable | None:
@@ -217,9 +219,10 @@ def _pair_table(mech: Mechanism, group: Group) -> PairTable | None:
     if table is _NONE:
         table = pair_table(mech, group.links, group.joints, group.drivers, group.wedge_pairs,
                            contact.row_index(mech))
-    _tables[key] = table
-    while len(_tables) > TABLES_KEPT:
-        _tables.popitem(last=False)
+    with _tables_lock:  # (a server solves in several threads)
+        _tables[key] = table
+        while len(_tables) > TABLES_KEPT:
+            _tables.popitem(last=False)
     return table
 
 
@@ -241,7 +244,7 @@ def drawn_alike(a: Mechanism, b: Mechanism, group: Group) -> bool:
     (higher pairs read profiles, intermittent pairs their wheels' drawings). A drag that
     moves one point changes few groups, a point no pair names (a coupler's tracer point) none."""
     if a.length_scale != b.length_scale or a.link_names != b.link_names or \
-            contact.rows(a) != contact.rows(b):
+            contact.row_index(a) != contact.row_index(b):
         return False
     names: set[str] = set()
     for j in group.joints:
@@ -256,7 +259,9 @@ def drawn_alike(a: Mechanism, b: Mechanism, group: Group) -> bool:
             return False
         if da.reference:
             names.add(da.reference)
-    return all(n in b.points and np.array_equal(a.points[n], b.points[n]) for n in names)
+    pa, pb = a.points, b.points
+    # (two numbers each, compared as Python floats: a NumPy call per point costs more here)
+    return all(n in pb and pa[n].tolist() == pb[n].tolist() for n in names)
 
 
 def _pose_fn(state: State, group_links: tuple[str, ...], U: np.ndarray | None, order: int):
@@ -525,9 +530,10 @@ class GroupSolver:
             # the group drawn as in `like`'s mechanism (a drag's previous frame): its constants
             # are the same numbers, taken over instead of computed again
             self.__dict__["fast"] = like.fast
-            _tables_like[(mech, self.group)] = like.mech
-            while len(_tables_like) > TABLES_KEPT:
-                _tables_like.popitem(last=False)
+            with _tables_lock:
+                _tables_like[(mech, self.group)] = like.mech
+                while len(_tables_like) > TABLES_KEPT:
+                    _tables_like.popitem(last=False)
         self.fast  # noqa: B018  (computed once here; `plan` keeps the solver per mechanism)
 
     @property
