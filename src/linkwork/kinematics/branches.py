@@ -420,7 +420,7 @@ def path_schedule(mech: Mechanism, solvers: tuple[GroupSolver, ...], values: np.
                 _touches(fn, grid, first_new, new, merge)
             points += [c for c in new if not any(abs(c - p) < merge for p in points)]
         found[s.group] = PathSchedule(sign, tuple(sorted(points)))
-    if start is None:
+    if start is None and len(path.vertices) <= PATH_KEPT_VERTICES:
         with _schedules_lock:
             _path_schedules[mech] = (groups, path.knots, path.vertices, dict(found))
             while len(_path_schedules) > SCHEDULES_KEPT:
@@ -429,5 +429,7 @@ def path_schedule(mech: Mechanism, solvers: tuple[GroupSolver, ...], values: np.
 
 
 #: mechanism -> (its groups, the knots and vertices of its last path from the design input,
-#: the schedule along it), the last few
+#: the schedule along it), the last few; paths of a few vertices only (a drag's frames: one or
+#: two), not a long batch's
 _path_schedules: OrderedDict = OrderedDict()
+PATH_KEPT_VERTICES = 64
