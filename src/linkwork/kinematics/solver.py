@@ -54,7 +54,7 @@ def plan(mech: Mechanism) -> tuple[GroupSolver, ...]:
     previous = lineage(mech)
     kept = _plans.get(previous) if previous is not None else None
     like = {s.group: s for s in kept} if kept is not None else {}
-    out = tuple(GroupSolver(mech, g, like.get(g)) for g in order)
+    out = tuple(GroupSolver(mech, g, like[g]) if g in like else GroupSolver(mech, g) for g in order)
     with _plans_lock:
         _plans[mech] = out
         while len(_plans) > PLANS_KEPT:
