@@ -767,18 +767,20 @@ class Figure:
                 across = ((b[:, 0] < frame[0]) | (b[:, 2] > frame[2]) | (b[:, 1] < frame[1])
                           | (b[:, 3] > frame[3]))
                 costs.append(1e4 * across)
-            scored.append((boxes[i], w * h, costs))
+            # the boxes' edges as columns, to meet the other labels' boxes (rows)
+            scored.append((boxes[i], boxes[i].T[:, :, None], w * h, costs))
 
         def best_box(i: int):
             """The candidate box of label i that covers least: its fixed costs and the area it
             shares with the other labels' boxes (all candidates at once)."""
-            box, area, costs = scored[i]
+            box, (x0, y0, x1, y1), area, costs = scored[i]
             keep = np.isfinite(placed[:, 0])
             keep[i] = False
-            others = placed[keep]
-            ow = np.minimum(box[:, None, 2], others[None, :, 2]) - np.maximum(box[:, None, 0], others[None, :, 0])
-            oh = np.minimum(box[:, None, 3], others[None, :, 3]) - np.maximum(box[:, None, 1], others[None, :, 1])
-            score = 40.0 * np.sum(np.clip(ow, 0, None) * np.clip(oh, 0, None), axis=1) / area
+            ox0, oy0, ox1, oy1 = placed[keep].T
+            ow = np.minimum(x1, ox1) - np.maximum(x0, ox0)
+            oh = np.minimum(y1, oy1) - np.maximum(y0, oy0)
+            shared = np.maximum(ow, 0.0, out=ow) * np.maximum(oh, 0.0, out=oh)
+            score = 40.0 * shared.sum(axis=1) / area
             for cost in costs:  # added in this order, as they always were (equal scores, same pick)
                 score += cost
             return box[int(np.argmin(score))]
@@ -797,8 +799,9 @@ class Figure:
                     f'height="{sym._f(y1 - y0 - 0.1)}" fill="#fff" fill-opacity="0.75"/>')
             leader = ""
             q = np.clip(a, [x0, y0], [x1, y1])  # the box's point nearest the label's point
-            if np.linalg.norm(q - a) > LEADER_FROM + lab.clear:
-                e = a + (q - a) * (lab.clear + 0.6) / np.linalg.norm(q - a)
+            far = np.linalg.norm(q - a)
+            if far > LEADER_FROM + lab.clear:
+                e = a + (q - a) * (lab.clear + 0.6) / far
                 leader = (f'<line class="leader" x1="{sym._f(e[0])}" y1="{sym._f(e[1])}" x2="{sym._f(q[0])}" '
                           f'y2="{sym._f(q[1])}" stroke="{lab.colour}" stroke-width="0.12"/>')
             el = f"<g>{leader}{halo}{el}</g>"

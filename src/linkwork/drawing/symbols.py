@@ -65,9 +65,14 @@ def _lines(ends: np.ndarray, w=THIN, colour=INK, extra="") -> str:
                    for k in range(0, len(s), 4))
 
 
-@lru_cache(maxsize=512)
 def _fractions(n: int) -> np.ndarray:
-    """n fractions 0 … 1 as a column (read-only: shared by every caller)."""
+    """n fractions 0 … 1 as a column; the few short ones that symbols use over and over are
+    made once (read-only: shared by every caller)."""
+    return _short_fractions(n) if n <= 256 else np.linspace(0, 1, n)[:, None]
+
+
+@lru_cache(maxsize=256)
+def _short_fractions(n: int) -> np.ndarray:
     t = np.linspace(0, 1, n)[:, None]
     t.flags.writeable = False
     return t
