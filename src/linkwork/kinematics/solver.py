@@ -11,7 +11,6 @@ from __future__ import annotations
 import sys
 import threading
 import warnings
-from collections import OrderedDict
 from functools import lru_cache
 
 import numpy as np
@@ -24,6 +23,7 @@ from . import fused, kernels
 from .contact import interference, rows
 from .continuation import PathEnd, continuation_guesses, follow, lineage
 from .groups import GroupSolver, State, input_coefficients
+from .kept import Kept
 from .precision import POLISH_LIMIT, TOLERANCE, ErrorBudget, polish, polishable
 from .solution import Solution, Status
 
@@ -55,18 +55,13 @@ def plan(mech: Mechanism) -> tuple[GroupSolver, ...]:
     previous = lineage(mech)
     kept = _plans.get(previous) if previous is not None else None
     like = {s.group: s for s in kept} if kept is not None else {}
-    out = tuple(GroupSolver(mech, g, like.get(g)) for g in order)
-    with _plans_lock:
-        _plans[mech] = out
-        while len(_plans) > PLANS_KEPT:
-            _plans.popitem(last=False)
+    out = tuple(GroupSolver(mech, g, like[g]) if g in like else GroupSolver(mech, g) for g in order)
+    _plans.put(mech, out)
     return out
 
 
 #: the last plans made, for the next frame of a drag to take constants from (`plan`)
-_plans: OrderedDict = OrderedDict()
-_plans_lock = threading.Lock()
-PLANS_KEPT = 8
+_plans = Kept(8)
 
 
 #: pose arrays of this many bytes and more (up to `SPARE_UP_TO`) are taken from the memory of
