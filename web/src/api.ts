@@ -113,6 +113,7 @@ export interface DrawingRequest {
   point?: string;
   fit?: "motion" | "drawing";
   motion?: boolean;
+  view?: { lo: XY; hi: XY; per_mm: number }; // the mechanism panel's box and scale, instead of fit
 }
 
 /** An answer of the API that is not 2xx: its message, as the server wrote it. */

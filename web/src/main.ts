@@ -168,8 +168,12 @@ function drawingRequest(): DrawingRequest {
     if (c.point) req.point = c.point;
   } else if (state.plan) req.construction = state.plan;
   // while dragging (or moving a point by keys), the frames leave the whole motion out: they
-  // follow the pointer sooner
-  if (dragging || settling !== undefined) req.motion = false;
+  // follow the pointer sooner; and they keep the view (box and scale) of the drawing the drag
+  // began on, which the pointer is read in (fitted to the frame alone, the view would zoom)
+  if (dragging || settling !== undefined) {
+    req.motion = false;
+    if (held) req.view = { lo: held.lo, hi: held.hi, per_mm: held.per_mm };
+  }
   const traced = Array.from(ui.pathsOf.selectedOptions).map((o) => o.value);
   if (traced.length) req.paths = traced;
   return req;
@@ -740,6 +744,8 @@ function setIndex(k: number): void {
 // transform), whatever layouts the drawings redrawn meanwhile have; the point's new design
 // coordinates put it under the pointer in the pose its link had when the drag started
 let dragging: { name: string; transform: Transform; screen: DOMMatrix; pose: [number, number, number] } | null = null;
+// the mechanism panel's view while a drag or the keys move points: that of the drawing they began on
+let held: Transform | null = null;
 
 function screenToSvg(): DOMMatrix | null {
   const ctm = ui.drawing.querySelector("svg")?.getScreenCTM();
@@ -784,6 +790,7 @@ ui.drawing.addEventListener("pointerdown", (ev) => {
   if (!name || !pose) return;
   pause();
   dragging = { name, transform: t, screen, pose };
+  held = t;
   ui.drawing.setPointerCapture(ev.pointerId);
   ev.preventDefault();
 });
@@ -801,6 +808,7 @@ ui.drawing.addEventListener("pointermove", (ev) => {
 const endDrag = () => {
   if (!dragging) return;
   dragging = null;
+  held = null;
   state.generation += 1;
   void loadMotion(sampleInput(state.index)).catch((e) => showError(messageOf(e)));
 };
@@ -910,8 +918,10 @@ function nudge(name: string, by: XY): void {
   state.moved[name] = [at[0] + by[0], at[1] + by[1]];
   pause();
   if (settling !== undefined) window.clearTimeout(settling);
+  else held = state.drawn?.transforms["mechanism"] ?? null;
   settling = window.setTimeout(() => {
     settling = undefined;
+    held = null;
     state.generation += 1;
     void loadMotion(sampleInput(state.index)).catch((e) => showError(messageOf(e)));
   }, SETTLE);

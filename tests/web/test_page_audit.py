@@ -1,0 +1,123 @@
+"""The workbench page's defects found by the acceptance audit of issue 12, each in a real browser
+(the fixtures of test_page.py): what the page shows is compared with the Python API (the
+engine's solve of the moved design, the driver's law, the structure), never with the page's own
+output."""
+
+from __future__ import annotations
+
+import json
+import math
+import time
+
+import numpy as np
+import pytest
+
+import linkwork
+from linkwork.io import load_text, resolve
+
+from test_page import MECH, browser, drawn_input, page, server, wait_drawn  # noqa: F401 (fixtures)
+
+pytestmark = pytest.mark.filterwarnings("ignore::DeprecationWarning")
+
+TEXT = resolve("library:crank-rocker")[1]
+
+
+def _transform(page) -> dict:
+    return json.loads(page.get_attribute("#drawing", "data-transform"))
+
+
+def _screen(page, xy) -> tuple[float, float]:
+    """Where on the screen the world point `xy` is drawn in the drawing shown (its transform
+    and the SVG's placement in the page)."""
+    return tuple(page.eval_on_selector("#drawing svg", """(svg, [t, p]) => {
+        const x = t.origin[0] + (p[0] - t.lo[0]) / t.per_mm, y = t.origin[1] + (t.hi[1] - p[1]) / t.per_mm;
+        const q = new DOMPoint(x, y).matrixTransform(svg.getScreenCTM());
+        return [q.x, q.y]; }""", [_transform(page), list(map(float, xy))]))
+
+
+def _world(page, screen) -> np.ndarray:
+    """The world point of the drawing shown under the screen point `screen`."""
+    return np.array(page.eval_on_selector("#drawing svg", """(svg, [t, s]) => {
+        const q = new DOMPoint(s[0], s[1]).matrixTransform(svg.getScreenCTM().inverse());
+        return [t.lo[0] + (q.x - t.origin[0]) * t.per_mm, t.hi[1] - (q.y - t.origin[1]) * t.per_mm]; }""",
+        [_transform(page), list(map(float, screen))]))
+
+
+def _moved(page) -> dict:
+    return json.loads(page.get_attribute("#drawing", "data-moved") or "{}")
+
+
+def _settled(page) -> None:
+    """Wait until the page has drawn what it asks for: the moved points and the input drawn
+    unchanged for 300 ms."""
+    last, since = None, time.monotonic()
+    deadline = since + 20
+    while time.monotonic() - since < 0.3:
+        assert time.monotonic() < deadline, "the drag's frames did not settle"
+        now = (page.get_attribute("#drawing", "data-moved"), page.get_attribute("#drawing", "data-input"))
+        if now != last:
+            last, since = now, time.monotonic()
+        page.wait_for_timeout(40)
+
+
+def _engine_point(page, point: str) -> np.ndarray:
+    """The engine's position of `point` in the design the page draws (the file with the moved
+    points written in), solved at the input drawn."""
+    text = TEXT
+    for name, (x, y) in _moved(page).items():
+        line = next(ln for ln in TEXT.splitlines() if ln.split("=")[0].strip() == name)
+        text = text.replace(line, f"{name} = [{x!r}, {y!r}]")
+    mech = load_text(text)
+    return linkwork.solve(mech, drawn_input(page)).point(point).position[0]
+
+
+def _go_to(page, degrees: float) -> None:
+    sol = linkwork.whole_motion(MECH)
+    k = int(np.argmin(np.abs(sol.inputs[:, 0] - math.radians(degrees))))
+    page.focus("#input-slider")
+    for _ in range(k):
+        page.keyboard.press("ArrowRight")
+    wait_drawn(page, lambda: drawn_input(page) == pytest.approx([sol.inputs[k, 0]], abs=1e-15),
+               f"go to {degrees}°")
+
+
+def test_a_drag_keeps_the_view_and_the_point_under_the_pointer(page):
+    """Crank-rocker at its design sample, B dragged 60 px right and 40 px up in 10 steps: every
+    frame is drawn at the scale of the drawing the drag began on, and B (the engine's solve of
+    the moved design) is drawn under the pointer."""
+    page.check("#edit")
+    page.wait_for_timeout(300)
+    scale = _transform(page)["per_mm"]
+    b0 = MECH.points["B"]
+    start = _screen(page, b0)
+    page.mouse.move(*start)
+    page.mouse.down()
+    for k in range(1, 11):
+        pointer = (start[0] + 6 * k, start[1] - 4 * k)
+        page.mouse.move(*pointer)
+        wait_drawn(page, lambda: "B" in _moved(page), "draw the first frame")
+        _settled(page)
+        assert _transform(page)["per_mm"] == scale, f"the view zoomed at step {k}"
+        got = _screen(page, _engine_point(page, "B"))
+        assert math.dist(got, pointer) < 2.0, (k, got, pointer)  # px
+    page.mouse.up()
+
+
+@pytest.mark.parametrize("view, message", [
+    ({"lo": [0, 0], "hi": [0, 10], "per_mm": 0.5}, "hi must exceed lo"),
+    ({"lo": [0, 0], "hi": [10, 10], "per_mm": 0}, "greater than 0"),
+    ({"lo": [0, 0], "hi": [10, 10], "per_mm": 1e13}, "less than or equal"),
+])
+def test_a_drawings_view_is_validated(view, message):
+    from fastapi.testclient import TestClient
+    from linkwork.web import create_app
+
+    client = TestClient(create_app(None), raise_server_exceptions=False)
+    r = client.post("/api/drawing", json={"source": {"library": "crank-rocker"}, "view": view})
+    assert r.status_code == 422 and message in r.json()["error"], r.text
+    # a valid one is the panel's box and scale, whatever the frame draws
+    view = {"lo": [-50.0, -40.0], "hi": [70.0, 60.0], "per_mm": 1.0}
+    r = client.post("/api/drawing", json={"source": {"library": "crank-rocker", "points": {"B": [31, 31]}},
+                                          "motion": False, "view": view})
+    t = r.json()["transforms"]["mechanism"]
+    assert (t["lo"], t["hi"], t["per_mm"]) == (view["lo"], view["hi"], view["per_mm"])
