@@ -199,6 +199,7 @@ async function redraw(): Promise<void> {
         const answer = await drawings.drawing(req);
         if (generation !== state.generation) continue;
         show(answer.body, req);
+        if (dragging && answer.body.status !== "unreachable" && aim()) state.again = true;
         if (asked) {
           const frame: Frame = { ...asked, sent, headers: answer.headers, parsed: answer.parsed,
             shown: performance.now(), painted: NaN, server: answer.server, via: answer.via };
@@ -741,9 +742,11 @@ function setIndex(k: number): void {
 
 // ------------------------------------------------------------------ editing
 // a drag reads the pointer in the drawing it started on (its screen placement and its world
-// transform), whatever layouts the drawings redrawn meanwhile have; the point's new design
-// coordinates put it under the pointer in the pose its link had when the drag started
-let dragging: { name: string; transform: Transform; screen: DOMMatrix; pose: [number, number, number] } | null = null;
+// transform); the point's new design coordinates put it under the pointer in the pose its link
+// has in the latest frame drawn. Moving the point moves its link (a hinge changes the lengths
+// of the chain): each frame drawn corrects the design coordinates by its own pose, until the
+// point is drawn under the pointer (a fixed-point iteration, a few frames)
+let dragging: { name: string; transform: Transform; screen: DOMMatrix; pointer: XY | null; corrections: number } | null = null;
 // the mechanism panel's view while a drag or the keys move points: that of the drawing they began on
 let held: Transform | null = null;
 
@@ -789,7 +792,7 @@ ui.drawing.addEventListener("pointerdown", (ev) => {
   const pose = name && state.info ? state.drawn.poses[state.info.owners[name]] : null;
   if (!name || !pose) return;
   pause();
-  dragging = { name, transform: t, screen, pose };
+  dragging = { name, transform: t, screen, pointer: null, corrections: 0 };
   held = t;
   ui.drawing.setPointerCapture(ev.pointerId);
   ev.preventDefault();
@@ -798,12 +801,29 @@ ui.drawing.addEventListener("pointerdown", (ev) => {
 ui.drawing.addEventListener("pointermove", (ev) => {
   if (!dragging) return;
   movedAt = { event: ev.timeStamp, handler: performance.now() };
-  const w = toWorld(dragging.transform, svgPoint(ev, dragging.screen));
-  const [x, y, th] = dragging.pose;
-  const c = Math.cos(th), s = Math.sin(th);
-  state.moved[dragging.name] = [c * (w[0] - x) + s * (w[1] - y), -s * (w[0] - x) + c * (w[1] - y)];
+  dragging.pointer = toWorld(dragging.transform, svgPoint(ev, dragging.screen));
+  dragging.corrections = 0;
+  aim();
   void redraw();
 });
+
+/** While dragging: the dragged point's design coordinates that put it under the pointer in the
+ * pose its link has in the drawing shown; whether they differ from those asked for by more than
+ * a hundredth of a mm of paper (a frame is then due, at most 12 for a place of the pointer). */
+function aim(): boolean {
+  const d = dragging, info = state.info, drawn = state.drawn;
+  if (!d || !d.pointer || !info || !drawn) return false;
+  const pose = drawn.poses[info.owners[d.name]];
+  if (!pose) return false; // not assembled: the pointer's next move asks again
+  const [x, y, th] = pose;
+  const c = Math.cos(th), s = Math.sin(th);
+  const w = d.pointer;
+  const want: XY = [c * (w[0] - x) + s * (w[1] - y), -s * (w[0] - x) + c * (w[1] - y)];
+  const had = state.moved[d.name];
+  state.moved[d.name] = want;
+  const off = had ? Math.hypot(want[0] - had[0], want[1] - had[1]) : Infinity;
+  return off > 0.01 * d.transform.per_mm && d.corrections++ < 12;
+}
 
 const endDrag = () => {
   if (!dragging) return;
