@@ -146,3 +146,41 @@ def test_a_dragged_hinge_ends_under_the_pointer_away_from_the_design_position(pa
     page.mouse.up()
     assert np.linalg.norm(target - b) == pytest.approx(3.0, abs=0.3)
     assert np.linalg.norm(got - target) < 0.01, (got, target)  # mm
+
+
+def _play_rate(page, factor: str) -> tuple[float, float]:
+    """Play at the speed `factor` for about 1.5 s: how fast the drawn input (rad/s) and the
+    time shown (s/s) advanced against the wall clock."""
+    page.select_option("#speed", factor)
+    period = 2 * math.pi / MECH.drivers[0].law.speed  # a turn of the crank (s)
+    page.click("#play")
+    page.wait_for_timeout(300)
+    read = """() => [performance.now(), JSON.parse(document.getElementById('drawing').dataset.input)[0],
+                     Number(document.getElementById('input-time').dataset.time)]"""
+    seen = [page.evaluate(read)]
+    while seen[-1][0] - seen[0][0] < 1500:
+        page.wait_for_timeout(40)
+        seen.append(page.evaluate(read))
+    page.click("#play")
+    wall = (seen[-1][0] - seen[0][0]) / 1000
+    turned = sum(math.remainder(b[1] - a[1], 2 * math.pi) for a, b in zip(seen, seen[1:]))
+    passed = sum(math.remainder(b[2] - a[2], period) for a, b in zip(seen, seen[1:]))
+    return turned / wall, passed / wall
+
+
+def test_play_goes_at_the_motions_own_time(page):
+    """The crank turns at 60 rpm (the file's driver law, 2π rad/s): played at 1× the drawn input
+    turns at about that rate and the time shown goes with the wall clock; at ½× both go about
+    half as fast (generous bounds: the machine is shared)."""
+    speed = MECH.drivers[0].law.speed
+    assert speed == pytest.approx(2 * math.pi)
+    turned, passed = _play_rate(page, "1")
+    slow, slow_passed = _play_rate(page, "0.5")
+    assert 0.6 < turned / speed < 1.4 and 0.3 < slow / speed < 0.7, (turned, slow)
+    assert 0.35 < slow / turned < 0.7
+    assert 0.6 < passed < 1.4 and 0.3 < slow_passed < 0.7, (passed, slow_passed)
+    # the time shown is the engine's: the input turned from the motion's first sample at the speed
+    sol = linkwork.whole_motion(MECH)
+    k = int(page.input_value("#input-slider"))
+    shown = float(page.get_attribute("#input-time", "data-time"))
+    assert shown == pytest.approx((sol.inputs[k, 0] - sol.inputs[0, 0]) / speed, abs=1e-9)

@@ -71,6 +71,7 @@ export type JointState = Record<string, number | [number | null, number | null] 
 
 /** A sample of `analyze --format json` (the full motion document). */
 export interface FullSample extends MotionSample {
+  time?: number | null; // seconds, where the driver has a time law
   condition: number | null;
   points: Record<string, PointState>;
   links: Record<string, LinkState>;

@@ -42,6 +42,7 @@ const ui = {
   slider: $<HTMLInputElement>("input-slider"),
   strip: $<HTMLDivElement>("status-strip"),
   inputValue: $<HTMLOutputElement>("input-value"),
+  inputTime: $<HTMLOutputElement>("input-time"),
   sampleStatus: $<HTMLOutputElement>("sample-status"),
   layers: $<HTMLFieldSetElement>("layers"),
   edit: $<HTMLInputElement>("edit"),
@@ -640,6 +641,7 @@ async function loadMotion(before: number[] = []): Promise<void> {
   // one stays where it was
   state.index = nearestSample(motion, before);
   ui.slider.value = String(state.index);
+  showTime();
   await redraw();
 }
 
@@ -703,13 +705,55 @@ function sourceOf(value: string): Source {
 
 // ------------------------------------------------------------------ motion
 let timer: number | undefined;
+// play's clock: the wall clock (performance.now(), ms) and the motion's time (s) it started at
+let clock: { wall: number; time: number } | null = null;
+let run = 0; // each play's number: the frames of one paused before stop
+// the motion's time at each sample (s), for the motion it was made for
+let timeline: { motion: Motion; times: Promise<number[]>; known: number[] | null } | null = null;
+
+/** The motion's own time at each sample: the samples' times where the driver has a time law,
+ * else the input's travel over the driver's speed (the driving pair's ω or sliding velocity,
+ * from the whole motion), summed from the first sample. */
+function motionTimes(): Promise<number[]> {
+  const motion = state.motion as Motion;
+  if (timeline?.motion === motion) return timeline.times;
+  const driver = state.info?.drivers[0];
+  const times = fullMotion().then((full) => {
+    const s = full.samples;
+    if (s.length && s.every((x) => typeof x.time === "number")) return s.map((x) => x.time as number);
+    const rate = (x: FullSample): number => {
+      const j = driver ? x.joints[driver.joint] : undefined;
+      const v = j?.[driver?.kind === "prismatic" ? "sliding_velocity" : "omega"];
+      return typeof v === "number" ? Math.abs(v) : NaN;
+    };
+    const out = [0];
+    for (let k = 1; k < s.length; k++) {
+      const du = Math.abs(Number(s[k].input) - Number(s[k - 1].input));
+      const w = (rate(s[k]) + rate(s[k - 1])) / 2;
+      out.push(out[k - 1] + (Number.isFinite(w) && w > 0 ? du / w : 1 / 30));
+    }
+    return out;
+  }).catch(() => motion.samples.map((_, k) => k / 30)); // without the numbers: 30 samples a second
+  const entry = { motion, times, known: null as number[] | null };
+  void times.then((t) => { entry.known = t; if (timeline === entry) showTime(); });
+  timeline = entry;
+  return times;
+}
+
+function showTime(): void {
+  const t = timeline?.motion === state.motion ? timeline?.known?.[state.index] : undefined;
+  setText(ui.inputTime, t === undefined ? "" : `${t.toFixed(3)} s`);
+  ui.inputTime.dataset.time = t === undefined ? "" : String(t);
+}
 
 function play(): void {
   if (!state.motion) return;
+  clock = null;
+  run += 1;
   state.playing = true;
   ui.play.textContent = "Pause";
   ui.play.setAttribute("aria-pressed", "true");
-  tick();
+  void tick(run);
 }
 
 function pause(): void {
@@ -720,16 +764,32 @@ function pause(): void {
   timer = undefined;
 }
 
-function tick(): void {
-  if (!state.playing || !state.motion) return;
-  const n = state.motion.samples.length;
-  // the whole motion of a rocker already runs to one limit, back to the other and forward:
-  // going round its samples plays it back and forth
-  const step = Math.max(1, Math.round(Number(ui.speed.value) * Math.max(1, n / 240)));
-  setIndex((state.index + step) % n);
+/** A frame of play: the sample at the motion's time the wall clock has come to (scaled by the
+ * speed), whatever samples that skips; the next frame when this one's drawing is back. */
+async function tick(playing: number): Promise<void> {
+  const motion = state.motion;
+  if (!state.playing || playing !== run || !motion) return;
+  const times = await motionTimes();
+  if (!state.playing || playing !== run || state.motion !== motion) return;
+  const n = times.length;
+  const now = performance.now();
+  if (!clock) clock = { wall: now, time: times[state.index] };
+  // the whole motion of a rocker already runs to one limit, back to the other and forward
+  // (a crank's, a turn): going round its samples plays it back and forth
+  const period = times[n - 1] - times[0];
+  let t = clock.time + ((now - clock.wall) / 1000) * Number(ui.speed.value);
+  if (period > 0) t = times[0] + ((((t - times[0]) % period) + period) % period);
+  let lo = 0, hi = n - 1; // the last sample at or before t
+  while (lo < hi) {
+    const mid = (lo + hi + 1) >> 1;
+    if (times[mid] <= t) lo = mid;
+    else hi = mid - 1;
+  }
+  if (lo !== state.index) setIndex(lo);
   const wait = () => {
-    if (state.busy) timer = window.setTimeout(wait, 8);
-    else timer = window.setTimeout(tick, 33);
+    if (!state.playing || playing !== run) return;
+    if (state.busy) timer = window.setTimeout(wait, 4);
+    else requestAnimationFrame(() => void tick(playing));
   };
   wait();
 }
@@ -737,6 +797,7 @@ function tick(): void {
 function setIndex(k: number): void {
   state.index = k;
   ui.slider.value = String(k);
+  showTime();
   void redraw();
 }
 
@@ -994,6 +1055,7 @@ ui.editApply.addEventListener("click", () => {
 });
 ui.editTextApply.addEventListener("click", () => void applyText(ui.editText.value));
 ui.play.addEventListener("click", () => (state.playing ? pause() : play()));
+ui.speed.addEventListener("change", () => { clock = null; }); // play's clock starts again where it is
 ui.slider.addEventListener("input", () => {
   pause();
   setIndex(Number(ui.slider.value));
