@@ -184,3 +184,24 @@ def test_play_goes_at_the_motions_own_time(page):
     k = int(page.input_value("#input-slider"))
     shown = float(page.get_attribute("#input-time", "data-time"))
     assert shown == pytest.approx((sol.inputs[k, 0] - sol.inputs[0, 0]) / speed, abs=1e-9)
+
+
+@pytest.mark.parametrize("name", ["crank-rocker", "heusinger-valve-gear"])
+def test_the_structure_panel_shows_the_assur_groups(page, name):
+    """Each Assur group of `linkwork.structure.assur_groups`, in order: its name (kind, class,
+    order), its links and its pairs."""
+    from linkwork.structure import assur_groups
+
+    mech = linkwork.load(f"library:{name}")
+    if name != "crank-rocker":
+        page.select_option("#mechanism", f"library:{name}")
+        wait_drawn(page, lambda: page.inner_text("#title") == mech.name, f"open {name}", timeout=120)
+    want = assur_groups(mech)
+    wait_drawn(page, lambda: page.locator("#structure dd.group").count() == len(want), "show the groups")
+    shown = page.locator("#structure dd.group").evaluate_all(
+        "dds => dds.map(d => [d.textContent, {...d.dataset}])")
+    for (text, data), g in zip(shown, want):
+        assert data["links"].split() == list(g.links) and data["pairs"].split() == list(g.joints)
+        assert (data["kind"], int(data["class"]), int(data["order"])) == (g.kind, g.assur_class, g.order)
+        assert text.startswith(f"{g.name}: links {', '.join(g.links)}; pairs {', '.join(g.joints)}")
+    assert any(g.assur_class == 3 for g in want) == (name == "heusinger-valve-gear")

@@ -597,6 +597,8 @@ interface StructureDoc {
   verdict: string;
   mechanism_class_roman: string | null;
   grashof: { name: string }[] | null;
+  groups: { links: string[]; joints: string[]; kind: string; name: string; class: number; order: number;
+    notes: string[] }[];
 }
 
 /** Mobility by the count and by the Jacobian, Assur class, Grashof type (`linkwork structure`). */
@@ -618,6 +620,19 @@ async function structure(base: Source): Promise<void> {
       dd.textContent = v;
       ui.structure.append(dt, dd);
     }
+    // the Assur groups in the order they are solved: the driving links, then each group
+    // (Strukturgruppe) with its class and kind, its links and its pairs
+    d.groups.forEach((g, k) => {
+      const dt = document.createElement("dt");
+      const dd = document.createElement("dd");
+      dt.textContent = `group ${k + 1}`;
+      dd.className = "group";
+      Object.assign(dd.dataset, { kind: g.kind, class: String(g.class), order: String(g.order),
+        links: g.links.join(" "), pairs: g.joints.join(" ") });
+      dd.textContent = `${g.name}: links ${g.links.join(", ")}; pairs ${g.joints.join(", ")}` +
+        (g.notes.length ? ` (${g.notes.join("; ")})` : "");
+      ui.structure.append(dt, dd);
+    });
   } catch (e) {
     ui.structure.textContent = messageOf(e);
   }
