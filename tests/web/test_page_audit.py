@@ -205,3 +205,26 @@ def test_the_structure_panel_shows_the_assur_groups(page, name):
         assert (data["kind"], int(data["class"]), int(data["order"])) == (g.kind, g.assur_class, g.order)
         assert text.startswith(f"{g.name}: links {', '.join(g.links)}; pairs {', '.join(g.joints)}")
     assert any(g.assur_class == 3 for g in want) == (name == "heusinger-valve-gear")
+
+
+def test_an_uploaded_file_is_the_mechanism_listed(page):
+    """After an upload the Mechanism list shows the uploaded file, so choosing the library entry
+    open before opens it again (a change), and the upload's entry opens the upload."""
+    text = TEXT.replace("C  = [15, 25]", "C  = [18, 27]").replace("Crank-rocker four-bar", "Uploaded four-bar")
+    mech = load_text(text)
+    page.set_input_files("#upload", files=[{"name": "mine.toml", "mimeType": "text/plain",
+                                             "buffer": text.encode()}])
+    wait_drawn(page, lambda: page.inner_text("#title") == mech.name, "open the upload")
+    assert page.input_value("#mechanism") != "library:crank-rocker"
+    assert "mine.toml" in page.eval_on_selector("#mechanism", "s => s.selectedOptions[0].textContent")
+
+    def c_shown():
+        cells = page.locator("#numbers tr[data-point='C'] td").all_inner_texts()
+        return float(cells[1]), float(cells[2])
+
+    wait_drawn(page, lambda: c_shown() == pytest.approx(tuple(mech.points["C"]), abs=1e-4), "draw the upload")
+    page.select_option("#mechanism", "library:crank-rocker")
+    wait_drawn(page, lambda: page.inner_text("#title") == MECH.name, "open the library entry again")
+    wait_drawn(page, lambda: c_shown() == pytest.approx(tuple(MECH.points["C"]), abs=1e-4), "draw it")
+    page.select_option("#mechanism", label="mine.toml (uploaded)")
+    wait_drawn(page, lambda: page.inner_text("#title") == mech.name, "open the upload again")

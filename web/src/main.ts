@@ -552,6 +552,7 @@ async function open(base: Source, keep = false): Promise<boolean> {
     state.base = base;
     state.moved = {};
     state.info = info;
+    listOpened(base, keep);
     ui.editText.value = info.text;
     ui.title.textContent = info.name;
     ui.description.textContent = info.description;
@@ -713,9 +714,32 @@ function escapeHtml(s: string): string {
   return s.replace(/[&<>"']/g, (c) => `&#${c.charCodeAt(0)};`);
 }
 
+// the mechanism open from text (a file uploaded, an edit applied): the Mechanism list's entry
+// "text:" opens it again
+let fromText: Source | null = null;
+
 function sourceOf(value: string): Source {
   if (value.startsWith("library:")) return { library: value.slice(8) };
+  if (value === "text:" && fromText) return fromText;
   return { file: value.slice(5) };
+}
+
+/** The Mechanism list shows what is open: its library entry or working file, else an entry of
+ * its own for the text opened (choosing any other entry is then a change, and opens it). */
+function listOpened(base: Source, edited: boolean): void {
+  let value = base.library !== undefined ? `library:${base.library}` : `file:${base.file}`;
+  if (base.text !== undefined) {
+    value = "text:";
+    fromText = base;
+    let own = ui.mechanism.querySelector<HTMLOptionElement>('option[value="text:"]');
+    if (!own) {
+      own = document.createElement("option");
+      own.value = value;
+      ui.mechanism.append(own);
+    }
+    own.textContent = `${base.name ?? "mechanism"} (${edited ? "edited" : "uploaded"})`;
+  }
+  if (Array.from(ui.mechanism.options).some((o) => o.value === value)) ui.mechanism.value = value;
 }
 
 // ------------------------------------------------------------------ motion
