@@ -566,9 +566,12 @@ def create_app(workdir: str | Path | None = None, *, compiled: bool = False) -> 
         anyway). What may take long (`long_drawing`: the whole motion, or a march from the
         design position) goes to a worker thread, so that it holds no other request up."""
         stage = Stages()
-        with _warnings(compiled) as warned, stage("load"):
-            loaded = load(req.source)
-        if long_drawing(loaded, req):
+        with _warnings(compiled) as warned:
+            with stage("load"):
+                loaded = load(req.source)
+            with stage("solve"):  # (its plan, which the solve would make: its warnings too)
+                long = long_drawing(loaded, req)
+        if long:
             return await run_in_threadpool(drawn, req, loaded, warned, stage, stage.cpu())
         return drawn(req, loaded, warned, stage)
 
