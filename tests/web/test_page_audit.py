@@ -228,3 +228,38 @@ def test_an_uploaded_file_is_the_mechanism_listed(page):
     wait_drawn(page, lambda: c_shown() == pytest.approx(tuple(MECH.points["C"]), abs=1e-4), "draw it")
     page.select_option("#mechanism", label="mine.toml (uploaded)")
     wait_drawn(page, lambda: page.inner_text("#title") == mech.name, "open the upload again")
+
+
+def test_an_edit_that_does_not_build_stops_the_old_motion(page):
+    """An edited file that does not build: the engine's message, the last drawing greyed, and
+    nothing moves the old mechanism (play, the slider, the keys are off) until an edit builds."""
+    from linkwork.errors import LinkworkError
+
+    page.click("#editor summary")
+    bad = TEXT.replace('coupler = ["A", "B", "C"]', 'coupler = ["A", "B", "X"]')
+    with pytest.raises(LinkworkError) as exc:
+        load_text(bad, source="crank-rocker.toml")
+    page.fill("#edit-text", bad)
+    page.click("#edit-text-apply")
+    wait_drawn(page, lambda: page.get_attribute("#editor", "data-applied") == "error", "apply the edit")
+    assert page.inner_text("#error") == str(exc.value)
+    assert page.locator("#drawing.stale").count() == 1
+    assert page.is_disabled("#play") and page.is_disabled("#input-slider")
+    shown = drawn_input(page)
+    page.focus("#drawing")
+    page.keyboard.press("Space")
+    page.keyboard.press("ArrowRight")
+    page.wait_for_timeout(600)
+    assert page.get_attribute("#play", "aria-pressed") == "false"
+    assert drawn_input(page) == shown and page.input_value("#input-slider") == "0"
+    assert page.locator("#drawing.stale").count() == 1 and page.inner_text("#error") == str(exc.value)
+    # an edit that builds: the page is live again
+    page.fill("#edit-text", TEXT)
+    page.click("#edit-text-apply")
+    wait_drawn(page, lambda: page.get_attribute("#editor", "data-applied") == "ok", "apply the good text")
+    wait_drawn(page, lambda: page.locator("#drawing.stale").count() == 0, "draw the good file")
+    assert page.is_enabled("#play") and page.is_enabled("#input-slider") and page.is_hidden("#error")
+    page.focus("#drawing")
+    page.keyboard.press("ArrowRight")
+    sol = linkwork.whole_motion(MECH)
+    wait_drawn(page, lambda: drawn_input(page) == pytest.approx([sol.inputs[1, 0]], abs=1e-15), "step the motion")

@@ -82,11 +82,13 @@ interface State {
   busy: boolean;
   again: boolean;
   generation: number; // drawings asked for a mechanism that is no longer open are dropped
+  broken: string | null; // the engine's message on an edited file that does not build
 }
 
 const state: State = {
   base: null, moved: {}, info: null, motion: null, full: null, motionSource: null, index: 0, playing: false,
   layers: new Set(), plan: null, construction: null, drawn: null, busy: false, again: false, generation: 0,
+  broken: null,
 };
 
 /** A drag's frame as it went (performance.now(), ms): the pointer's move (the event's own time
@@ -183,6 +185,7 @@ function drawingRequest(): DrawingRequest {
 /** Ask for the drawing of the current state; while one is on its way, only the latest wish
  * is sent after it (dragging and playing never queue up). */
 async function redraw(): Promise<void> {
+  if (state.broken) return; // the last drawing of the file that built stays, greyed
   if (state.busy) {
     state.again = true;
     return;
@@ -552,6 +555,7 @@ async function open(base: Source, keep = false): Promise<boolean> {
     state.base = base;
     state.moved = {};
     state.info = info;
+    broken(null);
     listOpened(base, keep);
     ui.editText.value = info.text;
     ui.title.textContent = info.name;
@@ -786,7 +790,7 @@ function showTime(): void {
 }
 
 function play(): void {
-  if (!state.motion) return;
+  if (!state.motion || state.broken) return;
   clock = null;
   run += 1;
   state.playing = true;
@@ -834,6 +838,7 @@ async function tick(playing: number): Promise<void> {
 }
 
 function setIndex(k: number): void {
+  if (state.broken) return;
   state.index = k;
   ui.slider.value = String(k);
   showTime();
@@ -876,7 +881,7 @@ function nearestPoint(q: XY, t: Transform): string | null {
 }
 
 ui.drawing.addEventListener("pointerdown", (ev) => {
-  if (!state.drawn) return;
+  if (!state.drawn || state.broken) return;
   if (!ui.edit.checked) { // a click selects what it hits
     const t = state.drawn.transforms["mechanism"];
     const screen = screenToSvg();
@@ -1010,8 +1015,29 @@ async function applyText(text: string): Promise<void> {
   ui.editText.value = text;
   ui.editor.dataset.applied = "pending";
   const ok = await open({ text, name: label }, true);
-  if (!ok) ui.editText.value = text;
+  if (!ok) {
+    ui.editText.value = text;
+    broken(ui.error.textContent ?? "");
+  }
   ui.editor.dataset.applied = ok ? "ok" : "error";
+}
+
+/** An edited file that does not build (`message`: the engine's), or none (null). Until a file
+ * builds, the page shows the last good drawing greyed with the message, and nothing moves or
+ * draws the old mechanism: play, the slider and dragging are off. */
+function broken(message: string | null): void {
+  state.broken = message;
+  ui.play.disabled = ui.slider.disabled = message !== null;
+  if (message === null) return;
+  pause();
+  state.generation += 1; // (a drawing of the old mechanism on its way is dropped)
+  dragging = null;
+  held = null;
+  if (settling !== undefined) window.clearTimeout(settling);
+  settling = undefined;
+  ui.drawing.classList.add("stale");
+  showError(message);
+  ui.sampleStatus.textContent = "error";
 }
 
 function showEditFields(): void {
@@ -1033,7 +1059,7 @@ let settling: number | undefined; // the timer of that, while keys move points
  * a drag; the whole motion of the new design follows when the keys rest. */
 function nudge(name: string, by: XY): void {
   const info = state.info;
-  if (!info) return;
+  if (!info || state.broken) return;
   const at = state.moved[name] ?? info.points[name];
   state.moved[name] = [at[0] + by[0], at[1] + by[1]];
   pause();
