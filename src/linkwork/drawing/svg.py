@@ -603,7 +603,7 @@ class Figure:
                 f'<text x="{sym._f(x + self._scale_words_at(s))}" y="{sym._f(y + 1)}" '
                 f'font-size="{SCALE_TEXT_SIZE}">{label_markup(s.text(), SCALE_TEXT_SIZE)}</text></g>')
 
-    def _render(self, p: Prim, tf, panel: dict) -> tuple[str, list]:
+    def _render(self, p: Prim, tf, panel: dict) -> tuple[str, np.ndarray]:
         d, st = p.data, p.style
         ident = f' id="{p.ident}"' if p.ident else ""
         cls = f' class="{p.cls}"' if p.cls else ""
@@ -842,7 +842,7 @@ def convert(svg: str, path: Path, dpi: float = 200.0) -> None:
             cairosvg.svg2pdf(bytestring=data, write_to=str(tmp))
 
 
-def _symbol(name: str, a: dict) -> tuple[str, list]:
+def _symbol(name: str, a: dict) -> tuple[str, np.ndarray]:
     if name == "revolute":
         return sym.revolute(a["at"], a.get("colour", sym.INK))
     if name == "fixed-pivot":
