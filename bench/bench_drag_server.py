@@ -29,9 +29,10 @@ from linkwork.web.app import solve_request
 from linkwork.web.sources import Sources
 
 #: (library name, the point dragged, the radius of its circle (mm), the input's place as a
-#: fraction of the whole motion's samples), as bench_workbench.py drags them
+#: fraction of the whole motion's samples), as bench_workbench.py drags them; and the
+#: Proell–Schwabe valve gear's rolling pair (its Newton group on jets) three quarters on
 CASES = [("crank-rocker", "C", 0.6, 0.0), ("heusinger-valve-gear", "P45", 4.0, 0.0),
-         ("heusinger-valve-gear", "P45", 4.0, 0.25)]
+         ("heusinger-valve-gear", "P45", 4.0, 0.25), ("proell-schwabe-valve-gear", "P12", 0.1, 0.75)]
 WARMUP = 4
 
 

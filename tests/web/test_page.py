@@ -287,6 +287,46 @@ def test_each_frame_shows_the_servers_drawing(page):
     assert _shows_the_last_drawing(page)
 
 
+def test_a_drag_frame_writes_only_the_numbers_that_change(page):
+    """A frame of a drag writes into the page, outside the drawing, only the numbers that
+    changed (any other write lays out the page and with it the drawing): dragging the coupler
+    point C at a fixed input moves C alone, so C's two numbers are all that is written. Each
+    number sits whole in its box of fixed size."""
+    page.check("#edit")
+    page.wait_for_timeout(300)
+    a = _client_of(page, (15.0, 25.0))  # C at the design position
+    page.mouse.move(*a)
+    page.mouse.down()
+    page.evaluate("""() => {
+        window.written = [];
+        new MutationObserver((records) => {
+            for (const r of records) {
+                const el = r.target.nodeType === Node.ELEMENT_NODE ? r.target : r.target.parentElement;
+                if (el.closest('#drawing')) continue;  // the drawing itself
+                const row = el.closest('tr');
+                window.written.push([el.id || el.className, row ? row.dataset.point : null, r.type]);
+            }
+        }).observe(document.body, {subtree: true, childList: true, attributes: true, characterData: true});
+    }""")
+    for k in range(1, 4):
+        page.mouse.move(a[0] + 4 * k, a[1] - 3 * k)
+        wait_drawn(page, lambda: json.loads(page.get_attribute("#drawing", "data-moved")).get("C")
+                   is not None and page.evaluate("window.written.length") >= 2 * k - 1,
+                   "draw the frame")
+    page.wait_for_timeout(300)
+    written = page.evaluate("window.written")
+    page.mouse.up()
+    assert written and {tuple(w) for w in written} <= {("num", "C", "childList")}, written
+    # C's numbers are the engine's position of the moved design at the input shown
+    moved = json.loads(page.get_attribute("#drawing", "data-moved"))["C"]
+    text = resolve("library:crank-rocker")[1].replace("C  = [15, 25]", f"C  = [{moved[0]!r}, {moved[1]!r}]")
+    mech = load_text(text)
+    assert np.allclose(mech.points["C"], moved)
+    want = linkwork.solve(mech, drawn_input(page)).point("C").position[0]
+    assert number_row(page, "C") == pytest.approx(tuple(want), abs=1e-4)
+    assert page.eval_on_selector_all("#numbers .num", "es => es.every(e => e.scrollWidth <= e.clientWidth)")
+
+
 def test_an_unassemblable_drag_shows_the_engines_message(page):
     """At 180° the crank's end A is at (−10, 0); dragged out to (−25, 0) it makes a crank of 25,
     whose chain cannot close there: |A O4| = 65 > coupler + rocker = √925 + √1000 ≈ 62.0."""

@@ -21,6 +21,7 @@ with warnings.catch_warnings():
 
 import linkwork
 from linkwork.cli.serve_cmd import _free_port, server_options
+from linkwork.kinematics import continuation
 from linkwork.web import app as web_app
 from linkwork.web import create_app
 from linkwork.web.app import MAX_BODY
@@ -140,6 +141,50 @@ def test_the_worker_thread_is_chosen_by_what_a_drawing_asks(monkeypatch, request
     assert [t is not threading.current_thread() for _, _, t in watched.threads] == worker
 
 
+def test_a_frame_that_would_wait_for_a_march_elsewhere_waits_in_a_worker(monkeypatch):
+    """A march in another thread (a long drawing's) holds every march until it is done: a
+    frame that marches waits for it in a worker thread, the others go on in the loop."""
+    watched = Watched(monkeypatch)
+    watched.release.set()
+    app = create_app(None)
+    held, done = threading.Event(), threading.Event()
+
+    def march_elsewhere():
+        with continuation._marching:
+            held.set()
+            done.wait(30)
+
+    elsewhere = threading.Thread(target=march_elsewhere)
+    elsewhere.start()
+    newton = {"source": {"library": "heusinger-valve-gear"}, "motion": False}
+
+    async def run():
+        transport = httpx.ASGITransport(app=app)
+        async with httpx.AsyncClient(transport=transport, base_url="http://test") as client:
+            waiting = asyncio.create_task(client.post("/api/drawing", json=newton))
+            deadline = time.monotonic() + 60
+            while not watched.threads:  # the Newton frame handed over
+                assert time.monotonic() < deadline
+                await asyncio.sleep(0.005)
+            quick = await client.post("/api/drawing", json=QUICK)
+            was_waiting = not waiting.done()
+            done.set()
+            return quick, was_waiting, await waiting
+
+    try:
+        assert held.wait(30)
+        quick, was_waiting, newton_frame = asyncio.run(run())
+    finally:
+        done.set()
+        elsewhere.join(30)
+    assert quick.status_code == 200 and newton_frame.status_code == 200
+    assert was_waiting
+    where = {name: thread for name, _, thread in watched.threads}
+    assert where["Heusinger (Walschaerts) valve gear"] is not threading.current_thread()
+    assert [t for name, _, t in watched.threads if name != "Heusinger (Walschaerts) valve gear"] \
+        == [threading.current_thread()]
+
+
 @pytest.fixture
 def served():
     """The workbench on a real uvicorn in a thread, with `linkwork serve`'s settings."""
@@ -178,3 +223,23 @@ def test_the_servers_websocket_limit_is_the_apis(served):
     r = httpx.post(f"http://{served}/api/drawing", content=b" " * (MAX_BODY + 1),
                    headers={"content-type": "application/json"}, timeout=60)
     assert r.status_code == 413 and r.json()["kind"] == "BodyTooLarge"
+
+
+def test_a_frames_warnings_are_its_own_whichever_thread_computes_it():
+    """The over-closed pantograph's plan warns (made first to choose the thread): the warning
+    is the drawing's, in the loop and in a worker thread alike."""
+    app = create_app(None)
+    base = linkwork.load("library:pantograph")
+    point = next(iter(base.points))
+    frame = {"source": {"library": "pantograph", "points": {point: base.points[point].tolist()}},
+             "motion": False}
+    whole = {"source": {"library": "pantograph"}}
+
+    async def run():
+        transport = httpx.ASGITransport(app=app)
+        async with httpx.AsyncClient(transport=transport, base_url="http://test") as client:
+            return [await client.post("/api/drawing", json=r) for r in (frame, whole)]
+
+    for got in asyncio.run(run()):
+        assert got.status_code == 200, got.text
+        assert any("over-closed" in w for w in got.json()["warnings"]), got.json()["warnings"]

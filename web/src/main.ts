@@ -124,6 +124,7 @@ function showError(message: string): void {
 }
 
 function clearError(): void {
+  if (ui.error.hidden) return; // every drawing clears it: no write when there is nothing to clear
   ui.error.textContent = "";
   ui.error.hidden = true;
 }
@@ -385,7 +386,7 @@ async function plot(): Promise<void> {
   const key = ui.quantity.value;
   const info = state.info;
   if (!key || !info || !state.motion) {
-    ui.plot.innerHTML = "";
+    ui.plot.replaceChildren(); // every drawing comes here: emptied without running the parser
     plotted = "";
     return;
   }
@@ -430,7 +431,7 @@ async function selected(d: Drawing, req: DrawingRequest): Promise<void> {
   const info = state.info;
   const body = ui.selected.tBodies[0];
   if (!choice || !info) {
-    body.innerHTML = "";
+    body.replaceChildren();
     selectedFor = "";
     return;
   }

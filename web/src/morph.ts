@@ -28,9 +28,18 @@ export function morph(old: Element, neu: Element): void {
     if (!o) {
       old.appendChild(n);
     } else if (sameKind(o, n)) {
-      // a subtree that did not change (the browser compares it natively) is left alone
-      if (o.nodeType === Node.ELEMENT_NODE && !o.isEqualNode(n)) morph(o as Element, n as Element);
-      else if (o.nodeValue !== n.nodeValue) o.nodeValue = n.nodeValue;
+      // a subtree that did not change (the browser compares it natively) is left alone; an
+      // element without elements inside (a line, a circle, a label) that changed is replaced
+      // by its new one, parsed already: writing its attributes one by one costs more (each
+      // parsed again) when many move, as in a frame whose drawing is scaled anew
+      if (o.nodeType === Node.ELEMENT_NODE) {
+        if (!o.isEqualNode(n)) {
+          if ((n as Element).firstElementChild === null) {
+            old.replaceChild(n, o);
+            o = n;
+          } else morph(o as Element, n as Element);
+        }
+      } else if (o.nodeValue !== n.nodeValue) o.nodeValue = n.nodeValue;
       o = o.nextSibling;
     } else {
       const after = o.nextSibling;

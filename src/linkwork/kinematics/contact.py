@@ -57,7 +57,28 @@ def row_index(mech: Mechanism) -> Mapping[str, int]:
 
 @lru_cache(maxsize=256)
 def _design(mech: Mechanism, name: str):
+    from .continuation import lineage  # (it imports this module)
+
+    # a drag's frame (`continuation.follow`) that draws the pair as the frame before it: the
+    # same contact, not searched for on the profiles again (milliseconds)
+    previous = lineage(mech)
+    if previous is not None and _contact_alike(previous, mech, name):
+        return _design(previous, name)
     return design_contact(mech, mech.joint(name))
+
+
+def _contact_alike(a: Mechanism, b: Mechanism, name: str) -> bool:
+    """Whether two mechanisms draw the higher pair `name` alike, so that its design contact is
+    the same: the same pair and profile objects, the same length scale (the contact's
+    tolerance) and the same coordinates of every point of its two links (a roller's or knife's
+    centre, a flat face's point, a knife's side)."""
+    pair = a.joint(name)
+    if pair is not b.joint(name) or a.length_scale != b.length_scale or \
+            any(a.profiles.get(k) is not b.profiles.get(k) for k in a.profiles):
+        return False
+    return all(a.link(ln).points == b.link(ln).points and
+               all(a.points[p].tolist() == b.points[p].tolist() for p in a.link(ln).points)
+               for ln in pair.links)
 
 
 @lru_cache(maxsize=256)

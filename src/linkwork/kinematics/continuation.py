@@ -131,6 +131,14 @@ def _serialized(fn):
 _marching = RLock()  # re-entered: a march may find change points, which march upstream groups
 
 
+def marching() -> bool:
+    """Whether another thread is marching now: a march here would wait until it is done."""
+    if _marching.acquire(blocking=False):
+        _marching.release()
+        return False
+    return True
+
+
 @_serialized
 def continuation_guesses(mech: Mechanism, solvers, values: np.ndarray,
                          schedule: dict | None = None, *, start: PathEnd | None = None,

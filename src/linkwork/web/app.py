@@ -34,6 +34,7 @@ from ..errors import LinkworkError, LinkworkWarning, InputError, UnknownMechanis
 from ..kinematics import Solution, Status, compiled_loops, solve, solve_at, whole_motion
 from ..kinematics.export import to_document
 from ..kinematics import warmup
+from ..kinematics.continuation import carried, follow, marching
 from ..kinematics.solver import plan
 from ..kinematics.warmup import compile_kernels
 from ..model import Mechanism, Prismatic
@@ -301,14 +302,20 @@ def mechanism_info(loaded, warned: list[str]) -> dict:
 
 def long_drawing(loaded: Loaded, req: m.DrawingRequest) -> bool:
     """Whether the drawing asks for work that may take long (seconds for a large mechanism),
-    by what it asks, not by a clock: the whole motion (`motion`), or a position away from the
-    design one of a mechanism with Newton-solved groups and no previous frame whose march it
-    carries over (its march from the design position: a drag's frames carry theirs)."""
+    by what it asks, not by a clock: the whole motion (`motion`), or of a mechanism with
+    Newton-solved groups a position away from the design one with no previous frame whose
+    march it carries over (a march from the design position: a drag's frames carry theirs),
+    or any march while another thread marches (it would wait for that one)."""
     if req.motion:
         return True
-    if loaded.previous is not None or (req.at is None and req.times is None):
+    mech = loaded.mechanism
+    if loaded.previous is not None:  # (as the solve will: its plan takes the previous one's)
+        follow(mech, loaded.previous)
+    if not any(s.kind == "generic" for s in plan(mech)):
         return False
-    return any(s.kind == "generic" for s in plan(loaded.mechanism))
+    if marching():
+        return True
+    return loaded.previous is None and (req.at is not None or req.times is not None)
 
 
 def drawing(mech: Mechanism, req: m.DrawingRequest, previous: Mechanism | None = None,
@@ -316,8 +323,6 @@ def drawing(mech: Mechanism, req: m.DrawingRequest, previous: Mechanism | None =
     """The drawing of `linkwork draw` for the request, with what the page needs beside it
     (`previous`: the drag's previous frame, see `solve_request`; `stage`: times the solve, the
     scene and the SVG)."""
-    from ..kinematics.continuation import carried
-
     stage = stage or Stages()
     with stage("solve"):
         sol = solve_request(mech, req, previous=previous)
@@ -557,9 +562,12 @@ def create_app(workdir: str | Path | None = None, *, compiled: bool = False) -> 
         anyway). What may take long (`long_drawing`: the whole motion, or a march from the
         design position) goes to a worker thread, so that it holds no other request up."""
         stage = Stages()
-        with _warnings(compiled) as warned, stage("load"):
-            loaded = load(req.source)
-        if long_drawing(loaded, req):
+        with _warnings(compiled) as warned:
+            with stage("load"):
+                loaded = load(req.source)
+            with stage("solve"):  # (its plan, which the solve would make: its warnings too)
+                long = long_drawing(loaded, req)
+        if long:
             return await run_in_threadpool(drawn, req, loaded, warned, stage, stage.cpu())
         return drawn(req, loaded, warned, stage)
 
