@@ -35,7 +35,7 @@ from ..model import (CircularSlot, Gear, Mechanism, Prismatic, Revolute, Slot, i
                      is_intermittent)
 from ..constructions.construction import Arrow, Construction, Element, Polygon, Segment, literal
 from ..constructions.scales import SHEET_MM, Scale, Scales, nice_ceil
-from .svg import COLOURS, Figure, Style, style_for
+from .svg import _COMPASS, COLOURS, Figure, Style, style_for
 
 MECHANISM_LAYERS = ("mechanism", "paths", "velocities", "accelerations")
 INSTANT_LAYERS = ("poles", "pole-lines", "centrodes", "inflection", "return", "bresse", "gamma")
@@ -49,6 +49,7 @@ def _rot(theta: float, v: np.ndarray) -> np.ndarray:
 
 
 @dataclass
+
 class Scene:
     """What the layers draw: ``mech`` solved at one input (``sol`` has one sample), the drawing
     ``scales`` and, lazily, the whole motion for point paths and guide lengths."""
@@ -114,11 +115,19 @@ class Scene:
         return lo - g, hi + g
 
     def profile_points(self) -> list[np.ndarray]:
-        """Points of the higher pairs' profiles at the drawn position (every tenth)."""
+        """Points of the higher pairs' profiles at the drawn position (every tenth), and the
+        compass points of each Geneva or star wheel's rim (the wheel turns within it)."""
+        out: list[np.ndarray] = []
+        for j in self.mech.joints:
+            if is_intermittent(j):
+                sch = indexing_schedule(self.mech, j)
+                C = self.sol.point_on(j.carrier, sch.C).position[self.index]
+                R = max(o for _, _, o in sch.slot_lines())
+                out += list(C + R * _COMPASS)
         if not any(j.kind in ("cam", "rolling") for j in self.mech.joints):
-            return []
+            return out
         from .higher_layers import outlines
-        return [p for _, xy, _ in outlines(self) for p in xy[::10]]
+        return out + [p for _, xy, _ in outlines(self) for p in xy[::10]]
 
     def extent(self) -> float:
         """Size of the drawing (mechanism, paths, profiles) in mechanism units."""
