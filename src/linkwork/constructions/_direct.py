@@ -964,7 +964,8 @@ def _similar(own, X: np.ndarray) -> np.ndarray:
     (link point, figure point): a similarity is complex-affine."""
     (X1, x1), (X2, x2) = own
     z = lambda a: a[:, 0] + 1j * a[:, 1]  # noqa: E731
-    w = z(x1) + (z(x2) - z(x1)) / (z(X2) - z(X1)) * (z(X) - z(X1))
+    with np.errstate(invalid="ignore", divide="ignore"):  # NaN rows: unassembled samples
+        w = z(x1) + (z(x2) - z(x1)) / (z(X2) - z(X1)) * (z(X) - z(X1))
     return np.stack([w.real, w.imag], axis=-1)
 
 
