@@ -354,6 +354,8 @@ def _figure(mech: Mechanism, sol: Solution, req: m.DrawingRequest):
     from ..drawing import Scene, scene_figure
 
     sc = Scene(mech, sol)
+    if req.view is not None and not req.construction:
+        sc.scales = sc.auto_scales(length=req.view.per_mm)  # (a construction has its own)
     if not req.motion:
         sc.motion = None  # what the layers draw when the whole motion is not known
     con = None
@@ -380,7 +382,9 @@ def _figure(mech: Mechanism, sol: Solution, req: m.DrawingRequest):
         if not req.paths:
             layers = [n for n in layers if n != "paths"]
     fig = scene_figure(sc, layers, construction=con, step=req.step, paths=req.paths or None)
-    if req.fit == "motion" and con is None and req.motion:
+    if req.view is not None:
+        fig.view["mechanism"] = (np.array(req.view.lo, float), np.array(req.view.hi, float))
+    elif req.fit == "motion" and con is None and req.motion:
         fig.view["mechanism"] = sc.box(grow=0.12)
     return fig, steps
 
