@@ -67,6 +67,25 @@ class _SlidingGroups:
     of the sliding (`_slid`). The walk through the groups (`_walk`) is theirs in common too."""
 
     SLIDING_STEPS: dict[str, str]
+    #: the construction's name in messages, and the name of its dict of the rates (ω or α) it
+    #: reads off two images of a link
+    WHAT: str
+    RATES: str
+
+    def set_known(self, link: str, X: np.ndarray, image: np.ndarray, name: str) -> None:
+        self.known.setdefault(link, []).append((X, image, name))
+        self.images[(link, name)] = image
+        if link in self._read_off:  # a further point: the rate is read off again (maybe farther apart)
+            self._read_off.discard(link)
+            getattr(self, self.RATES).pop(link, None)
+
+    def two_known(self, link: str):
+        """The two known images of ``link`` farthest apart (`farthest_apart`)."""
+        known = self.known.get(link, [])
+        if len(known) < 2:
+            raise InputError(f"the {self.WHAT} has no two points of link '{link}' yet")
+        i, j = farthest_apart([X for X, _, _ in known])
+        return known[i], known[j]
 
     def _walk(self, groups, fallback, measured) -> None:
         """Each group in solution order by the construction's own step for its kind
@@ -157,6 +176,8 @@ class VelocityConstruction(_SlidingGroups):
     plan in the space ``velocity``) or ``"rotated"`` (rotated velocities on the mechanism, at
     ``kv`` mechanism lengths per velocity unit)."""
 
+    WHAT, RATES = "velocity construction", "omega"
+
     def __init__(self, b: Builder, mech: Mechanism, sol: Solution, mode: str, kv: float = 1.0,
                  sense: int = -1) -> None:
         if mode not in ("plan", "rotated") or sense not in (1, -1):
@@ -197,21 +218,6 @@ class VelocityConstruction(_SlidingGroups):
         return "perpendicular" if self.mode == "plan" else "parallel"
 
     # ------------------------------------------------------------------ bookkeeping
-    def set_known(self, link: str, X: np.ndarray, image: np.ndarray, name: str) -> None:
-        self.known.setdefault(link, []).append((X, image, name))
-        self.images[(link, name)] = image
-        if link in self._read_off:  # a further point: ω is read off again (maybe farther apart)
-            self._read_off.discard(link)
-            self.omega.pop(link, None)
-
-    def two_known(self, link: str):
-        """The two known images of ``link`` farthest apart (`farthest_apart`)."""
-        known = self.known.get(link, [])
-        if len(known) < 2:
-            raise InputError(f"the velocity construction has no two points of link '{link}' yet")
-        i, j = farthest_apart([X for X, _, _ in known])
-        return known[i], known[j]
-
     def _line(self, key: str, through: np.ndarray, direction: np.ndarray, *, role=Role.AUXILIARY) -> tuple:
         direction = np.where((norm(direction) == 0)[:, None], np.nan, direction)
         P = pt(through)
@@ -410,6 +416,8 @@ class AccelerationConstruction(_SlidingGroups):
     :class:`VelocityConstruction` ``vc`` (whose images give ω of every link and the sliding
     velocities)."""
 
+    WHAT, RATES = "acceleration plan", "alpha"
+
     def __init__(self, b: Builder, vc: VelocityConstruction) -> None:
         self.b, self.vc = b, vc
         self.mech, self.sol, self.n = vc.mech, vc.sol, vc.n
@@ -428,21 +436,6 @@ class AccelerationConstruction(_SlidingGroups):
 
     def w(self, link: str) -> np.ndarray:
         return self.vc.measured_omega(link)
-
-    def set_known(self, link: str, X, img, name) -> None:
-        self.known.setdefault(link, []).append((X, img, name))
-        self.images[(link, name)] = img
-        if link in self._read_off:  # a further point: α is read off again (maybe farther apart)
-            self._read_off.discard(link)
-            self.alpha.pop(link, None)
-
-    def two_known(self, link: str):
-        """The two known acceleration images of ``link`` farthest apart (`farthest_apart`)."""
-        known = self.known.get(link, [])
-        if len(known) < 2:
-            raise InputError(f"the acceleration plan has no two points of link '{link}' yet")
-        i, j = farthest_apart([X for X, _, _ in known])
-        return known[i], known[j]
 
     def _line(self, key, through, direction, role=Role.AUXILIARY):
         direction = np.where((norm(direction) == 0)[:, None], np.nan, direction)
