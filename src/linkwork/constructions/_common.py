@@ -46,6 +46,23 @@ def norm(a: np.ndarray) -> np.ndarray:
     return np.linalg.norm(a, axis=-1)
 
 
+def farthest_apart(points) -> tuple[int, int]:
+    """Indices of the two of a link's known points to read its rotation off: the two farthest
+    apart in the drawing (the largest smallest separation over the samples, the first such pair
+    on a tie). Two coincident points — an auxiliary point that falls on a hinge in this
+    position, like Rosenauer's Q on P_78 of the Heusinger gear at its design position — fix no
+    direction, so ω and α read off them, and images found from them, would be noise."""
+    best, pair = -1.0, (0, 1)
+    for i in range(len(points)):
+        for j in range(i + 1, len(points)):
+            d = np.ravel(norm(np.asarray(points[j], float) - np.asarray(points[i], float)))
+            d = d[~np.isnan(d)]  # samples marked unreachable do not vote
+            d = float(d.min()) if d.size else 0.0
+            if d > best:
+                best, pair = d, (i, j)
+    return pair
+
+
 def rotate(theta: np.ndarray, v: np.ndarray) -> np.ndarray:
     c, s = np.cos(theta), np.sin(theta)
     return np.stack([c * v[..., 0] - s * v[..., 1], s * v[..., 0] + c * v[..., 1]], axis=-1)

@@ -163,15 +163,27 @@ class ScriptDrawer:
         if st.kind == "meet":
             (p1, d1), (p2, d2) = (self.plan_line(pl, f"{key}.{i}") for i, pl in enumerate(st.lines))
             image, par = _meet((p1, d1), (p2, d2))
+            own = self._own_figure(st)
+            if own is not None:
+                # both lines start at images of the link's own points: the image is the point of
+                # the figure similar to the link (the lines pass through it), which stays
+                # determined where they cross at a small angle or run parallel
+                image = np.where(own[1][:, None], _similar(own[0], self.where(st.point)), image)
+                par = par & ~own[1]
+                if np.any(_sine(d1, d2) < 0.05):
+                    a, b2 = (self.s.labels.get(pl.anchor, pl.anchor[1]) for pl in st.lines)
+                    vc.b.step(f"The two lines of {lab} cross at a small angle (or run parallel) "
+                              f"in some positions: {lab} is drawn as the point of the figure over "
+                              f"{lower(a)}{lower(b2)} similar to {st.link} (the image of a link is "
+                              "similar to it); the lines pass through it.")
             vc.b.degenerate(par & ~vc.b.bad, f"step '{st.text}': the two lines are parallel here, "
                             "the image is undetermined")
             self.show(key, st, image, lab, (f"{key}.0", f"{key}.1"))
         elif st.kind == "divide":
-            X, Y = (self.where(n) for n in st.base)
-            x, y = (self.img((st.link, n)) for n in st.base)
-            P = self.where(st.point)
-            t = dot(P - X, Y - X) / dot(Y - X, Y - X)
-            image = x + t[:, None] * (y - x)
+            # the image divides xy as P divides XY: the similar triangle over xy (exact also
+            # where P lies only nearly on XY)
+            image = _similar([(self.where(n), self.img((st.link, n))) for n in st.base],
+                             self.where(st.point))
             self.show(key, st, image, lab)
         elif st.kind == "given":
             X = self.where(st.point)
@@ -187,6 +199,16 @@ class ScriptDrawer:
         else:
             raise InputError(f"the direct construction cannot perform a '{st.kind}' step here")
         self.keep(st.link, st.point, image)
+
+    def _own_figure(self, st):
+        """For a meet step whose two lines both start at images of points of the step's own
+        link (no pair crossed): those two (point, image) pairs and the samples where the points
+        are apart, else None. The lines are then x − a ⟂ XA and x − b ⟂ XB, the similar figure."""
+        if any(pl.anchor[0] != st.link or pl.via for pl in st.lines):
+            return None
+        own = [(self.where(pl.anchor[1]), self.img(pl.anchor)) for pl in st.lines]
+        apart = norm(own[1][0] - own[0][0]) > 0
+        return own, apart
 
     def run(self, links: set[str]) -> None:
         vc = self.vc
@@ -931,12 +953,19 @@ class AccelerationTrialDrawer(AccelerationDrawer):
         ac.b.extend(key, _pt(x))
 
 
+def _sine(u, v) -> np.ndarray:
+    """|sin| of the angle between two directions at every sample (NaN where one vanishes)."""
+    with np.errstate(invalid="ignore", divide="ignore"):
+        return abs(u[:, 0] * v[:, 1] - u[:, 1] * v[:, 0]) / (norm(u) * norm(v))
+
+
 def _similar(own, X: np.ndarray) -> np.ndarray:
     """The point of a figure similar to a link at the link's point X, from two pairs
     (link point, figure point): a similarity is complex-affine."""
     (X1, x1), (X2, x2) = own
     z = lambda a: a[:, 0] + 1j * a[:, 1]  # noqa: E731
-    w = z(x1) + (z(x2) - z(x1)) / (z(X2) - z(X1)) * (z(X) - z(X1))
+    with np.errstate(invalid="ignore", divide="ignore"):  # NaN rows: unassembled samples
+        w = z(x1) + (z(x2) - z(x1)) / (z(X2) - z(X1)) * (z(X) - z(X1))
     return np.stack([w.real, w.imag], axis=-1)
 
 
@@ -985,8 +1014,7 @@ class TriangleDrawer(AccelerationDrawer):
 
     @staticmethod
     def _sine(u, v) -> float:
-        with np.errstate(invalid="ignore", divide="ignore"):
-            s = abs(u[:, 0] * v[:, 1] - u[:, 1] * v[:, 0]) / (norm(u) * norm(v))
+        s = _sine(u, v)
         s = s[~np.isnan(s)]
         return float(s.min()) if s.size else 1.0
 

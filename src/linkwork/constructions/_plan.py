@@ -42,7 +42,7 @@ from ..kinematics import Solution
 from ..kinematics.solver import plan as group_plan
 from ..model import Mechanism, Revolute
 from ..topology.constructibility import lower, upper  # the books' labels: B → b, O4 → o_4
-from ._common import cross, dot, norm, perp, rotate
+from ._common import cross, dot, farthest_apart, norm, perp, rotate
 
 
 def _meet(l1: np.ndarray, l2: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -67,6 +67,25 @@ class _SlidingGroups:
     of the sliding (`_slid`). The walk through the groups (`_walk`) is theirs in common too."""
 
     SLIDING_STEPS: dict[str, str]
+    #: the construction's name in messages, and the name of its dict of the rates (ω or α) it
+    #: reads off two images of a link
+    WHAT: str
+    RATES: str
+
+    def set_known(self, link: str, X: np.ndarray, image: np.ndarray, name: str) -> None:
+        self.known.setdefault(link, []).append((X, image, name))
+        self.images[(link, name)] = image
+        if link in self._read_off:  # a further point: the rate is read off again (maybe farther apart)
+            self._read_off.discard(link)
+            getattr(self, self.RATES).pop(link, None)
+
+    def two_known(self, link: str):
+        """The two known images of ``link`` farthest apart (`farthest_apart`)."""
+        known = self.known.get(link, [])
+        if len(known) < 2:
+            raise InputError(f"the {self.WHAT} has no two points of link '{link}' yet")
+        i, j = farthest_apart([X for X, _, _ in known])
+        return known[i], known[j]
 
     def _walk(self, groups, fallback, measured) -> None:
         """Each group in solution order by the construction's own step for its kind
@@ -157,6 +176,8 @@ class VelocityConstruction(_SlidingGroups):
     plan in the space ``velocity``) or ``"rotated"`` (rotated velocities on the mechanism, at
     ``kv`` mechanism lengths per velocity unit)."""
 
+    WHAT, RATES = "velocity construction", "omega"
+
     def __init__(self, b: Builder, mech: Mechanism, sol: Solution, mode: str, kv: float = 1.0,
                  sense: int = -1) -> None:
         if mode not in ("plan", "rotated") or sense not in (1, -1):
@@ -169,6 +190,7 @@ class VelocityConstruction(_SlidingGroups):
         self.images: dict[tuple[str, str], np.ndarray] = {}  # (link, point name) -> image
         self.pos = {p: sol.point(p).position for p in mech.points}
         self.omega: dict[str, np.ndarray] = {mech.frame: np.zeros(self.n)}
+        self._read_off: set[str] = set()  # the links whose ω was read off their images
         self.sliding: dict[str, np.ndarray] = {}  # joint -> relative velocity (N,2)
         if mode == "plan":
             self.o = np.zeros((self.n, 2))
@@ -196,10 +218,6 @@ class VelocityConstruction(_SlidingGroups):
         return "perpendicular" if self.mode == "plan" else "parallel"
 
     # ------------------------------------------------------------------ bookkeeping
-    def set_known(self, link: str, X: np.ndarray, image: np.ndarray, name: str) -> None:
-        self.known.setdefault(link, []).append((X, image, name))
-        self.images[(link, name)] = image
-
     def _line(self, key: str, through: np.ndarray, direction: np.ndarray, *, role=Role.AUXILIARY) -> tuple:
         direction = np.where((norm(direction) == 0)[:, None], np.nan, direction)
         P = pt(through)
@@ -219,9 +237,10 @@ class VelocityConstruction(_SlidingGroups):
         """ω of a link read off two of its images (with its sense)."""
         if link in self.omega:
             return self.omega[link]
-        (X1, x1, _), (X2, x2, _) = self.known[link][:2]
+        (X1, x1, _), (X2, x2, _) = self.two_known(link)
         d = X2 - X1
         dd = dot(d, d)
+        self._read_off.add(link)
         if self.mode == "plan":
             w = cross(d, x2 - x1) / (self.kv * dd)
         else:
@@ -239,11 +258,8 @@ class VelocityConstruction(_SlidingGroups):
             img = self.base(X)
             self.images[(link, name)] = img
             return img
-        known = self.known.get(link, [])
-        if len(known) < 2:
-            raise InputError(f"the velocity construction has no two points of link '{link}' yet")
         lab = label or self.lbl(name)
-        (X1, x1, n1), (X2, x2, n2) = known[:2]
+        (X1, x1, n1), (X2, x2, n2) = self.two_known(link)
         d1, d2 = X - X1, X - X2
         key = f"v.{link}.{name}"
         # fallback along the line of the two known points: ω measured off the plan
@@ -400,6 +416,8 @@ class AccelerationConstruction(_SlidingGroups):
     :class:`VelocityConstruction` ``vc`` (whose images give ω of every link and the sliding
     velocities)."""
 
+    WHAT, RATES = "acceleration plan", "alpha"
+
     def __init__(self, b: Builder, vc: VelocityConstruction) -> None:
         self.b, self.vc = b, vc
         self.mech, self.sol, self.n = vc.mech, vc.sol, vc.n
@@ -408,6 +426,7 @@ class AccelerationConstruction(_SlidingGroups):
         self.known: dict[str, list[tuple[np.ndarray, np.ndarray, str]]] = {}
         self.images: dict[tuple[str, str], np.ndarray] = {}
         self.alpha: dict[str, np.ndarray] = {self.mech.frame: np.zeros(self.n)}
+        self._read_off: set[str] = set()  # the links whose α was read off their images
         self.coriolis: dict[str, np.ndarray] = {}
         self.o = np.zeros((self.n, 2))
         b.point("o'", pt(self.o), Role.GIVEN, "o'", space=self.space)
@@ -417,10 +436,6 @@ class AccelerationConstruction(_SlidingGroups):
 
     def w(self, link: str) -> np.ndarray:
         return self.vc.measured_omega(link)
-
-    def set_known(self, link: str, X, img, name) -> None:
-        self.known.setdefault(link, []).append((X, img, name))
-        self.images[(link, name)] = img
 
     def _line(self, key, through, direction, role=Role.AUXILIARY):
         direction = np.where((norm(direction) == 0)[:, None], np.nan, direction)
@@ -438,9 +453,10 @@ class AccelerationConstruction(_SlidingGroups):
     def measured_alpha(self, link: str) -> np.ndarray:
         if link in self.alpha:
             return self.alpha[link]
-        (X1, x1, _), (X2, x2, _) = self.known[link][:2]
+        (X1, x1, _), (X2, x2, _) = self.two_known(link)
         d = X2 - X1
         w = self.w(link)
+        self._read_off.add(link)
         t = (x2 - x1) - (w * w)[:, None] * (X1 - X2)  # tangential part
         a = cross(d, t) / dot(d, d)
         self.alpha[link] = a
@@ -454,10 +470,7 @@ class AccelerationConstruction(_SlidingGroups):
         if link == self.mech.frame:
             self.images[(link, name)] = self.o
             return self.o
-        known = self.known.get(link, [])
-        if len(known) < 2:
-            raise InputError(f"the acceleration plan has no two points of link '{link}' yet")
-        (X1, x1, n1), (X2, x2, n2) = known[:2]
+        (X1, x1, n1), (X2, x2, n2) = self.two_known(link)
         w = self.w(link)
         lab = label or self.lbl(name)
         key = f"a.{link}.{name}"
