@@ -268,6 +268,7 @@ def test_an_unassemblable_position_is_an_error_with_the_engines_message(client):
     assert math.sqrt(925) + math.sqrt(1000) < 65
     r = post(client, "/api/drawing", source=src, at=[math.pi])
     assert r.status_code == 400 and "cannot be assembled" in r.json()["error"]
+    assert "at input O2 = 180°" in r.json()["error"]  # where, in the input's own unit
     r = post(client, "/api/solve", source=src, at=[math.pi])
     assert r.json()["samples"][0]["status"] == "unreachable"
 

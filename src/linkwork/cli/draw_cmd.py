@@ -60,6 +60,7 @@ def register(app: typer.Typer) -> None:
         from ..io import load_dynamics
         from ..drawing.layers import Scene
         from ..kinematics import solve, solve_at
+        from ..kinematics.at import require_assembled
         from .inputs import input_values
 
         with user_errors():
@@ -83,8 +84,7 @@ def register(app: typer.Typer) -> None:
                 if len(v) != 1:
                     raise InputError(f"--at {','.join(at)}: draw takes one position, got {len(v)}")
                 sol = solve(mech, times=v) if kind == "time" else solve(mech, v)
-            if sol.status[0] == 2:
-                raise InputError(f"mechanism '{mech.name}' cannot be assembled at {' '.join(at or [])}")
+            require_assembled(sol, 0, "the design position" if at is None else None)
             sc = Scene(mech, sol)
             if any(x is not None for x in (length_scale, velocity_scale, acceleration_scale)):
                 sc.scales = sc.auto_scales(length=length_scale, velocity=velocity_scale,

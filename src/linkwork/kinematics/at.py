@@ -8,8 +8,8 @@ from __future__ import annotations
 import numpy as np
 
 from ..errors import InputError
-from ..model import Mechanism
-from .solution import Solution
+from ..model import Mechanism, Prismatic
+from .solution import Solution, Status
 from .solver import solve
 
 
@@ -32,3 +32,23 @@ def solve_at(mech: Mechanism, inputs=None, *, times=None, order: int | None = No
     if times is not None:
         return solve(mech, times=times, order=order, previous=previous)
     return solve(mech, inputs, order=order, previous=previous)
+
+
+def require_assembled(sol: Solution, i: int = 0, where: str | None = None) -> None:
+    """An `InputError` when sample `i` of `sol` cannot be assembled (unreachable), naming
+    where: `where`, else the sample's input values (and time)."""
+    if sol.status[i] != Status.UNREACHABLE:
+        return
+    mech = sol.mechanism
+    if where is None:
+        parts = []
+        for d, v in zip(mech.drivers, sol.inputs[i]):
+            prismatic = isinstance(mech.joint(d.joint), Prismatic)
+            parts.append(f"{d.joint} = {v:.6g} {mech.length_unit}" if prismatic
+                         else f"{d.joint} = {np.degrees(v):.6g}°")
+        where = "input " + ", ".join(parts)
+        if sol.time is not None:
+            where = f"t = {sol.time[i]:g} s ({where})"
+    raise InputError(f"mechanism '{mech.name}' cannot be assembled at {where}: its chain does "
+                     "not close there (beyond a limit position of its input, or its links too "
+                     "short to reach)")

@@ -32,6 +32,7 @@ from pydantic import ValidationError
 
 from ..errors import LinkworkError, LinkworkWarning, InputError, UnknownMechanismError
 from ..kinematics import Solution, Status, compiled_loops, solve, solve_at, whole_motion
+from ..kinematics.at import require_assembled
 from ..kinematics.export import to_document
 from ..kinematics import warmup
 from ..kinematics.continuation import carried, follow, marching
@@ -353,10 +354,8 @@ def drawing(mech: Mechanism, req: m.DrawingRequest, previous: Mechanism | None =
         sol = solve_request(mech, req, previous=previous)
     if len(sol) != 1:
         raise InputError(f"a drawing shows one position; got {len(sol)} samples")
-    where = "the design position" if req.at is None and req.times is None else (
-        f"t = {req.times[0]:g} s" if req.times is not None else "this input")
-    if sol.status[0] == Status.UNREACHABLE:
-        raise InputError(f"mechanism '{mech.name}' cannot be assembled at {where}")
+    require_assembled(sol, 0, "the design position" if req.at is None and req.times is None
+                      else None)
     with stage("scene"):
         fig, steps = _figure(mech, sol, req)
     with stage("svg"):
