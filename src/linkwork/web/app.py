@@ -39,7 +39,7 @@ from ..kinematics.solver import plan
 from ..kinematics.warmup import compile_kernels
 from ..model import Mechanism, Prismatic
 from . import models as m
-from .sources import Loaded, Sources
+from .sources import MOTIONS, Loaded, Sources
 
 #: the largest request body accepted (a mechanism text of MAX_TEXT and its options)
 MAX_BODY = 1_000_000
@@ -238,6 +238,74 @@ def solve_request(mech: Mechanism, req: m.At, order: int | None = None,
     return solve_at(mech, values, times=times, order=order, previous=previous, asked="at or times")
 
 
+def _kept(mech: Mechanism, what, make):
+    """`make()` computed once for `mech` and kept (`sources.MOTIONS`), with the LinkworkWarnings
+    it raised and the LinkworkError it ended in: each later request gets them as the first did."""
+    def run():
+        out: list[str] = []
+        _route_warnings()
+        token = _COLLECTING.set(out)
+        try:
+            return make(), None, out
+        except LinkworkError as exc:
+            return None, exc, out
+        finally:
+            _COLLECTING.reset(token)
+
+    value, error, warned = MOTIONS.kept(mech, what, run)
+    collecting = _COLLECTING.get()
+    if collecting is not None:
+        collecting.extend(warned)
+    else:
+        for text in warned:
+            warnings.warn(text, LinkworkWarning, stacklevel=2)
+    if error is not None:
+        raise error
+    return value
+
+
+def kept_motion(mech: Mechanism, order: int = 2) -> Solution:
+    """`whole_motion(mech, order=order)`, computed once per mechanism: `/api/motion`, the
+    scene's paths and fit (order 1, as `Scene.motion`) and the samples a play draws."""
+    return _kept(mech, ("motion", order), lambda: whole_motion(mech, order=order))
+
+
+def motion_sample(mech: Mechanism, req: m.At, make: bool = True) -> Solution | None:
+    """The position a drawing asks for, taken from the whole motion kept for `mech` when it is
+    one of its samples (to the bit), else None (to be solved).
+
+    Only for several drivers: their solve follows the path of the inputs from the design
+    position, so that a sample far along the motion costs a march of that length, while one
+    driver's samples are solved each on its own from a march kept per mechanism. Asked by
+    `times`: the whole motion's sample at that time (it is solved by times). Asked by `at`:
+    the whole motion's inputs solved by inputs (`solve_at`'s rates: the drivers' constant
+    speeds, not the motion laws'), kept beside it. `make`: False to take only what is kept
+    already (nothing is solved)."""
+    if len(mech.drivers) < 2 or mech.given:
+        return None
+    if req.times is not None and len(req.times) == 1:
+        what = ("motion", 2)
+    elif req.at is not None and len(req.at) == 1 and isinstance(req.at[0], list) \
+            and len(req.at[0]) == len(mech.drivers):
+        what = ("inputs", 2)
+    else:
+        return None
+    if not make and not MOTIONS.has(mech, what):
+        return None
+    try:
+        if what[0] == "motion":
+            sol = kept_motion(mech)
+            if sol.time is None:
+                return None
+            hits = np.flatnonzero(sol.time == float(req.times[0]))
+        else:
+            sol = _kept(mech, what, lambda: solve_at(mech, kept_motion(mech).inputs))
+            hits = np.flatnonzero((sol.inputs == np.asarray(req.at[0], float)).all(axis=1))
+    except LinkworkError:  # no whole motion: the position is solved (and its error given) alone
+        return None
+    return sol.sample(int(hits[0])) if hits.size else None
+
+
 def _json(doc) -> str:
     """JSON text as the API's answers write it (`JSONResponse`: NaN refused, UTF-8 kept)."""
     return json.dumps(jsonable_encoder(doc), ensure_ascii=False, allow_nan=False,
@@ -306,9 +374,12 @@ def long_drawing(loaded: Loaded, req: m.DrawingRequest) -> bool:
     Newton-solved groups a position away from the design one with no previous frame whose
     march it carries over (a march from the design position: a drag's frames carry theirs),
     or any march while another thread marches (it would wait for that one)."""
-    if req.motion:
-        return True
     mech = loaded.mechanism
+    if req.motion:  # unless the whole motion is kept, and the position is one of its samples
+        if not MOTIONS.has(mech, ("motion", 1)):
+            return True
+        if motion_sample(mech, req, make=False) is not None:
+            return False
     if loaded.previous is not None:  # (as the solve will: its plan takes the previous one's)
         follow(mech, loaded.previous)
     if not any(s.kind == "generic" for s in plan(mech)):
@@ -325,7 +396,9 @@ def drawing(mech: Mechanism, req: m.DrawingRequest, previous: Mechanism | None =
     scene and the SVG)."""
     stage = stage or Stages()
     with stage("solve"):
-        sol = solve_request(mech, req, previous=previous)
+        sol = motion_sample(mech, req) if req.motion and previous is None else None
+        if sol is None:
+            sol = solve_request(mech, req, previous=previous)
     if len(sol) != 1:
         raise InputError(f"a drawing shows one position; got {len(sol)} samples")
     where = "the design position" if req.at is None and req.times is None else (
@@ -347,6 +420,14 @@ def drawing(mech: Mechanism, req: m.DrawingRequest, previous: Mechanism | None =
             "march": None if carried(mech) is None else str(carried(mech))}
 
 
+def _scene_motion(mech: Mechanism) -> Solution | None:
+    """`Scene.motion` (the whole motion to order 1, None where there is none), kept."""
+    try:
+        return kept_motion(mech, order=1)
+    except LinkworkError:
+        return None
+
+
 def _figure(mech: Mechanism, sol: Solution, req: m.DrawingRequest):
     """The scene's figure for the request's layers and construction, and the construction's
     step texts."""
@@ -354,8 +435,8 @@ def _figure(mech: Mechanism, sol: Solution, req: m.DrawingRequest):
     from ..drawing import Scene, scene_figure
 
     sc = Scene(mech, sol)
-    if not req.motion:
-        sc.motion = None  # what the layers draw when the whole motion is not known
+    # what the layers draw when the whole motion is not known, or the one kept (`Scene.motion`)
+    sc.motion = _scene_motion(mech) if req.motion else None
     con = None
     steps: list[str] = []
     if req.construction:
@@ -474,7 +555,7 @@ def create_app(workdir: str | Path | None = None, *, compiled: bool = False) -> 
     def motion(req: m.MotionRequest):
         """`linkwork.whole_motion` (`analyze --format json` without --at)."""
         with _warnings(compiled) as warned:
-            sol = whole_motion(load(req.source).mechanism)
+            sol = kept_motion(load(req.source).mechanism)
             if req.detail == "status":
                 mech = sol.mechanism
                 single = len(mech.drivers) == 1
@@ -624,7 +705,7 @@ def create_app(workdir: str | Path | None = None, *, compiled: bool = False) -> 
         each header with its unit, `name [unit]`)."""
         from ..kinematics.export import csv_lines
         with _warnings(compiled):
-            sol = whole_motion(load(req.source).mechanism)
+            sol = kept_motion(load(req.source).mechanism)
             text = "".join(csv_lines(sol, units=True))
         return Response(text, media_type="text/csv; charset=utf-8")
 

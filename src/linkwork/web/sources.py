@@ -157,3 +157,52 @@ class Sources:
     @staticmethod
     def library() -> list[str]:
         return library_names()
+
+
+class Motions:
+    """The last few whole motions per mechanism, and what else is solved over one (the samples
+    solved by their inputs, the scene's paths): a mechanism is immutable and compared by
+    identity, so what is computed for it once serves every later request that names it (the
+    frames of a play, each at one sample of the whole motion, with its paths drawn).
+
+    `kept(mech, what, make)`: the value kept under (mech, what), made by `make()` the first
+    time; two threads asking for the same one at once make it once (the second waits)."""
+
+    SIZE = 8  # mechanisms: the one played, the one before, a few drag results
+
+    def __init__(self) -> None:
+        self._kept: OrderedDict[Mechanism, dict] = OrderedDict()
+        self._lock = Lock()
+        self._making: dict[tuple, Lock] = {}
+
+    def has(self, mech: Mechanism, what) -> bool:
+        with self._lock:
+            return what in self._kept.get(mech, ())
+
+    def kept(self, mech: Mechanism, what, make):
+        with self._lock:
+            per = self._kept.get(mech)
+            if per is not None and what in per:
+                self._kept.move_to_end(mech)
+                return per[what]
+            making = self._making.setdefault((mech, what), Lock())
+        with making:
+            with self._lock:
+                per = self._kept.get(mech)
+                if per is not None and what in per:
+                    return per[what]
+            try:
+                value = make()
+                with self._lock:
+                    self._kept.setdefault(mech, {})[what] = value
+                    self._kept.move_to_end(mech)
+                    while len(self._kept) > self.SIZE:
+                        self._kept.popitem(last=False)
+            finally:
+                with self._lock:
+                    self._making.pop((mech, what), None)
+        return value
+
+
+#: the server's whole motions (`Motions`), shared by its requests
+MOTIONS = Motions()
