@@ -1,0 +1,161 @@
+"""Playing a mechanism's whole motion in the workbench: a drawing at a sample of the whole motion
+is taken from the whole motion the server keeps per mechanism (`web.app.motion_sample`,
+`web.sources.Motions`) instead of being marched afresh from the design position, and the scene's
+paths and fit come from the kept motion too.
+
+The expectations are independent solves: each sample is solved again on its own from scratch
+(`solve_at`, which marches straight from the design position to it, another path than the whole
+motion's march through every sample before it), and the two must agree to rounding — positions,
+velocities, accelerations and statuses. The 12-link Heusinger valve gear (two drivers with motion
+laws, Newton-solved groups) is the mechanism whose play was slow."""
+
+from __future__ import annotations
+
+import warnings
+
+import numpy as np
+import pytest
+
+with warnings.catch_warnings():
+    warnings.simplefilter("ignore")  # the test client's notice about its HTTP library
+    from fastapi.testclient import TestClient
+
+from linkwork.kinematics import Status, solve_at, whole_motion
+from linkwork.web import create_app
+from linkwork.web import app as web_app
+from linkwork.web import models as m
+from linkwork.web.sources import Motions, Sources
+
+pytestmark = pytest.mark.filterwarnings("ignore::DeprecationWarning")
+
+NAME = "heusinger-valve-gear"
+SAMPLES = [0, 45, 123, 200, 290, 360]  # spread over the whole motion (361 samples, one turn)
+
+
+@pytest.fixture(scope="module")
+def gear():
+    """The valve gear (a mechanism object of its own: the kept motions are per object) and its
+    whole motion solved here, by the kinematics alone."""
+    mech = Sources(None).load(library=NAME).mechanism
+    return mech, whole_motion(mech)
+
+
+def assert_same_solution(a, b) -> None:
+    """Two one-sample solutions equal to rounding: statuses exactly, every point's position,
+    velocity and acceleration and every link's pose to 1e-9 of the mechanism's natural scales."""
+    mech = a.mechanism
+    L = mech.length_scale
+    assert a.status.tolist() == b.status.tolist()
+    np.testing.assert_array_equal(a.inputs, b.inputs)
+    for p in mech.points:
+        pa, pb = a.point(p), b.point(p)
+        scale_v = max(1.0, float(np.abs(pb.velocity).max()))
+        scale_a = max(1.0, float(np.abs(pb.acceleration).max()))
+        np.testing.assert_allclose(pa.position, pb.position, rtol=0, atol=1e-9 * L, err_msg=p)
+        np.testing.assert_allclose(pa.velocity, pb.velocity, rtol=0, atol=1e-9 * max(L, scale_v),
+                                   err_msg=p)
+        np.testing.assert_allclose(pa.acceleration, pb.acceleration, rtol=0,
+                                   atol=1e-9 * max(L, scale_a), err_msg=p)
+    for ln in mech.link_names:
+        np.testing.assert_allclose(a.pose_derivatives(ln)[0], b.pose_derivatives(ln)[0],
+                                   rtol=0, atol=1e-9 * L, err_msg=ln)
+
+
+@pytest.mark.parametrize("k", SAMPLES)
+def test_a_sample_asked_by_inputs_is_the_solve_at_those_inputs(gear, k):
+    mech, motion = gear
+    req = m.DrawingRequest.model_validate({"source": {"library": NAME},
+                                           "at": [motion.inputs[k].tolist()]})
+    kept = web_app.motion_sample(mech, req)
+    assert kept is not None and len(kept) == 1
+    assert_same_solution(kept, solve_at(mech, motion.inputs[k:k + 1]))
+
+
+@pytest.mark.parametrize("k", SAMPLES)
+def test_a_sample_asked_by_time_is_the_solve_at_that_time(gear, k):
+    """By time the motion laws give the inputs' rates: the velocities are the motion's."""
+    mech, motion = gear
+    req = m.DrawingRequest.model_validate({"source": {"library": NAME},
+                                           "times": [float(motion.time[k])]})
+    kept = web_app.motion_sample(mech, req)
+    assert kept is not None and kept.time.tolist() == [motion.time[k]]
+    scratch = solve_at(mech, times=motion.time[k:k + 1])
+    assert_same_solution(kept, scratch)
+    # the wheel turns at 360°/s by its law, at every time
+    np.testing.assert_allclose(kept.link("wheel").omega, [2 * np.pi], rtol=1e-12)
+
+
+def test_a_position_between_samples_is_solved_on_its_own(gear):
+    mech, motion = gear
+    between = (0.5 * (motion.inputs[10] + motion.inputs[11])).tolist()
+    for asked in ({"at": [between]}, {"times": [float(0.5 * (motion.time[10] + motion.time[11]))]},
+                  {"at": [motion.inputs[10].tolist(), motion.inputs[11].tolist()]}, {}):
+        req = m.DrawingRequest.model_validate({"source": {"library": NAME}, **asked})
+        assert web_app.motion_sample(mech, req) is None, asked
+
+
+def test_one_driver_samples_are_solved_as_before():
+    """One driver's samples are solved each on its own (cheap): nothing is taken from a kept
+    motion, so a rocker's return sweep keeps the rates `solve_at` gives."""
+    mech = Sources(None).load(library="crank-rocker").mechanism
+    req = m.DrawingRequest.model_validate({"source": {"library": "crank-rocker"}, "at": [0.3]})
+    assert web_app.motion_sample(mech, req) is None
+
+
+def test_the_drawing_at_a_sample_draws_the_solve_at_it(gear):
+    """`/api/drawing` as the page plays: each frame's points are the sample's from a solve of
+    its own, and the whole motion is computed once for all the frames."""
+    mech, motion = gear
+    client = TestClient(create_app())
+    calls = []
+
+    def counted(*args, **kwargs):
+        calls.append(kwargs.get("order", 2))
+        return whole_motion(*args, **kwargs)
+
+    original = web_app.whole_motion
+    web_app.whole_motion = counted
+    try:
+        for k in SAMPLES:
+            for asked in ({"at": [motion.inputs[k].tolist()]}, {"times": [float(motion.time[k])]}):
+                r = client.post("/api/drawing", json={
+                    "source": {"library": NAME}, "motion": True, **asked,
+                    "layers": ["mechanism", "paths", "velocities", "poles"]})
+                assert r.status_code == 200, r.text
+                doc = r.json()
+                scratch = solve_at(mech, **({"inputs": motion.inputs[k:k + 1]} if "at" in asked
+                                            else {"times": motion.time[k:k + 1]}))
+                assert doc["status"] == str(Status(int(scratch.status[0])))
+                for p, xy in doc["points"].items():
+                    np.testing.assert_allclose(xy, scratch.point(p).position[0], rtol=0,
+                                               atol=1e-9 * mech.length_scale, err_msg=p)
+                assert doc["input"] == motion.inputs[k].tolist()
+                assert (doc["time"] == motion.time[k]) if "times" in asked else True
+    finally:
+        web_app.whole_motion = original
+    # the drawings' whole motion (order 1, the paths and the fit) and the samples' (order 2)
+    assert sorted(calls) == [1, 2]
+
+
+def test_the_page_asks_the_motion_and_the_frames_share_it(gear):
+    """`/api/motion` and the frames' samples are one whole motion: the document's sample k is
+    the drawing's at sample k."""
+    client = TestClient(create_app())
+    doc = client.post("/api/motion", json={"source": {"library": NAME}}).json()
+    mech, motion = gear
+    assert len(doc["samples"]) == len(motion)
+    k = 77
+    r = client.post("/api/drawing", json={"source": {"library": NAME}, "motion": True,
+                                          "times": [float(motion.time[k])]}).json()
+    assert r["time"] == doc["samples"][k]["time"]
+
+
+def test_the_kept_motions_are_bounded_and_made_once():
+    kept = Motions()
+    made = []
+    mechs = [Sources(None).load(library="crank-rocker").mechanism for _ in range(Motions.SIZE + 1)]
+    for i, mech in enumerate(mechs):
+        for _ in range(2):
+            assert kept.kept(mech, "x", lambda: made.append(i) or i) == i
+    assert made == list(range(Motions.SIZE + 1))
+    assert not kept.has(mechs[0], "x") and kept.has(mechs[-1], "x")
