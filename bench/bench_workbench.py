@@ -180,8 +180,9 @@ MAIN_EVENTS = {"FunctionCall": "script", "EvaluateScript": "script", "RunMicrota
 
 def trace_summary(data: bytes, frames: int) -> list[str]:
     """A Chromium trace of `frames` drag frames summed up: the renderer main thread's time by
-    what it did (own time, ms per frame), how much of the page each layout and paint covered,
-    the tiles rastered and the display compositor's drawing (ms per frame)."""
+    what it did (own time, ms per frame; "busy" is all its tasks, the bench's own calls into the
+    page and the trace's cost included), how much of the page each layout and paint covered, the
+    tiles rastered and the display compositor's drawing (ms per frame)."""
     doc = json.loads(data)
     events = doc["traceEvents"] if isinstance(doc, dict) else doc
     threads = {(e["pid"], e["tid"]): e["args"]["name"] for e in events
