@@ -85,11 +85,28 @@ def test_a_sample_asked_by_time_is_the_solve_at_that_time(gear, k):
     np.testing.assert_allclose(kept.link("wheel").omega, [2 * np.pi], rtol=1e-12)
 
 
-def test_a_position_between_samples_is_solved_on_its_own(gear):
+@pytest.mark.parametrize("k", [0, 57, 204, 359])
+def test_a_position_between_samples_is_marched_from_the_nearest_and_is_solve_at(gear, k):
+    """Between samples (a slider's value, another reversing-arm setting) the march goes on from
+    the nearest kept sample: the answer is still `solve_at`'s from the design position."""
     mech, motion = gear
-    between = (0.5 * (motion.inputs[10] + motion.inputs[11])).tolist()
-    for asked in ({"at": [between]}, {"times": [float(0.5 * (motion.time[10] + motion.time[11]))]},
-                  {"at": [motion.inputs[10].tolist(), motion.inputs[11].tolist()]}, {}):
+    between = 0.5 * (motion.inputs[k] + motion.inputs[k + 1])
+    at = m.DrawingRequest.model_validate({"source": {"library": NAME}, "at": [between.tolist()]})
+    kept = web_app.motion_sample(mech, at)
+    assert_same_solution(kept, solve_at(mech, between[None]))
+    t = 0.5 * (motion.time[k] + motion.time[k + 1])
+    by_time = m.DrawingRequest.model_validate({"source": {"library": NAME}, "times": [float(t)]})
+    assert_same_solution(web_app.motion_sample(mech, by_time), solve_at(mech, times=[t]))
+    # another setting of the reversing arm (its driver: the second input), the wheel at a sample
+    other = motion.inputs[k] + [0.0, np.radians(-7.0)]
+    at = m.DrawingRequest.model_validate({"source": {"library": NAME}, "at": [other.tolist()]})
+    assert_same_solution(web_app.motion_sample(mech, at), solve_at(mech, other[None]))
+
+
+def test_other_requests_are_solved_as_before(gear):
+    mech, motion = gear
+    for asked in ({"at": [motion.inputs[10].tolist(), motion.inputs[11].tolist()]},
+                  {"times": [0.1, 0.2]}, {}):
         req = m.DrawingRequest.model_validate({"source": {"library": NAME}, **asked})
         assert web_app.motion_sample(mech, req) is None, asked
 

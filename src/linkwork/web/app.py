@@ -34,8 +34,8 @@ from ..errors import LinkworkError, LinkworkWarning, InputError, UnknownMechanis
 from ..kinematics import Solution, Status, compiled_loops, solve, solve_at, whole_motion
 from ..kinematics.export import to_document
 from ..kinematics import warmup
-from ..kinematics.continuation import carried, follow, marching
-from ..kinematics.solver import plan
+from ..kinematics.continuation import carried, follow, input_weights, marching
+from ..kinematics.solver import driver_samples, plan
 from ..kinematics.warmup import compile_kernels
 from ..model import Mechanism, Prismatic
 from . import models as m
@@ -270,40 +270,94 @@ def kept_motion(mech: Mechanism, order: int = 2) -> Solution:
     return _kept(mech, ("motion", order), lambda: whole_motion(mech, order=order))
 
 
-def motion_sample(mech: Mechanism, req: m.At, make: bool = True) -> Solution | None:
-    """The position a drawing asks for, taken from the whole motion kept for `mech` when it is
-    one of its samples (to the bit), else None (to be solved).
+#: samples of the whole motion per solve of `_Played` (each solve's end kept: a position between
+#: samples is marched from the nearest one, at most half of this many samples away)
+PLAY_CHUNK = 10
+
+
+class _Played:
+    """The whole motion's inputs solved by inputs, as `solve_at` solves them (the drivers'
+    constant speeds, not the motion laws' rates), in chunks of `PLAY_CHUNK` samples each going
+    on from where the one before left the path (`solve(..., resume=)`: the same numbers as one
+    solve) — so that every chunk's end is kept, for a position between samples to be marched
+    from (`carried`)."""
+
+    def __init__(self, mech: Mechanism, inputs: np.ndarray) -> None:
+        self.parts: list[Solution] = []
+        end = None
+        for lo in range(0, len(inputs), PLAY_CHUNK):
+            part = solve(mech, inputs[lo:lo + PLAY_CHUNK], resume=end)
+            self.parts.append(part)
+            end = part.path_end
+        self.inputs = inputs
+        self.weights = input_weights(mech)
+
+    def sample(self, n: int) -> Solution:
+        return self.parts[n // PLAY_CHUNK].sample(n % PLAY_CHUNK)
+
+    def carried(self, mech: Mechanism, values: np.ndarray | None, times: np.ndarray | None):
+        """The solve at `values` (one sample's inputs) or `times` (one time), its path going on
+        from the kept end nearest to its inputs (or from the design position, if that is
+        nearer): a march of a few samples' length instead of one from the design position."""
+        u = values if times is None else driver_samples(mech, times=times)[1]
+        design = np.array([mech.driver_input_at_design(d) for d in mech.drivers])
+        ends = [p.path_end for p in self.parts if p.path_end is not None]
+        dist = [np.linalg.norm((u[0] - design) * self.weights)] + \
+            [np.linalg.norm(u[0] * self.weights - e.vertex) for e in ends]
+        k = int(np.argmin(dist))
+        start = None if k == 0 else ends[k - 1]
+        if times is not None:
+            return solve(mech, times=times, resume=start)
+        return solve(mech, values, resume=start)
+
+
+def _one_position(mech: Mechanism, req: m.At) -> tuple | None:
+    """(values, times) of a request for one position of a mechanism of several drivers, one
+    of them None (each as `solve` takes them); None for any other request."""
+    if len(mech.drivers) < 2 or mech.given:
+        return None
+    if req.times is not None and len(req.times) == 1:
+        return None, np.asarray(req.times, float)
+    if req.at is not None and len(req.at) == 1 and isinstance(req.at[0], list) \
+            and len(req.at[0]) == len(mech.drivers):
+        return np.asarray(req.at, float), None
+    return None
+
+
+def _played_kept(mech: Mechanism) -> bool:
+    return MOTIONS.has(mech, ("motion", 2)) and MOTIONS.has(mech, "played")
+
+
+def motion_sample(mech: Mechanism, req: m.At) -> Solution | None:
+    """The position a drawing asks for, from the whole motion kept for `mech`: its sample when
+    the request's input (or time) is one of its samples (to the bit), else a solve whose path
+    goes on from the kept sample nearest to it; None when there is nothing kept to take it from
+    (to be solved as `solve_request` solves it).
 
     Only for several drivers: their solve follows the path of the inputs from the design
     position, so that a sample far along the motion costs a march of that length, while one
     driver's samples are solved each on its own from a march kept per mechanism. Asked by
     `times`: the whole motion's sample at that time (it is solved by times). Asked by `at`:
-    the whole motion's inputs solved by inputs (`solve_at`'s rates: the drivers' constant
-    speeds, not the motion laws'), kept beside it. `make`: False to take only what is kept
-    already (nothing is solved)."""
-    if len(mech.drivers) < 2 or mech.given:
+    the whole motion's inputs solved by inputs (`_Played`: `solve_at`'s rates), kept beside it.
+    The answers are `solve_at`'s to rounding (the march's path differs, not its branch)."""
+    asked = _one_position(mech, req)
+    if asked is None:
         return None
-    if req.times is not None and len(req.times) == 1:
-        what = ("motion", 2)
-    elif req.at is not None and len(req.at) == 1 and isinstance(req.at[0], list) \
-            and len(req.at[0]) == len(mech.drivers):
-        what = ("inputs", 2)
-    else:
-        return None
-    if not make and not MOTIONS.has(mech, what):
-        return None
+    values, times = asked
     try:
-        if what[0] == "motion":
-            sol = kept_motion(mech)
-            if sol.time is None:
-                return None
-            hits = np.flatnonzero(sol.time == float(req.times[0]))
-        else:
-            sol = _kept(mech, what, lambda: solve_at(mech, kept_motion(mech).inputs))
-            hits = np.flatnonzero((sol.inputs == np.asarray(req.at[0], float)).all(axis=1))
+        motion = kept_motion(mech)
+        played = _kept(mech, "played", lambda: _Played(mech, motion.inputs))
     except LinkworkError:  # no whole motion: the position is solved (and its error given) alone
         return None
-    return sol.sample(int(hits[0])) if hits.size else None
+    if times is not None:
+        hits = np.flatnonzero(motion.time == times[0]) if motion.time is not None else ()
+        if len(hits):
+            return motion.sample(int(hits[0]))
+    else:
+        hits = np.flatnonzero((played.inputs == values[0]).all(axis=1))
+        if hits.size:
+            return played.sample(int(hits[0]))
+    return played.carried(mech, values, times)
 
 
 def _json(doc) -> str:
@@ -378,8 +432,8 @@ def long_drawing(loaded: Loaded, req: m.DrawingRequest) -> bool:
     if req.motion:  # unless the whole motion is kept, and the position is one of its samples
         if not MOTIONS.has(mech, ("motion", 1)):
             return True
-        if motion_sample(mech, req, make=False) is not None:
-            return False
+        if _one_position(mech, req) is not None and _played_kept(mech) and not marching():
+            return False  # a sample, or a march of a few samples from the nearest one
     if loaded.previous is not None:  # (as the solve will: its plan takes the previous one's)
         follow(mech, loaded.previous)
     if not any(s.kind == "generic" for s in plan(mech)):
