@@ -149,7 +149,7 @@ def test_generic_newton_group_matches_closed_form_dyad(monkeypatch):
     mech = linkwork.load("library:pmks-stephenson-iii")
     phi = np.linspace(1.0, 2.3, 9)
     fast = linkwork.solve(mech, phi)
-    monkeypatch.setattr(groups.GroupSolver, "__init__", lambda self, m, g: (
+    monkeypatch.setattr(groups.GroupSolver, "__init__", lambda self, m, g, like=None: (
         setattr(self, "mech", m), setattr(self, "group", g),
         setattr(self, "kind", "driver" if g.drivers else "generic"), setattr(self, "parts", {}),
         setattr(self, "cam", None))[-1])

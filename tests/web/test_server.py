@@ -223,3 +223,23 @@ def test_the_servers_websocket_limit_is_the_apis(served):
     r = httpx.post(f"http://{served}/api/drawing", content=b" " * (MAX_BODY + 1),
                    headers={"content-type": "application/json"}, timeout=60)
     assert r.status_code == 413 and r.json()["kind"] == "BodyTooLarge"
+
+
+def test_a_frames_warnings_are_its_own_whichever_thread_computes_it():
+    """The over-closed pantograph's plan warns (made first to choose the thread): the warning
+    is the drawing's, in the loop and in a worker thread alike."""
+    app = create_app(None)
+    base = linkwork.load("library:pantograph")
+    point = next(iter(base.points))
+    frame = {"source": {"library": "pantograph", "points": {point: base.points[point].tolist()}},
+             "motion": False}
+    whole = {"source": {"library": "pantograph"}}
+
+    async def run():
+        transport = httpx.ASGITransport(app=app)
+        async with httpx.AsyncClient(transport=transport, base_url="http://test") as client:
+            return [await client.post("/api/drawing", json=r) for r in (frame, whole)]
+
+    for got in asyncio.run(run()):
+        assert got.status_code == 200, got.text
+        assert any("over-closed" in w for w in got.json()["warnings"]), got.json()["warnings"]

@@ -71,6 +71,7 @@ export type JointState = Record<string, number | [number | null, number | null] 
 
 /** A sample of `analyze --format json` (the full motion document). */
 export interface FullSample extends MotionSample {
+  time?: number | null; // seconds, where the driver has a time law
   condition: number | null;
   points: Record<string, PointState>;
   links: Record<string, LinkState>;
@@ -113,6 +114,7 @@ export interface DrawingRequest {
   point?: string;
   fit?: "motion" | "drawing";
   motion?: boolean;
+  view?: { lo: XY; hi: XY; per_mm: number }; // the mechanism panel's box and scale, instead of fit
 }
 
 /** An answer of the API that is not 2xx: its message, as the server wrote it. */

@@ -42,6 +42,7 @@ const ui = {
   slider: $<HTMLInputElement>("input-slider"),
   strip: $<HTMLDivElement>("status-strip"),
   inputValue: $<HTMLOutputElement>("input-value"),
+  inputTime: $<HTMLOutputElement>("input-time"),
   sampleStatus: $<HTMLOutputElement>("sample-status"),
   layers: $<HTMLFieldSetElement>("layers"),
   edit: $<HTMLInputElement>("edit"),
@@ -81,11 +82,13 @@ interface State {
   busy: boolean;
   again: boolean;
   generation: number; // drawings asked for a mechanism that is no longer open are dropped
+  broken: string | null; // the engine's message on an edited file that does not build
 }
 
 const state: State = {
   base: null, moved: {}, info: null, motion: null, full: null, motionSource: null, index: 0, playing: false,
   layers: new Set(), plan: null, construction: null, drawn: null, busy: false, again: false, generation: 0,
+  broken: null,
 };
 
 /** A drag's frame as it went (performance.now(), ms): the pointer's move (the event's own time
@@ -168,8 +171,12 @@ function drawingRequest(): DrawingRequest {
     if (c.point) req.point = c.point;
   } else if (state.plan) req.construction = state.plan;
   // while dragging (or moving a point by keys), the frames leave the whole motion out: they
-  // follow the pointer sooner
-  if (dragging || settling !== undefined) req.motion = false;
+  // follow the pointer sooner; and they keep the view (box and scale) of the drawing the drag
+  // began on, which the pointer is read in (fitted to the frame alone, the view would zoom)
+  if (dragging || settling !== undefined) {
+    req.motion = false;
+    if (held) req.view = { lo: held.lo, hi: held.hi, per_mm: held.per_mm };
+  }
   const traced = Array.from(ui.pathsOf.selectedOptions).map((o) => o.value);
   if (traced.length) req.paths = traced;
   return req;
@@ -178,6 +185,7 @@ function drawingRequest(): DrawingRequest {
 /** Ask for the drawing of the current state; while one is on its way, only the latest wish
  * is sent after it (dragging and playing never queue up). */
 async function redraw(): Promise<void> {
+  if (state.broken) return; // the last drawing of the file that built stays, greyed
   if (state.busy) {
     state.again = true;
     return;
@@ -195,6 +203,7 @@ async function redraw(): Promise<void> {
         const answer = await drawings.drawing(req);
         if (generation !== state.generation) continue;
         show(answer.body, req);
+        if (dragging && answer.body.status !== "unreachable" && aim()) state.again = true;
         if (asked) {
           const frame: Frame = { ...asked, sent, headers: answer.headers, parsed: answer.parsed,
             shown: performance.now(), painted: NaN, server: answer.server, via: answer.via };
@@ -546,6 +555,8 @@ async function open(base: Source, keep = false): Promise<boolean> {
     state.base = base;
     state.moved = {};
     state.info = info;
+    broken(null);
+    listOpened(base, keep);
     ui.editText.value = info.text;
     ui.title.textContent = info.name;
     ui.description.textContent = info.description;
@@ -591,6 +602,8 @@ interface StructureDoc {
   verdict: string;
   mechanism_class_roman: string | null;
   grashof: { name: string }[] | null;
+  groups: { links: string[]; joints: string[]; kind: string; name: string; class: number; order: number;
+    notes: string[] }[];
 }
 
 /** Mobility by the count and by the Jacobian, Assur class, Grashof type (`linkwork structure`). */
@@ -612,6 +625,19 @@ async function structure(base: Source): Promise<void> {
       dd.textContent = v;
       ui.structure.append(dt, dd);
     }
+    // the Assur groups in the order they are solved: the driving links, then each group
+    // (Strukturgruppe) with its class and kind, its links and its pairs
+    d.groups.forEach((g, k) => {
+      const dt = document.createElement("dt");
+      const dd = document.createElement("dd");
+      dt.textContent = `group ${k + 1}`;
+      dd.className = "group";
+      Object.assign(dd.dataset, { kind: g.kind, class: String(g.class), order: String(g.order),
+        links: g.links.join(" "), pairs: g.joints.join(" ") });
+      dd.textContent = `${g.name}: links ${g.links.join(", ")}; pairs ${g.joints.join(", ")}` +
+        (g.notes.length ? ` (${g.notes.join("; ")})` : "");
+      ui.structure.append(dt, dd);
+    });
   } catch (e) {
     ui.structure.textContent = messageOf(e);
   }
@@ -635,6 +661,7 @@ async function loadMotion(before: number[] = []): Promise<void> {
   // one stays where it was
   state.index = nearestSample(motion, before);
   ui.slider.value = String(state.index);
+  showTime();
   await redraw();
 }
 
@@ -691,20 +718,85 @@ function escapeHtml(s: string): string {
   return s.replace(/[&<>"']/g, (c) => `&#${c.charCodeAt(0)};`);
 }
 
+// the mechanism open from text (a file uploaded, an edit applied): the Mechanism list's entry
+// "text:" opens it again
+let fromText: Source | null = null;
+
 function sourceOf(value: string): Source {
   if (value.startsWith("library:")) return { library: value.slice(8) };
+  if (value === "text:" && fromText) return fromText;
   return { file: value.slice(5) };
+}
+
+/** The Mechanism list shows what is open: its library entry or working file, else an entry of
+ * its own for the text opened (choosing any other entry is then a change, and opens it). */
+function listOpened(base: Source, edited: boolean): void {
+  let value = base.library !== undefined ? `library:${base.library}` : `file:${base.file}`;
+  if (base.text !== undefined) {
+    value = "text:";
+    fromText = base;
+    let own = ui.mechanism.querySelector<HTMLOptionElement>('option[value="text:"]');
+    if (!own) {
+      own = document.createElement("option");
+      own.value = value;
+      ui.mechanism.append(own);
+    }
+    own.textContent = `${base.name ?? "mechanism"} (${edited ? "edited" : "uploaded"})`;
+  }
+  if (Array.from(ui.mechanism.options).some((o) => o.value === value)) ui.mechanism.value = value;
 }
 
 // ------------------------------------------------------------------ motion
 let timer: number | undefined;
+// play's clock: the wall clock (performance.now(), ms) and the motion's time (s) it started at
+let clock: { wall: number; time: number } | null = null;
+let run = 0; // each play's number: the frames of one paused before stop
+// the motion's time at each sample (s), for the motion it was made for
+let timeline: { motion: Motion; times: Promise<number[]>; known: number[] | null } | null = null;
+
+/** The motion's own time at each sample: the samples' times where the driver has a time law,
+ * else the input's travel over the driver's speed (the driving pair's ω or sliding velocity,
+ * from the whole motion), summed from the first sample. */
+function motionTimes(): Promise<number[]> {
+  const motion = state.motion as Motion;
+  if (timeline?.motion === motion) return timeline.times;
+  const driver = state.info?.drivers[0];
+  const times = fullMotion().then((full) => {
+    const s = full.samples;
+    if (s.length && s.every((x) => typeof x.time === "number")) return s.map((x) => x.time as number);
+    const rate = (x: FullSample): number => {
+      const j = driver ? x.joints[driver.joint] : undefined;
+      const v = j?.[driver?.kind === "prismatic" ? "sliding_velocity" : "omega"];
+      return typeof v === "number" ? Math.abs(v) : NaN;
+    };
+    const out = [0];
+    for (let k = 1; k < s.length; k++) {
+      const du = Math.abs(Number(s[k].input) - Number(s[k - 1].input));
+      const w = (rate(s[k]) + rate(s[k - 1])) / 2;
+      out.push(out[k - 1] + (Number.isFinite(w) && w > 0 ? du / w : 1 / 30));
+    }
+    return out;
+  }).catch(() => motion.samples.map((_, k) => k / 30)); // without the numbers: 30 samples a second
+  const entry = { motion, times, known: null as number[] | null };
+  void times.then((t) => { entry.known = t; if (timeline === entry) showTime(); });
+  timeline = entry;
+  return times;
+}
+
+function showTime(): void {
+  const t = timeline?.motion === state.motion ? timeline?.known?.[state.index] : undefined;
+  setText(ui.inputTime, t === undefined ? "" : `${t.toFixed(3)} s`);
+  ui.inputTime.dataset.time = t === undefined ? "" : String(t);
+}
 
 function play(): void {
-  if (!state.motion) return;
+  if (!state.motion || state.broken) return;
+  clock = null;
+  run += 1;
   state.playing = true;
   ui.play.textContent = "Pause";
   ui.play.setAttribute("aria-pressed", "true");
-  tick();
+  void tick(run);
 }
 
 function pause(): void {
@@ -715,31 +807,53 @@ function pause(): void {
   timer = undefined;
 }
 
-function tick(): void {
-  if (!state.playing || !state.motion) return;
-  const n = state.motion.samples.length;
-  // the whole motion of a rocker already runs to one limit, back to the other and forward:
-  // going round its samples plays it back and forth
-  const step = Math.max(1, Math.round(Number(ui.speed.value) * Math.max(1, n / 240)));
-  setIndex((state.index + step) % n);
+/** A frame of play: the sample at the motion's time the wall clock has come to (scaled by the
+ * speed), whatever samples that skips; the next frame when this one's drawing is back. */
+async function tick(playing: number): Promise<void> {
+  const motion = state.motion;
+  if (!state.playing || playing !== run || !motion) return;
+  const times = await motionTimes();
+  if (!state.playing || playing !== run || state.motion !== motion) return;
+  const n = times.length;
+  const now = performance.now();
+  if (!clock) clock = { wall: now, time: times[state.index] };
+  // the whole motion of a rocker already runs to one limit, back to the other and forward
+  // (a crank's, a turn): going round its samples plays it back and forth
+  const period = times[n - 1] - times[0];
+  let t = clock.time + ((now - clock.wall) / 1000) * Number(ui.speed.value);
+  if (period > 0) t = times[0] + ((((t - times[0]) % period) + period) % period);
+  let lo = 0, hi = n - 1; // the last sample at or before t
+  while (lo < hi) {
+    const mid = (lo + hi + 1) >> 1;
+    if (times[mid] <= t) lo = mid;
+    else hi = mid - 1;
+  }
+  if (lo !== state.index) setIndex(lo);
   const wait = () => {
-    if (state.busy) timer = window.setTimeout(wait, 8);
-    else timer = window.setTimeout(tick, 33);
+    if (!state.playing || playing !== run) return;
+    if (state.busy) timer = window.setTimeout(wait, 4);
+    else requestAnimationFrame(() => void tick(playing));
   };
   wait();
 }
 
 function setIndex(k: number): void {
+  if (state.broken) return;
   state.index = k;
   ui.slider.value = String(k);
+  showTime();
   void redraw();
 }
 
 // ------------------------------------------------------------------ editing
 // a drag reads the pointer in the drawing it started on (its screen placement and its world
-// transform), whatever layouts the drawings redrawn meanwhile have; the point's new design
-// coordinates put it under the pointer in the pose its link had when the drag started
-let dragging: { name: string; transform: Transform; screen: DOMMatrix; pose: [number, number, number] } | null = null;
+// transform); the point's new design coordinates put it under the pointer in the pose its link
+// has in the latest frame drawn. Moving the point moves its link (a hinge changes the lengths
+// of the chain): each frame drawn corrects the design coordinates by its own pose, until the
+// point is drawn under the pointer (a fixed-point iteration, a few frames)
+let dragging: { name: string; transform: Transform; screen: DOMMatrix; pointer: XY | null; corrections: number } | null = null;
+// the mechanism panel's view while a drag or the keys move points: that of the drawing they began on
+let held: Transform | null = null;
 
 function screenToSvg(): DOMMatrix | null {
   const ctm = ui.drawing.querySelector("svg")?.getScreenCTM();
@@ -767,7 +881,7 @@ function nearestPoint(q: XY, t: Transform): string | null {
 }
 
 ui.drawing.addEventListener("pointerdown", (ev) => {
-  if (!state.drawn) return;
+  if (!state.drawn || state.broken) return;
   if (!ui.edit.checked) { // a click selects what it hits
     const t = state.drawn.transforms["mechanism"];
     const screen = screenToSvg();
@@ -783,7 +897,8 @@ ui.drawing.addEventListener("pointerdown", (ev) => {
   const pose = name && state.info ? state.drawn.poses[state.info.owners[name]] : null;
   if (!name || !pose) return;
   pause();
-  dragging = { name, transform: t, screen, pose };
+  dragging = { name, transform: t, screen, pointer: null, corrections: 0 };
+  held = t;
   ui.drawing.setPointerCapture(ev.pointerId);
   ev.preventDefault();
 });
@@ -791,16 +906,34 @@ ui.drawing.addEventListener("pointerdown", (ev) => {
 ui.drawing.addEventListener("pointermove", (ev) => {
   if (!dragging) return;
   movedAt = { event: ev.timeStamp, handler: performance.now() };
-  const w = toWorld(dragging.transform, svgPoint(ev, dragging.screen));
-  const [x, y, th] = dragging.pose;
-  const c = Math.cos(th), s = Math.sin(th);
-  state.moved[dragging.name] = [c * (w[0] - x) + s * (w[1] - y), -s * (w[0] - x) + c * (w[1] - y)];
+  dragging.pointer = toWorld(dragging.transform, svgPoint(ev, dragging.screen));
+  dragging.corrections = 0;
+  aim();
   void redraw();
 });
+
+/** While dragging: the dragged point's design coordinates that put it under the pointer in the
+ * pose its link has in the drawing shown; whether they differ from those asked for by more than
+ * a hundredth of a mm of paper (a frame is then due, at most 12 for a place of the pointer). */
+function aim(): boolean {
+  const d = dragging, info = state.info, drawn = state.drawn;
+  if (!d || !d.pointer || !info || !drawn) return false;
+  const pose = drawn.poses[info.owners[d.name]];
+  if (!pose) return false; // not assembled: the pointer's next move asks again
+  const [x, y, th] = pose;
+  const c = Math.cos(th), s = Math.sin(th);
+  const w = d.pointer;
+  const want: XY = [c * (w[0] - x) + s * (w[1] - y), -s * (w[0] - x) + c * (w[1] - y)];
+  const had = state.moved[d.name];
+  state.moved[d.name] = want;
+  const off = had ? Math.hypot(want[0] - had[0], want[1] - had[1]) : Infinity;
+  return off > 0.01 * d.transform.per_mm && d.corrections++ < 12;
+}
 
 const endDrag = () => {
   if (!dragging) return;
   dragging = null;
+  held = null;
   state.generation += 1;
   void loadMotion(sampleInput(state.index)).catch((e) => showError(messageOf(e)));
 };
@@ -882,8 +1015,29 @@ async function applyText(text: string): Promise<void> {
   ui.editText.value = text;
   ui.editor.dataset.applied = "pending";
   const ok = await open({ text, name: label }, true);
-  if (!ok) ui.editText.value = text;
+  if (!ok) {
+    ui.editText.value = text;
+    broken(ui.error.textContent ?? "");
+  }
   ui.editor.dataset.applied = ok ? "ok" : "error";
+}
+
+/** An edited file that does not build (`message`: the engine's), or none (null). Until a file
+ * builds, the page shows the last good drawing greyed with the message, and nothing moves or
+ * draws the old mechanism: play, the slider and dragging are off. */
+function broken(message: string | null): void {
+  state.broken = message;
+  ui.play.disabled = ui.slider.disabled = message !== null;
+  if (message === null) return;
+  pause();
+  state.generation += 1; // (a drawing of the old mechanism on its way is dropped)
+  dragging = null;
+  held = null;
+  if (settling !== undefined) window.clearTimeout(settling);
+  settling = undefined;
+  ui.drawing.classList.add("stale");
+  showError(message);
+  ui.sampleStatus.textContent = "error";
 }
 
 function showEditFields(): void {
@@ -905,13 +1059,15 @@ let settling: number | undefined; // the timer of that, while keys move points
  * a drag; the whole motion of the new design follows when the keys rest. */
 function nudge(name: string, by: XY): void {
   const info = state.info;
-  if (!info) return;
+  if (!info || state.broken) return;
   const at = state.moved[name] ?? info.points[name];
   state.moved[name] = [at[0] + by[0], at[1] + by[1]];
   pause();
   if (settling !== undefined) window.clearTimeout(settling);
+  else held = state.drawn?.transforms["mechanism"] ?? null;
   settling = window.setTimeout(() => {
     settling = undefined;
+    held = null;
     state.generation += 1;
     void loadMotion(sampleInput(state.index)).catch((e) => showError(messageOf(e)));
   }, SETTLE);
@@ -964,6 +1120,7 @@ ui.editApply.addEventListener("click", () => {
 });
 ui.editTextApply.addEventListener("click", () => void applyText(ui.editText.value));
 ui.play.addEventListener("click", () => (state.playing ? pause() : play()));
+ui.speed.addEventListener("change", () => { clock = null; }); // play's clock starts again where it is
 ui.slider.addEventListener("input", () => {
   pause();
   setIndex(Number(ui.slider.value));

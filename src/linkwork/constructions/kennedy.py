@@ -69,7 +69,7 @@ def kennedy(mech: Mechanism, inputs) -> Construction:
             else:
                 ln, through = _normal(sol, src.joint)
                 texts.append(f"the contact normal of {src.joint}")
-                lines.append((ln, (through,)))
+                lines.append((ln, through))
         b.step(f"{lab} = {texts[0]} \u2229 {texts[1]} (three-pole theorem).")
         keys = []
         for k, (ln, through) in enumerate(lines[:2]):

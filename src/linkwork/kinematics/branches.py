@@ -26,9 +26,7 @@ keep the design's signs (their change points form curves in the input space).
 
 from __future__ import annotations
 
-import threading
 import warnings
-from collections import OrderedDict
 from dataclasses import dataclass
 from functools import lru_cache
 
@@ -38,6 +36,7 @@ from ..errors import LinkworkWarning
 from ..model import Mechanism
 from .contact import rows
 from .groups import GroupSolver, State, drawn_alike, input_coefficients
+from .kept import Kept
 
 BRANCHING = ("RRR", "RRP", "rod-in-slot")  # closed forms that choose between two assemblies
 SCAN = 2048  # input samples per turn (or per 8 length scales of a prismatic input)
@@ -155,17 +154,12 @@ def branch_schedule(mech: Mechanism) -> dict:
                 _warn_drawn_at_change(mech, s)
     else:
         found, flagged = _scan_schedule(mech, solvers)
-    with _schedules_lock:
-        _schedules[mech] = (groups, found, flagged)
-        while len(_schedules) > SCHEDULES_KEPT:
-            _schedules.popitem(last=False)
+    _schedules.put(mech, (groups, found, flagged))
     return found
 
 
 #: mechanism -> (its groups, its schedule, the groups drawn at a change point), the last few
-_schedules: OrderedDict = OrderedDict()
-_schedules_lock = threading.Lock()
-SCHEDULES_KEPT = 8
+_schedules = Kept(8)
 
 
 def _warn_drawn_at_change(mech: Mechanism, s: GroupSolver) -> None:
@@ -420,14 +414,13 @@ def path_schedule(mech: Mechanism, solvers: tuple[GroupSolver, ...], values: np.
                 _touches(fn, grid, first_new, new, merge)
             points += [c for c in new if not any(abs(c - p) < merge for p in points)]
         found[s.group] = PathSchedule(sign, tuple(sorted(points)))
-    if start is None:
-        with _schedules_lock:
-            _path_schedules[mech] = (groups, path.knots, path.vertices, dict(found))
-            while len(_path_schedules) > SCHEDULES_KEPT:
-                _path_schedules.popitem(last=False)
+    if start is None and len(path.vertices) <= PATH_KEPT_VERTICES:
+        _path_schedules.put(mech, (groups, path.knots, path.vertices, dict(found)))
     return found, lam_samples, path
 
 
 #: mechanism -> (its groups, the knots and vertices of its last path from the design input,
-#: the schedule along it), the last few
-_path_schedules: OrderedDict = OrderedDict()
+#: the schedule along it), the last few; paths of a few vertices only (a drag's frames: one or
+#: two), not a long batch's
+_path_schedules = Kept(8)
+PATH_KEPT_VERTICES = 64

@@ -16,8 +16,6 @@ order 2. Every link's cos θ and sin θ are kept once in `State.T`.
 
 from __future__ import annotations
 
-import threading
-from collections import OrderedDict
 from dataclasses import dataclass, field, replace
 from functools import cached_property
 from math import factorial
@@ -29,6 +27,7 @@ from ..topology import Group
 from . import cam_group, contact, intermittent
 from .constraints import PairTable, driver_residual, joint_residuals, pair_table
 from .jet import Jet
+from .kept import Kept
 
 NEWTON_TOL = 1e-12  # relative to the mechanism's length scale
 LIMIT_RESIDUAL = 1e-8  # … a pose closed this well at a limit position is returned (singular)
@@ -202,27 +201,21 @@ def pair_table_of(mech: Mechanism, group: Group) -> PairTable | None:
 
 
 #: (mechanism, group) -> its pair table; -> a mechanism whose table of the group it may take
-_tables: OrderedDict = OrderedDict()
-_tables_like: OrderedDict = OrderedDict()
-TABLES_KEPT = 256
-_tables_lock = threading.Lock()
+_tables = Kept(256)
+_tables_like = Kept(256)
 
 
 def _pair_table(mech: Mechanism, group: Group) -> PairTable | None:
     key = (mech, group)
-    try:
-        return _tables[key]
-    except KeyError:
-        pass
+    table = _tables.get(key, _NONE)
+    if table is not _NONE:
+        return table
     like = _tables_like.get(key)
     table = _tables.get((like, group), _NONE) if like is not None else _NONE
     if table is _NONE:
         table = pair_table(mech, group.links, group.joints, group.drivers, group.wedge_pairs,
                            contact.row_index(mech))
-    with _tables_lock:  # (a server solves in several threads)
-        _tables[key] = table
-        while len(_tables) > TABLES_KEPT:
-            _tables.popitem(last=False)
+    _tables.put(key, table)
     return table
 
 
@@ -530,10 +523,7 @@ class GroupSolver:
             # the group drawn as in `like`'s mechanism (a drag's previous frame): its constants
             # are the same numbers, taken over instead of computed again
             self.__dict__["fast"] = like.fast
-            with _tables_lock:
-                _tables_like[(mech, self.group)] = like.mech
-                while len(_tables_like) > TABLES_KEPT:
-                    _tables_like.popitem(last=False)
+            _tables_like.put((mech, self.group), like.mech)
         self.fast  # noqa: B018  (computed once here; `plan` keeps the solver per mechanism)
 
     @property

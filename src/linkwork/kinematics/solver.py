@@ -10,12 +10,12 @@ from __future__ import annotations
 
 import sys
 import threading
-from collections import OrderedDict
+import warnings
 from functools import lru_cache
 
 import numpy as np
 
-from ..errors import InputError, StructureError
+from ..errors import InputError, LinkworkWarning, StructureError
 from ..model import ConstantSpeed, Mechanism, Prismatic
 from ..topology import solution_order
 from .branches import branch_schedule, path_schedule
@@ -23,6 +23,7 @@ from . import fused, kernels
 from .contact import interference, rows
 from .continuation import PathEnd, continuation_guesses, follow, lineage
 from .groups import GroupSolver, State, input_coefficients
+from .kept import Kept
 from .precision import POLISH_LIMIT, TOLERANCE, ErrorBudget, polish, polishable
 from .solution import Solution, Status
 
@@ -54,18 +55,13 @@ def plan(mech: Mechanism) -> tuple[GroupSolver, ...]:
     previous = lineage(mech)
     kept = _plans.get(previous) if previous is not None else None
     like = {s.group: s for s in kept} if kept is not None else {}
-    out = tuple(GroupSolver(mech, g, like.get(g)) for g in order)
-    with _plans_lock:
-        _plans[mech] = out
-        while len(_plans) > PLANS_KEPT:
-            _plans.popitem(last=False)
+    out = tuple(GroupSolver(mech, g, like[g]) if g in like else GroupSolver(mech, g) for g in order)
+    _plans.put(mech, out)
     return out
 
 
 #: the last plans made, for the next frame of a drag to take constants from (`plan`)
-_plans: OrderedDict = OrderedDict()
-_plans_lock = threading.Lock()
-PLANS_KEPT = 8
+_plans = Kept(8)
 
 
 #: pose arrays of this many bytes and more (up to `SPARE_UP_TO`) are taken from the memory of
@@ -206,9 +202,49 @@ def driver_samples(mech: Mechanism, inputs=None, times=None, velocities=None,
     if inputs is None:
         inputs = [[mech.driver_input_at_design(d) for d in mech.drivers]]
     values = _as_2d(inputs, nd, "inputs")
+    if all(a is None for a in (velocities, accelerations, jerks, snaps)):
+        velocities, accelerations, jerks, snaps = _law_rates(mech, values)
     return (None, values, *(_as_2d(a, nd, name, rows=values.shape[0]) for a, name in (
         (velocities, "velocities"), (accelerations, "accelerations"), (jerks, "jerks"),
         (snaps, "snaps"))))
+
+
+def _law_rates(mech: Mechanism, values: np.ndarray) -> tuple:
+    """The rates of drivers that follow a motion law of time, at input values: the law's at
+    the time it takes the sample's value (`MotionLaw.time_of`), which every such driver must
+    reach at one time. Where none is (a law that goes back, a value outside its span, drivers
+    whose laws reach their values at different times) the rates are not known: NaN, and a
+    warning naming the drivers. Constant speeds (the common case: None, the default rows) and
+    laws that stand still need no time."""
+    moving = [i for i, d in enumerate(mech.drivers)
+              if not isinstance(d.law, ConstantSpeed) and not d.law.still]
+    if not moving:
+        return None, None, None, None
+    N, nd = values.shape
+    ts = np.stack([mech.drivers[i].law.time_of(values[:, i]) for i in moving], axis=-1)
+    span = max(mech.drivers[i].law.duration for i in moving)
+    known = np.all(np.isfinite(ts), axis=1) & \
+        (np.ptp(ts, axis=1) <= 1e-9 * span if len(moving) > 1 else True)
+    rates = np.zeros((4, N, nd))
+    for i, d in enumerate(mech.drivers):
+        if isinstance(d.law, ConstantSpeed):
+            rates[0, :, i] = d.law.speed
+    for k, i in enumerate(moving):
+        rates[:, :, i] = mech.drivers[i].law.derivatives(np.nan_to_num(ts[:, k]))[1:5]
+    if not known.all():
+        rates[:, ~known] = np.nan
+        names = ", ".join(f"'{mech.drivers[i].joint}'" for i in moving)
+        warnings.warn(
+            f"mechanism '{mech.name}': " + (
+                f"driver {names} follows a motion law of time, and at {int((~known).sum())} "
+                f"of {N} input values the law does not take the value at exactly one time"
+                if len(moving) == 1 else
+                f"drivers {names} follow motion laws of time, and at {int((~known).sum())} of "
+                f"{N} input values their laws do not take the values at exactly one common "
+                "time") +
+            ": the rates there are not known (NaN); solve at times, or give the rates",
+            LinkworkWarning, stacklevel=4)
+    return tuple(rates)
 
 
 def solve(mech: Mechanism, inputs=None, *, times=None, velocities=None, accelerations=None,

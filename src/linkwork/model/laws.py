@@ -25,6 +25,44 @@ class MotionLaw:
     def duration(self) -> float | None:
         return None
 
+    def time_of(self, values: np.ndarray) -> np.ndarray:
+        """The time in [0, duration] at which the law takes each input value, NaN where it takes
+        it at no time or (a law that goes back) at more than one; a law that stands still takes
+        its value at every time: NaN too (`still` says so). Found on a table of the law over its
+        span and polished by Newton's method, to rounding."""
+        values = np.asarray(values, dtype=float)
+        T = self.duration
+        if not T:
+            return np.full(values.shape, np.nan)
+        grid = np.linspace(0.0, T, TIME_TABLE)
+        table = self.derivatives(grid)[0]
+        step = np.diff(table)
+        if not (np.all(step > 0) or np.all(step < 0)):
+            return np.full(values.shape, np.nan)
+        order = slice(None) if step[0] > 0 else slice(None, None, -1)
+        lo, hi = table[order][0], table[order][-1]
+        tol = 1e-12 * max(abs(lo), abs(hi), hi - lo)
+        t = np.interp(values, table[order], grid[order])
+        for _ in range(4):
+            d = self.derivatives(t)
+            with np.errstate(divide="ignore", invalid="ignore"):
+                t = np.clip(t - np.where(d[1] != 0, (d[0] - values) / d[1], 0.0), 0.0, T)
+        inside = (values >= lo - tol) & (values <= hi + tol)
+        return np.where(inside, t, np.nan)
+
+    @property
+    def still(self) -> bool:
+        """Whether the input stands still (a law of one value: a reversing arm set once)."""
+        T = self.duration
+        if not T:
+            return False
+        rates = self.derivatives(np.linspace(0.0, T, TIME_TABLE))[1:]
+        return bool(np.all(rates == 0.0))
+
+
+#: the table a law is inverted on (`MotionLaw.time_of`): Newton's method polishes from it
+TIME_TABLE = 1025
+
 
 @dataclass(frozen=True)
 class ConstantSpeed(MotionLaw):

@@ -489,8 +489,12 @@ def _figure(mech: Mechanism, sol: Solution, req: m.DrawingRequest):
     from ..drawing import Scene, scene_figure
 
     sc = Scene(mech, sol)
-    # what the layers draw when the whole motion is not known, or the one kept (`Scene.motion`)
-    sc.motion = _scene_motion(mech) if req.motion else None
+    if req.motion:
+        sc.motion = _scene_motion(mech)  # the whole motion kept (`Scene.motion`)
+    if req.view is not None and not req.construction:
+        sc.scales = sc.auto_scales(length=req.view.per_mm)  # (a construction has its own)
+    if not req.motion:
+        sc.motion = None  # what the layers draw when the whole motion is not known
     con = None
     steps: list[str] = []
     if req.construction:
@@ -515,7 +519,9 @@ def _figure(mech: Mechanism, sol: Solution, req: m.DrawingRequest):
         if not req.paths:
             layers = [n for n in layers if n != "paths"]
     fig = scene_figure(sc, layers, construction=con, step=req.step, paths=req.paths or None)
-    if req.fit == "motion" and con is None and req.motion:
+    if req.view is not None:
+        fig.view["mechanism"] = (np.array(req.view.lo, float), np.array(req.view.hi, float))
+    elif req.fit == "motion" and con is None and req.motion:
         fig.view["mechanism"] = sc.box(grow=0.12)
     return fig, steps
 
@@ -697,9 +703,12 @@ def create_app(workdir: str | Path | None = None, *, compiled: bool = False) -> 
         anyway). What may take long (`long_drawing`: the whole motion, or a march from the
         design position) goes to a worker thread, so that it holds no other request up."""
         stage = Stages()
-        with _warnings(compiled) as warned, stage("load"):
-            loaded = load(req.source)
-        if long_drawing(loaded, req):
+        with _warnings(compiled) as warned:
+            with stage("load"):
+                loaded = load(req.source)
+            with stage("solve"):  # (its plan, which the solve would make: its warnings too)
+                long = long_drawing(loaded, req)
+        if long:
             return await run_in_threadpool(drawn, req, loaded, warned, stage, stage.cpu())
         return drawn(req, loaded, warned, stage)
 

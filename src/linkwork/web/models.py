@@ -99,6 +99,21 @@ class ConstructionRequest(At):
     link: Optional[Name] = None
 
 
+class View(Strict):
+    """A mechanism panel's world box and scale (a drawing's `transforms["mechanism"]`)."""
+
+    lo: tuple[Number, Number]
+    hi: tuple[Number, Number]
+    per_mm: float = Field(gt=0, le=MAX_MAGNITUDE, allow_inf_nan=False,
+                          description="world length per mm of paper")
+
+    @model_validator(mode="after")
+    def _size(self) -> "View":
+        if not (self.hi[0] > self.lo[0] and self.hi[1] > self.lo[1]):
+            raise ValueError("hi must exceed lo in x and in y (a box of positive size)")
+        return self
+
+
 class DrawingRequest(At):
     """One position drawn with the layers of `linkwork draw --show` and, optionally, a
     construction up to `step` (0-based; all steps if omitted)."""
@@ -118,6 +133,9 @@ class DrawingRequest(At):
     fit: Literal["motion", "drawing"] = Field(
         "motion", description="motion: the panel fits the whole motion, so that frames of an "
                               "animation share one layout; drawing: it fits what is drawn")
+    view: Optional[View] = Field(
+        None, description="the mechanism panel's box and scale, instead of `fit` (a drag's "
+                          "frames keep the view of the drawing the drag began on)")
 
 
 class PngRequest(DrawingRequest):

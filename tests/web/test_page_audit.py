@@ -1,0 +1,265 @@
+"""The workbench page's defects found by the acceptance audit of issue 12, each in a real browser
+(the fixtures of test_page.py): what the page shows is compared with the Python API (the
+engine's solve of the moved design, the driver's law, the structure), never with the page's own
+output."""
+
+from __future__ import annotations
+
+import json
+import math
+import time
+
+import numpy as np
+import pytest
+
+import linkwork
+from linkwork.io import load_text, resolve
+
+from test_page import MECH, browser, drawn_input, page, server, wait_drawn  # noqa: F401 (fixtures)
+
+pytestmark = pytest.mark.filterwarnings("ignore::DeprecationWarning")
+
+TEXT = resolve("library:crank-rocker")[1]
+
+
+def _transform(page) -> dict:
+    return json.loads(page.get_attribute("#drawing", "data-transform"))
+
+
+def _screen(page, xy) -> tuple[float, float]:
+    """Where on the screen the world point `xy` is drawn in the drawing shown (its transform
+    and the SVG's placement in the page)."""
+    return tuple(page.eval_on_selector("#drawing svg", """(svg, [t, p]) => {
+        const x = t.origin[0] + (p[0] - t.lo[0]) / t.per_mm, y = t.origin[1] + (t.hi[1] - p[1]) / t.per_mm;
+        const q = new DOMPoint(x, y).matrixTransform(svg.getScreenCTM());
+        return [q.x, q.y]; }""", [_transform(page), list(map(float, xy))]))
+
+
+def _world(page, screen) -> np.ndarray:
+    """The world point of the drawing shown under the screen point `screen`."""
+    return np.array(page.eval_on_selector("#drawing svg", """(svg, [t, s]) => {
+        const q = new DOMPoint(s[0], s[1]).matrixTransform(svg.getScreenCTM().inverse());
+        return [t.lo[0] + (q.x - t.origin[0]) * t.per_mm, t.hi[1] - (q.y - t.origin[1]) * t.per_mm]; }""",
+        [_transform(page), list(map(float, screen))]))
+
+
+def _moved(page) -> dict:
+    return json.loads(page.get_attribute("#drawing", "data-moved") or "{}")
+
+
+def _settled(page) -> None:
+    """Wait until the page has drawn what it asks for: the moved points and the input drawn
+    unchanged for 300 ms."""
+    last, since = None, time.monotonic()
+    deadline = since + 20
+    while time.monotonic() - since < 0.3:
+        assert time.monotonic() < deadline, "the drag's frames did not settle"
+        now = (page.get_attribute("#drawing", "data-moved"), page.get_attribute("#drawing", "data-input"))
+        if now != last:
+            last, since = now, time.monotonic()
+        page.wait_for_timeout(40)
+
+
+def _engine_point(page, point: str) -> np.ndarray:
+    """The engine's position of `point` in the design the page draws (the file with the moved
+    points written in), solved at the input drawn."""
+    text = TEXT
+    for name, (x, y) in _moved(page).items():
+        line = next(ln for ln in TEXT.splitlines() if ln.split("=")[0].strip() == name)
+        text = text.replace(line, f"{name} = [{x!r}, {y!r}]")
+    mech = load_text(text)
+    return linkwork.solve(mech, drawn_input(page)).point(point).position[0]
+
+
+def _go_to(page, degrees: float) -> None:
+    sol = linkwork.whole_motion(MECH)
+    k = int(np.argmin(np.abs(sol.inputs[:, 0] - math.radians(degrees))))
+    page.focus("#input-slider")
+    for _ in range(k):
+        page.keyboard.press("ArrowRight")
+    wait_drawn(page, lambda: drawn_input(page) == pytest.approx([sol.inputs[k, 0]], abs=1e-15),
+               f"go to {degrees}°")
+
+
+def test_a_drag_keeps_the_view_and_the_point_under_the_pointer(page):
+    """Crank-rocker at its design sample, B dragged 60 px right and 40 px up in 10 steps: every
+    frame is drawn at the scale of the drawing the drag began on, and B (the engine's solve of
+    the moved design) is drawn under the pointer."""
+    page.check("#edit")
+    page.wait_for_timeout(300)
+    scale = _transform(page)["per_mm"]
+    b0 = MECH.points["B"]
+    start = _screen(page, b0)
+    page.mouse.move(*start)
+    page.mouse.down()
+    for k in range(1, 11):
+        pointer = (start[0] + 6 * k, start[1] - 4 * k)
+        page.mouse.move(*pointer)
+        wait_drawn(page, lambda: "B" in _moved(page), "draw the first frame")
+        _settled(page)
+        assert _transform(page)["per_mm"] == scale, f"the view zoomed at step {k}"
+        got = _screen(page, _engine_point(page, "B"))
+        assert math.dist(got, pointer) < 2.0, (k, got, pointer)  # px
+    page.mouse.up()
+
+
+@pytest.mark.parametrize("view, message", [
+    ({"lo": [0, 0], "hi": [0, 10], "per_mm": 0.5}, "hi must exceed lo"),
+    ({"lo": [0, 0], "hi": [10, 10], "per_mm": 0}, "greater than 0"),
+    ({"lo": [0, 0], "hi": [10, 10], "per_mm": 1e13}, "less than or equal"),
+])
+def test_a_drawings_view_is_validated(view, message):
+    from fastapi.testclient import TestClient
+    from linkwork.web import create_app
+
+    client = TestClient(create_app(None), raise_server_exceptions=False)
+    r = client.post("/api/drawing", json={"source": {"library": "crank-rocker"}, "view": view})
+    assert r.status_code == 422 and message in r.json()["error"], r.text
+    # a valid one is the panel's box and scale, whatever the frame draws
+    view = {"lo": [-50.0, -40.0], "hi": [70.0, 60.0], "per_mm": 1.0}
+    r = client.post("/api/drawing", json={"source": {"library": "crank-rocker", "points": {"B": [31, 31]}},
+                                          "motion": False, "view": view})
+    t = r.json()["transforms"]["mechanism"]
+    assert (t["lo"], t["hi"], t["per_mm"]) == (view["lo"], view["hi"], view["per_mm"])
+
+
+def test_a_dragged_hinge_ends_under_the_pointer_away_from_the_design_position(page):
+    """Crank-rocker at 130°, the hinge B dragged about 3 mm: moving B changes the coupler's pose
+    (its lengths change), so the design coordinates read through the pose at the drag's start
+    put B off the pointer; the page corrects them frame by frame until the engine's B of the
+    moved design is where the pointer is (to the screen's pixel, read back exactly)."""
+    _go_to(page, 130.0)
+    page.check("#edit")
+    page.wait_for_timeout(300)
+    b = linkwork.solve(MECH, drawn_input(page)).point("B").position[0]
+    start = _screen(page, b)
+    end = tuple(round(v) for v in _screen(page, b + np.array([2.0, 2.2])))
+    target = _world(page, end)  # the world point under the pixel the pointer ends on
+    page.mouse.move(*start)
+    page.mouse.down()
+    for f in np.linspace(0, 1, 6)[1:]:
+        page.mouse.move(start[0] + f * (end[0] - start[0]), start[1] + f * (end[1] - start[1]))
+        page.wait_for_timeout(40)
+    wait_drawn(page, lambda: "B" in _moved(page), "draw the drag")
+    _settled(page)
+    got = _engine_point(page, "B")
+    page.mouse.up()
+    assert np.linalg.norm(target - b) == pytest.approx(3.0, abs=0.3)
+    assert np.linalg.norm(got - target) < 0.01, (got, target)  # mm
+
+
+def _play_rate(page, factor: str) -> tuple[float, float]:
+    """Play at the speed `factor` for about 1.5 s: how fast the drawn input (rad/s) and the
+    time shown (s/s) advanced against the wall clock."""
+    page.select_option("#speed", factor)
+    period = 2 * math.pi / MECH.drivers[0].law.speed  # a turn of the crank (s)
+    page.click("#play")
+    page.wait_for_timeout(300)
+    read = """() => [performance.now(), JSON.parse(document.getElementById('drawing').dataset.input)[0],
+                     Number(document.getElementById('input-time').dataset.time)]"""
+    seen = [page.evaluate(read)]
+    while seen[-1][0] - seen[0][0] < 1500:
+        page.wait_for_timeout(40)
+        seen.append(page.evaluate(read))
+    page.click("#play")
+    wall = (seen[-1][0] - seen[0][0]) / 1000
+    turned = sum(math.remainder(b[1] - a[1], 2 * math.pi) for a, b in zip(seen, seen[1:]))
+    passed = sum(math.remainder(b[2] - a[2], period) for a, b in zip(seen, seen[1:]))
+    return turned / wall, passed / wall
+
+
+def test_play_goes_at_the_motions_own_time(page):
+    """The crank turns at 60 rpm (the file's driver law, 2π rad/s): played at 1× the drawn input
+    turns at about that rate and the time shown goes with the wall clock; at ½× both go about
+    half as fast (generous bounds: the machine is shared)."""
+    speed = MECH.drivers[0].law.speed
+    assert speed == pytest.approx(2 * math.pi)
+    turned, passed = _play_rate(page, "1")
+    slow, slow_passed = _play_rate(page, "0.5")
+    assert 0.6 < turned / speed < 1.4 and 0.3 < slow / speed < 0.7, (turned, slow)
+    assert 0.35 < slow / turned < 0.7
+    assert 0.6 < passed < 1.4 and 0.3 < slow_passed < 0.7, (passed, slow_passed)
+    # the time shown is the engine's: the input turned from the motion's first sample at the speed
+    sol = linkwork.whole_motion(MECH)
+    k = int(page.input_value("#input-slider"))
+    shown = float(page.get_attribute("#input-time", "data-time"))
+    assert shown == pytest.approx((sol.inputs[k, 0] - sol.inputs[0, 0]) / speed, abs=1e-9)
+
+
+@pytest.mark.parametrize("name", ["crank-rocker", "heusinger-valve-gear"])
+def test_the_structure_panel_shows_the_assur_groups(page, name):
+    """Each Assur group of `linkwork.structure.assur_groups`, in order: its name (kind, class,
+    order), its links and its pairs."""
+    from linkwork.structure import assur_groups
+
+    mech = linkwork.load(f"library:{name}")
+    if name != "crank-rocker":
+        page.select_option("#mechanism", f"library:{name}")
+        wait_drawn(page, lambda: page.inner_text("#title") == mech.name, f"open {name}", timeout=120)
+    want = assur_groups(mech)
+    wait_drawn(page, lambda: page.locator("#structure dd.group").count() == len(want), "show the groups")
+    shown = page.locator("#structure dd.group").evaluate_all(
+        "dds => dds.map(d => [d.textContent, {...d.dataset}])")
+    for (text, data), g in zip(shown, want):
+        assert data["links"].split() == list(g.links) and data["pairs"].split() == list(g.joints)
+        assert (data["kind"], int(data["class"]), int(data["order"])) == (g.kind, g.assur_class, g.order)
+        assert text.startswith(f"{g.name}: links {', '.join(g.links)}; pairs {', '.join(g.joints)}")
+    assert any(g.assur_class == 3 for g in want) == (name == "heusinger-valve-gear")
+
+
+def test_an_uploaded_file_is_the_mechanism_listed(page):
+    """After an upload the Mechanism list shows the uploaded file, so choosing the library entry
+    open before opens it again (a change), and the upload's entry opens the upload."""
+    text = TEXT.replace("C  = [15, 25]", "C  = [18, 27]").replace("Crank-rocker four-bar", "Uploaded four-bar")
+    mech = load_text(text)
+    page.set_input_files("#upload", files=[{"name": "mine.toml", "mimeType": "text/plain",
+                                             "buffer": text.encode()}])
+    wait_drawn(page, lambda: page.inner_text("#title") == mech.name, "open the upload")
+    assert page.input_value("#mechanism") != "library:crank-rocker"
+    assert "mine.toml" in page.eval_on_selector("#mechanism", "s => s.selectedOptions[0].textContent")
+
+    def c_shown():
+        cells = page.locator("#numbers tr[data-point='C'] td").all_inner_texts()
+        return float(cells[1]), float(cells[2])
+
+    wait_drawn(page, lambda: c_shown() == pytest.approx(tuple(mech.points["C"]), abs=1e-4), "draw the upload")
+    page.select_option("#mechanism", "library:crank-rocker")
+    wait_drawn(page, lambda: page.inner_text("#title") == MECH.name, "open the library entry again")
+    wait_drawn(page, lambda: c_shown() == pytest.approx(tuple(MECH.points["C"]), abs=1e-4), "draw it")
+    page.select_option("#mechanism", label="mine.toml (uploaded)")
+    wait_drawn(page, lambda: page.inner_text("#title") == mech.name, "open the upload again")
+
+
+def test_an_edit_that_does_not_build_stops_the_old_motion(page):
+    """An edited file that does not build: the engine's message, the last drawing greyed, and
+    nothing moves the old mechanism (play, the slider, the keys are off) until an edit builds."""
+    from linkwork.errors import LinkworkError
+
+    page.click("#editor summary")
+    bad = TEXT.replace('coupler = ["A", "B", "C"]', 'coupler = ["A", "B", "X"]')
+    with pytest.raises(LinkworkError) as exc:
+        load_text(bad, source="crank-rocker.toml")
+    page.fill("#edit-text", bad)
+    page.click("#edit-text-apply")
+    wait_drawn(page, lambda: page.get_attribute("#editor", "data-applied") == "error", "apply the edit")
+    assert page.inner_text("#error") == str(exc.value)
+    assert page.locator("#drawing.stale").count() == 1
+    assert page.is_disabled("#play") and page.is_disabled("#input-slider")
+    shown = drawn_input(page)
+    page.focus("#drawing")
+    page.keyboard.press("Space")
+    page.keyboard.press("ArrowRight")
+    page.wait_for_timeout(600)
+    assert page.get_attribute("#play", "aria-pressed") == "false"
+    assert drawn_input(page) == shown and page.input_value("#input-slider") == "0"
+    assert page.locator("#drawing.stale").count() == 1 and page.inner_text("#error") == str(exc.value)
+    # an edit that builds: the page is live again
+    page.fill("#edit-text", TEXT)
+    page.click("#edit-text-apply")
+    wait_drawn(page, lambda: page.get_attribute("#editor", "data-applied") == "ok", "apply the good text")
+    wait_drawn(page, lambda: page.locator("#drawing.stale").count() == 0, "draw the good file")
+    assert page.is_enabled("#play") and page.is_enabled("#input-slider") and page.is_hidden("#error")
+    page.focus("#drawing")
+    page.keyboard.press("ArrowRight")
+    sol = linkwork.whole_motion(MECH)
+    wait_drawn(page, lambda: drawn_input(page) == pytest.approx([sol.inputs[1, 0]], abs=1e-15), "step the motion")
