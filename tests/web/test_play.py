@@ -176,3 +176,29 @@ def test_the_kept_motions_are_bounded_and_made_once():
             assert kept.kept(mech, "x", lambda: made.append(i) or i) == i
     assert made == list(range(Motions.SIZE + 1))
     assert not kept.has(mechs[0], "x") and kept.has(mechs[-1], "x")
+
+
+def test_what_is_kept_warns_and_fails_for_every_request_as_for_the_first():
+    """A kept whole motion's LinkworkWarnings reach every request that takes it (the first
+    computed it, the later ones only read it), and its LinkworkError is raised again."""
+    from linkwork.errors import InputError, LinkworkWarning
+
+    mech = Sources(None).load(library="crank-rocker").mechanism
+    made = []
+
+    def warns():
+        made.append(1)
+        warnings.warn("a singular sample", LinkworkWarning)
+        return "motion"
+
+    def fails():
+        made.append(2)
+        raise InputError("no whole motion")
+
+    for _ in range(2):
+        with web_app._warnings() as warned:
+            assert web_app._kept(mech, "warns", warns) == "motion"
+        assert warned == ["a singular sample"]
+        with web_app._warnings(), pytest.raises(InputError, match="no whole motion"):
+            web_app._kept(mech, "fails", fails)
+    assert made == [1, 2]
