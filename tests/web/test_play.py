@@ -202,3 +202,29 @@ def test_what_is_kept_warns_and_fails_for_every_request_as_for_the_first():
         with web_app._warnings(), pytest.raises(InputError, match="no whole motion"):
             web_app._kept(mech, "fails", fails)
     assert made == [1, 2]
+
+
+def test_a_moved_mechanism_is_played_from_its_kept_motion(monkeypatch):
+    """After a drag the page asks for the moved mechanism's whole motion and plays it: its
+    frames (the source names the moved point, so the drag's last frame is their `previous`)
+    are taken from that motion too, and are the moved mechanism's own solves."""
+    client = TestClient(create_app())
+    source = {"library": NAME, "points": {"P45": [-1196.0, 352.0]}}
+    for x in (-1199.0, -1197.5, -1196.0):  # the drag's frames
+        r = client.post("/api/drawing", json={"source": {**source, "points": {"P45": [x, 352.0]}},
+                                              "motion": False})
+        assert r.status_code == 200, r.text
+    doc = client.post("/api/motion", json={"source": source, "detail": "full"}).json()
+    moved = Sources(None).load(library=NAME, points=source["points"]).mechanism
+    solved = []
+    original = web_app.solve_request
+    monkeypatch.setattr(web_app, "solve_request", lambda *a, **k: solved.append(1) or original(*a, **k))
+    for k in (30, 250):
+        sample = doc["samples"][k]
+        r = client.post("/api/drawing", json={"source": source, "motion": True,
+                                              "at": [sample["input"]]}).json()
+        scratch = solve_at(moved, np.array([sample["input"]]))
+        for p, xy in r["points"].items():
+            np.testing.assert_allclose(xy, scratch.point(p).position[0], rtol=0,
+                                       atol=1e-9 * moved.length_scale, err_msg=p)
+    assert solved == []

@@ -324,6 +324,15 @@ def _one_position(mech: Mechanism, req: m.At) -> tuple | None:
     return None
 
 
+def _from_motion(mech: Mechanism, req: m.DrawingRequest, previous: Mechanism | None) -> bool:
+    """Whether a drawing takes its position from the whole motion kept (`motion_sample`): one
+    with the whole motion, at one position of several drivers; of a moved mechanism (a drag's
+    `previous` given) only once its whole motion was asked for (the page plays it), while a
+    drag's frames carry their march from frame to frame."""
+    return req.motion and _one_position(mech, req) is not None and (
+        previous is None or MOTIONS.has(mech, ("motion", 2)))
+
+
 def _played_kept(mech: Mechanism) -> bool:
     return MOTIONS.has(mech, ("motion", 2)) and MOTIONS.has(mech, "played")
 
@@ -432,8 +441,8 @@ def long_drawing(loaded: Loaded, req: m.DrawingRequest) -> bool:
     if req.motion:  # unless the whole motion is kept, and the position is one of its samples
         if not MOTIONS.has(mech, ("motion", 1)):
             return True
-        if _one_position(mech, req) is not None and _played_kept(mech) and not marching():
-            return False  # a sample, or a march of a few samples from the nearest one
+        if _from_motion(mech, req, loaded.previous):  # a sample, or a short march from one
+            return not _played_kept(mech) or marching()
     if loaded.previous is not None:  # (as the solve will: its plan takes the previous one's)
         follow(mech, loaded.previous)
     if not any(s.kind == "generic" for s in plan(mech)):
@@ -450,7 +459,7 @@ def drawing(mech: Mechanism, req: m.DrawingRequest, previous: Mechanism | None =
     scene and the SVG)."""
     stage = stage or Stages()
     with stage("solve"):
-        sol = motion_sample(mech, req) if req.motion and previous is None else None
+        sol = motion_sample(mech, req) if _from_motion(mech, req, previous) else None
         if sol is None:
             sol = solve_request(mech, req, previous=previous)
     if len(sol) != 1:
