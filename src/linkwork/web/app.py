@@ -279,33 +279,52 @@ class _Played:
     """The whole motion's inputs solved by inputs, as `solve_at` solves them (the drivers'
     constant speeds, not the motion laws' rates), in chunks of `PLAY_CHUNK` samples each going
     on from where the one before left the path (`solve(..., resume=)`: the same numbers as one
-    solve) — so that every chunk's end is kept, for a position between samples to be marched
-    from (`carried`)."""
+    solve), as far as the samples asked so far need (a play asks them in order) — so that
+    every chunk's end is kept, for a position between samples to be marched from (`carried`)."""
 
     def __init__(self, mech: Mechanism, inputs: np.ndarray) -> None:
+        self.mech, self.inputs = mech, inputs
         self.parts: list[Solution] = []
-        end = None
-        for lo in range(0, len(inputs), PLAY_CHUNK):
-            part = solve(mech, inputs[lo:lo + PLAY_CHUNK], resume=end)
-            self.parts.append(part)
-            end = part.path_end
-        self.inputs = inputs
         self.weights = input_weights(mech)
+        self._lock = threading.Lock()
+
+    def _upto(self, n: int) -> None:
+        """Solve the chunks up to the one of sample `n`."""
+        with self._lock:
+            while len(self.parts) <= n // PLAY_CHUNK:
+                lo = len(self.parts) * PLAY_CHUNK
+                end = self.parts[-1].path_end if self.parts else None
+                self.parts.append(solve(self.mech, self.inputs[lo:lo + PLAY_CHUNK], resume=end))
+
+    def _weighted(self, values: np.ndarray | None, times: np.ndarray | None) -> np.ndarray:
+        """The inputs asked (at `times`: the laws'), in the march's metric (`input_weights`)."""
+        u = values if times is None else driver_samples(self.mech, times=times)[1]
+        return u[0] * self.weights
+
+    def nearest(self, values: np.ndarray | None, times: np.ndarray | None) -> int:
+        """The sample nearest to the inputs asked (the first of equals)."""
+        u = self._weighted(values, times)
+        return int(np.argmin(np.linalg.norm(self.inputs * self.weights - u, axis=1)))
+
+    def ready(self, n: int) -> bool:
+        """Whether sample `n` needs at most a few chunks solved (a play's next frames)."""
+        return n // PLAY_CHUNK < len(self.parts) + 2
 
     def sample(self, n: int) -> Solution:
+        self._upto(n)
         return self.parts[n // PLAY_CHUNK].sample(n % PLAY_CHUNK)
 
-    def carried(self, mech: Mechanism, values: np.ndarray | None, times: np.ndarray | None):
+    def carried(self, values: np.ndarray | None, times: np.ndarray | None) -> Solution:
         """The solve at `values` (one sample's inputs) or `times` (one time), its path going on
-        from the kept end nearest to its inputs (or from the design position, if that is
+        from the kept chunk end nearest to its inputs (or from the design position, if that is
         nearer): a march of a few samples' length instead of one from the design position."""
-        u = values if times is None else driver_samples(mech, times=times)[1]
-        design = np.array([mech.driver_input_at_design(d) for d in mech.drivers])
-        ends = [p.path_end for p in self.parts if p.path_end is not None]
-        dist = [np.linalg.norm((u[0] - design) * self.weights)] + \
-            [np.linalg.norm(u[0] * self.weights - e.vertex) for e in ends]
-        k = int(np.argmin(dist))
-        start = None if k == 0 else ends[k - 1]
+        mech = self.mech
+        u = self._weighted(values, times)
+        self._upto(self.nearest(values, times))
+        design = np.array([mech.driver_input_at_design(d) for d in mech.drivers]) * self.weights
+        ends = [None] + [p.path_end for p in self.parts if p.path_end is not None]
+        start = ends[int(np.argmin([np.linalg.norm(u - (design if e is None else e.vertex))
+                                    for e in ends]))]
         if times is not None:
             return solve(mech, times=times, resume=start)
         return solve(mech, values, resume=start)
@@ -333,8 +352,25 @@ def _from_motion(mech: Mechanism, req: m.DrawingRequest, previous: Mechanism | N
         previous is None or MOTIONS.has(mech, ("motion", 2)))
 
 
-def _played_kept(mech: Mechanism) -> bool:
-    return MOTIONS.has(mech, ("motion", 2)) and MOTIONS.has(mech, "played")
+def _kept_play(mech: Mechanism) -> tuple[Solution, _Played]:
+    """The whole motion kept for `mech` and its inputs as `_Played` solves them."""
+    motion = kept_motion(mech)
+    return motion, _kept(mech, "played", lambda: _Played(mech, motion.inputs))
+
+
+def _played_ready(mech: Mechanism, req: m.At) -> bool:
+    """Whether `motion_sample` would take the request's position from what is kept already,
+    solving a few samples at most (so that the drawing is short work)."""
+    if not (MOTIONS.has(mech, ("motion", 2)) and MOTIONS.has(mech, "played")):
+        return False
+    values, times = _one_position(mech, req)
+    try:
+        motion, played = _kept_play(mech)
+    except LinkworkError:
+        return False  # solved alone (`solve_request`): a march from the design position
+    if times is not None and motion.time is not None and (motion.time == times[0]).any():
+        return True
+    return played.ready(played.nearest(values, times))
 
 
 def motion_sample(mech: Mechanism, req: m.At) -> Solution | None:
@@ -354,8 +390,7 @@ def motion_sample(mech: Mechanism, req: m.At) -> Solution | None:
         return None
     values, times = asked
     try:
-        motion = kept_motion(mech)
-        played = _kept(mech, "played", lambda: _Played(mech, motion.inputs))
+        motion, played = _kept_play(mech)
     except LinkworkError:  # no whole motion: the position is solved (and its error given) alone
         return None
     if times is not None:
@@ -366,7 +401,7 @@ def motion_sample(mech: Mechanism, req: m.At) -> Solution | None:
         hits = np.flatnonzero((played.inputs == values[0]).all(axis=1))
         if hits.size:
             return played.sample(int(hits[0]))
-    return played.carried(mech, values, times)
+    return played.carried(values, times)
 
 
 def _json(doc) -> str:
@@ -442,7 +477,7 @@ def long_drawing(loaded: Loaded, req: m.DrawingRequest) -> bool:
         if not MOTIONS.has(mech, ("motion", 1)):
             return True
         if _from_motion(mech, req, loaded.previous):  # a sample, or a short march from one
-            return not _played_kept(mech) or marching()
+            return not _played_ready(mech, req) or marching()
     if loaded.previous is not None:  # (as the solve will: its plan takes the previous one's)
         follow(mech, loaded.previous)
     if not any(s.kind == "generic" for s in plan(mech)):
