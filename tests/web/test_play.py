@@ -228,3 +228,37 @@ def test_a_moved_mechanism_is_played_from_its_kept_motion(monkeypatch):
             np.testing.assert_allclose(xy, scratch.point(p).position[0], rtol=0,
                                        atol=1e-9 * moved.length_scale, err_msg=p)
     assert solved == []
+
+
+def test_a_sample_of_a_solution_has_its_numbers(gear):
+    """`Solution.sample(n)`: the n-th sample alone, every number as in the whole."""
+    mech, motion = gear
+    for n in (0, 200, -1):
+        one = motion.sample(n)
+        k = range(len(motion))[n]
+        assert len(one) == 1 and one.time.tolist() == [motion.time[k]]
+        assert one.status.tolist() == [motion.status[k]]
+        np.testing.assert_array_equal(one.inputs, motion.inputs[k:k + 1])
+        for p in mech.points:
+            for a, b in zip((one.point(p).position, one.point(p).velocity, one.point(p).acceleration),
+                            (motion.point(p).position, motion.point(p).velocity,
+                             motion.point(p).acceleration)):
+                np.testing.assert_array_equal(a, b[k:k + 1])
+
+
+def test_a_frame_from_what_is_kept_is_answered_in_the_event_loop(gear):
+    """`long_drawing`: a frame of a play goes to a worker thread while the whole motion is not
+    kept yet, and is answered at once (no hand-over) when it is."""
+    from linkwork.web.sources import Loaded
+
+    mech = Sources(None).load(library=NAME).mechanism
+    _, motion = gear
+    loaded = Loaded(mech, "", NAME)
+    req = m.DrawingRequest.model_validate({"source": {"library": NAME}, "motion": True,
+                                           "at": [motion.inputs[5].tolist()]})
+    assert web_app.long_drawing(loaded, req)
+    web_app.drawing(mech, req)
+    assert not web_app.long_drawing(loaded, req)
+    far = m.DrawingRequest.model_validate({"source": {"library": NAME}, "motion": True,
+                                           "at": [motion.inputs[300].tolist()]})
+    assert web_app.long_drawing(loaded, far)  # its samples' chunks are not solved yet
