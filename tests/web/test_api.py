@@ -368,13 +368,17 @@ def test_openapi_schema_is_published(client):
 def test_serve_binds_locally_unless_told(monkeypatch, workdir):
     import uvicorn
     calls = []
-    monkeypatch.setattr(uvicorn, "run", lambda app, **kw: calls.append(kw))
+    monkeypatch.setattr(uvicorn, "run", lambda app, **kw: calls.append({**kw, "app": app}))
     runner = CliRunner()
     r = runner.invoke(cli_app, ["serve", "--host", "0.0.0.0"])
     assert r.exit_code == 2 and "--expose" in r.output and not calls
     r = runner.invoke(cli_app, ["serve", "library:crank-rocker", "--port", "0"])
     assert r.exit_code == 0, r.output
     assert calls[-1]["host"] == "127.0.0.1"
+    # on this computer it answers requests to its own names only (DNS rebinding)
+    served = TestClient(calls[-1]["app"], raise_server_exceptions=False)
+    assert served.get("/api/library", headers={"host": "127.0.0.1:8765"}).status_code == 200
+    assert served.get("/api/library", headers={"host": "rebound.example"}).status_code == 400
     assert re.search(r"http://127\.0\.0\.1:\d+/\?library=crank-rocker", r.output)
     r = runner.invoke(cli_app, ["serve", "--host", "0.0.0.0", "--expose", "--port", "0"])
     assert r.exit_code == 0 and "warning" in r.output and calls[-1]["host"] == "0.0.0.0"

@@ -6,6 +6,7 @@ output."""
 from __future__ import annotations
 
 import json
+from datetime import datetime
 import math
 import time
 
@@ -148,42 +149,49 @@ def test_a_dragged_hinge_ends_under_the_pointer_away_from_the_design_position(pa
     assert np.linalg.norm(got - target) < 0.01, (got, target)  # mm
 
 
-def _play_rate(page, factor: str) -> tuple[float, float]:
-    """Play at the speed `factor` for about 1.5 s: how fast the drawn input (rad/s) and the
-    time shown (s/s) advanced against the wall clock."""
+def _time_shown(page) -> float:
+    return float(page.get_attribute("#input-time", "data-time") or "nan")
+
+
+def _played(page, factor: str, seconds: float, times: np.ndarray) -> float:
+    """Play at the speed `factor` for `seconds` of the page's own clock (Playwright's clock,
+    paused and run forward in steps, each after the drawing asked for is in): how far the time
+    shown went from the time of the sample it started at (`times`: the motion's). The page's
+    clock, not the wall's: the machine's load does not enter."""
     page.select_option("#speed", factor)
-    period = 2 * math.pi / MECH.drivers[0].law.speed  # a turn of the crank (s)
+    page.clock.pause_at(datetime.fromtimestamp(page.evaluate("Date.now()") / 1000 + 1.0))
+    start = times[int(page.input_value("#input-slider"))]
     page.click("#play")
-    page.wait_for_timeout(300)
-    read = """() => [performance.now(), JSON.parse(document.getElementById('drawing').dataset.input)[0],
-                     Number(document.getElementById('input-time').dataset.time)]"""
-    seen = [page.evaluate(read)]
-    while seen[-1][0] - seen[0][0] < 1500:
-        page.wait_for_timeout(40)
-        seen.append(page.evaluate(read))
+    steps = round(seconds / 0.02)
+    for _ in range(steps):
+        page.clock.run_for(20)
+        wait_drawn(page, lambda: page.evaluate("!window.linkworkBusy()"), "draw the frame")
+    page.clock.run_for(17)  # one more animation frame: the last frame's tick at the end
+    shown = _time_shown(page)
     page.click("#play")
-    wall = (seen[-1][0] - seen[0][0]) / 1000
-    turned = sum(math.remainder(b[1] - a[1], 2 * math.pi) for a, b in zip(seen, seen[1:]))
-    passed = sum(math.remainder(b[2] - a[2], period) for a, b in zip(seen, seen[1:]))
-    return turned / wall, passed / wall
+    page.clock.resume()
+    return shown - start
 
 
 def test_play_goes_at_the_motions_own_time(page):
-    """The crank turns at 60 rpm (the file's driver law, 2π rad/s): played at 1× the drawn input
-    turns at about that rate and the time shown goes with the wall clock; at ½× both go about
-    half as fast (generous bounds: the machine is shared)."""
+    """The crank turns at 60 rpm (the file's driver law, 2π rad/s: a turn a second). Played for
+    0.4 s of the page's clock at 1×, the motion's time shown advances 0.4 s; at ½×, 0.2 s (to a
+    frame of the page's animation, 17 ms, and a sample). The time shown is the engine's: the
+    input turned from the motion's first sample at the driver's speed."""
     speed = MECH.drivers[0].law.speed
     assert speed == pytest.approx(2 * math.pi)
-    turned, passed = _play_rate(page, "1")
-    slow, slow_passed = _play_rate(page, "0.5")
-    assert 0.6 < turned / speed < 1.4 and 0.3 < slow / speed < 0.7, (turned, slow)
-    assert 0.35 < slow / turned < 0.7
-    assert 0.6 < passed < 1.4 and 0.3 < slow_passed < 0.7, (passed, slow_passed)
-    # the time shown is the engine's: the input turned from the motion's first sample at the speed
+    page.clock.install()
     sol = linkwork.whole_motion(MECH)
-    k = int(page.input_value("#input-slider"))
-    shown = float(page.get_attribute("#input-time", "data-time"))
-    assert shown == pytest.approx((sol.inputs[k, 0] - sol.inputs[0, 0]) / speed, abs=1e-9)
+    step = float(np.max(np.diff(sol.inputs[:, 0]))) / speed  # the motion's sample spacing (s)
+    times = (sol.inputs[:, 0] - sol.inputs[0, 0]) / speed
+    # once before: the motion's times fetched (the first play's clock starts when they are in)
+    _played(page, "1", 0.1, times)
+    for factor, expected in (("1", 0.4), ("0.5", 0.2)):
+        went = _played(page, factor, 0.4, times)
+        assert went == pytest.approx(expected, abs=(0.017 + 0.02) * float(factor) + step), factor
+        k = int(page.input_value("#input-slider"))
+        shown = _time_shown(page)
+        assert shown == pytest.approx((sol.inputs[k, 0] - sol.inputs[0, 0]) / speed, abs=1e-9)
 
 
 @pytest.mark.parametrize("name", ["crank-rocker", "heusinger-valve-gear"])

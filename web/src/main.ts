@@ -109,7 +109,8 @@ interface Frame {
 // every drawing of a drag, as it went (a "linkworkframe" event on the window says when one is
 // added); bench/bench_workbench.py reads them
 const frames: Frame[] = [];
-Object.assign(window, { linkworkFrames: frames });
+// for the bench and the browser tests: the frames of drags, and whether a drawing is on its way
+Object.assign(window, { linkworkFrames: frames, linkworkBusy: () => state.busy });
 // the drawings over a WebSocket while it is open (a drag's frames skip an HTTP round trip each)
 const drawings = new DrawingSocket(`${location.protocol === "https:" ? "wss" : "ws"}://${location.host}/api/drawing/ws`);
 let movedAt: { event: number; handler: number } | null = null; // the pointer's last move of a drag

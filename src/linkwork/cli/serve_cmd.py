@@ -100,4 +100,7 @@ def register(app: typer.Typer) -> None:
                 typer.echo(f"working folder: {root}")
             if open_browser:
                 webbrowser.open(url)
-            uvicorn.run(create_app(root, compiled=True), host=host, port=port, **server_options())
+            # on this computer, only requests addressed to it by its own names (DNS rebinding)
+            hosts = LOCAL_HOSTS if host in LOCAL_HOSTS else None
+            uvicorn.run(create_app(root, compiled=True, hosts=hosts), host=host, port=port,
+                        **server_options())

@@ -471,7 +471,7 @@ class Figure:
         if captions:
             # as deep as the longest caption of all steps: every step's sheet is the same size
             caption_h = 5.0 + 4.4 * max(len(_wrap(c, width)) for c in self.captions)
-        samples: list[np.ndarray] = []
+        drawn: dict[str, list[np.ndarray]] = {n: [] for n in panels}  # sample points, by panel
         layers: dict[str, list[str]] = {}
         for p in self.prims:
             if p.space not in panels:
@@ -480,16 +480,18 @@ class Figure:
             if not svg:
                 continue
             svg = f'<g clip-path="url(#clip-{_ident(p.space)})">{svg}</g>'
-            pnl = panels[p.space]
-            x0, y0 = pnl["x"] - MARGIN, pnl["y"] - MARGIN
-            x1, y1 = pnl["x"] + pnl["w"] + MARGIN, pnl["y"] + pnl["h"] + MARGIN
-            pts = np.asarray(pts, float).reshape(-1, 2)
-            samples.append(pts[(x0 <= pts[:, 0]) & (pts[:, 0] <= x1) & (y0 <= pts[:, 1]) & (pts[:, 1] <= y1)])
+            drawn[p.space].append(pts)
             if animate and p.step is not None:
                 svg = _appear(svg, p.step, animate)
             elif self.current_step is not None and p.step is not None and p.step > self.current_step:
                 continue
             layers.setdefault(p.layer, []).append(svg)
+        samples = []  # what the labels keep off: the sample points on each panel with its margin
+        for name, parts in drawn.items():
+            pnl, pts = panels[name], _stacked(parts)
+            x0, y0 = pnl["x"] - MARGIN, pnl["y"] - MARGIN
+            x1, y1 = pnl["x"] + pnl["w"] + MARGIN, pnl["y"] + pnl["h"] + MARGIN
+            samples.append(pts[(x0 <= pts[:, 0]) & (pts[:, 0] <= x1) & (y0 <= pts[:, 1]) & (pts[:, 1] <= y1)])
         out = []
         if self.title:
             out.append(f'<text x="{MARGIN}" y="{TITLE_H - 1.5}" font-size="4.2" '
@@ -601,7 +603,7 @@ class Figure:
                 f'<text x="{sym._f(x + self._scale_words_at(s))}" y="{sym._f(y + 1)}" '
                 f'font-size="{SCALE_TEXT_SIZE}">{label_markup(s.text(), SCALE_TEXT_SIZE)}</text></g>')
 
-    def _render(self, p: Prim, tf, panel: dict) -> tuple[str, list]:
+    def _render(self, p: Prim, tf, panel: dict) -> tuple[str, np.ndarray]:
         d, st = p.data, p.style
         ident = f' id="{p.ident}"' if p.ident else ""
         cls = f' class="{p.cls}"' if p.cls else ""
@@ -840,7 +842,7 @@ def convert(svg: str, path: Path, dpi: float = 200.0) -> None:
             cairosvg.svg2pdf(bytestring=data, write_to=str(tmp))
 
 
-def _symbol(name: str, a: dict) -> tuple[str, list]:
+def _symbol(name: str, a: dict) -> tuple[str, np.ndarray]:
     if name == "revolute":
         return sym.revolute(a["at"], a.get("colour", sym.INK))
     if name == "fixed-pivot":

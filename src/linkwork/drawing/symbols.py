@@ -92,9 +92,9 @@ def resample(xy: np.ndarray, step: float = 0.6) -> np.ndarray:
     a, d = xy[:-1], xy[1:] - xy[:-1]
     if len(a) == 0:
         return np.empty((0, 2))
-    if not np.all(np.isfinite(d)):
-        return np.concatenate([_samples(p, q, step) for p, q in zip(xy[:-1], xy[1:])])
     per = np.linalg.norm(d, axis=1) / step
+    if not np.all(np.isfinite(per)):  # as _samples takes them (it refuses what cannot be counted)
+        return np.concatenate([_samples(p, q, step) for p, q in zip(xy[:-1], xy[1:])])
     counts = np.maximum(2, per.astype(int) + 1)
     # a length a rounding away from a whole number of steps: counted as _samples counts it
     # (the norm of one vector sums its squares in another order)
@@ -130,7 +130,7 @@ _RING_ANGLES = np.linspace(0.0, 2 * np.pi, 9)[:-1]
 _RING = JOINT_R * np.stack([np.cos(_RING_ANGLES), np.sin(_RING_ANGLES)], -1)
 
 
-def revolute(c: np.ndarray, colour: str = INK) -> tuple[str, list]:
+def revolute(c: np.ndarray, colour: str = INK) -> tuple[str, np.ndarray]:
     """A moving hinge: an open circle."""
     c = np.asarray(c, float)
     svg = (f'<circle cx="{_f(c[0])}" cy="{_f(c[1])}" r="{_f(JOINT_R)}" fill="#fff" '
@@ -153,7 +153,7 @@ def bearing(c: np.ndarray, down: np.ndarray, unit: float = 1.0) -> tuple[np.ndar
     return tri, base + side * over, base - side * over
 
 
-def fixed_pivot(c: np.ndarray, down: np.ndarray = (0.0, 1.0), colour: str = INK) -> tuple[str, list]:
+def fixed_pivot(c: np.ndarray, down: np.ndarray = (0.0, 1.0), colour: str = INK) -> tuple[str, np.ndarray]:
     """A frame bearing: joint circle on a triangular block standing on hatched ground.
 
     ``down`` is the unit direction (paper) from the pivot to the ground line.
@@ -169,17 +169,17 @@ def fixed_pivot(c: np.ndarray, down: np.ndarray = (0.0, 1.0), colour: str = INK)
     return svg + s, np.concatenate((pts, _samples(c, base), _samples(g0, g1)))
 
 
-def ground(p: np.ndarray, q: np.ndarray, side: np.ndarray, colour: str = INK) -> tuple[str, list]:
+def ground(p: np.ndarray, q: np.ndarray, side: np.ndarray, colour: str = INK) -> tuple[str, np.ndarray]:
     """A hatched frame line from p to q, hatching on ``side``."""
     return hatch(p, q, side, colour=colour), _samples(p, q)
 
 
-def bar(p: np.ndarray, q: np.ndarray, colour: str = INK, width: float = LINK_W) -> tuple[str, list]:
+def bar(p: np.ndarray, q: np.ndarray, colour: str = INK, width: float = LINK_W) -> tuple[str, np.ndarray]:
     """A binary link drawn as a heavy line between its joints."""
     return _line(p, q, width, colour), _samples(p, q)
 
 
-def plate(vertices: np.ndarray, colour: str = INK, fill: str = "#ececec") -> tuple[str, list]:
+def plate(vertices: np.ndarray, colour: str = INK, fill: str = "#ececec") -> tuple[str, np.ndarray]:
     """A ternary (or larger) link: a lightly filled plate with heavy edges, welded corners."""
     v = np.asarray(vertices, float)
     svg = (f'<polygon points="{_pts(v)}" fill="{fill}" stroke="{colour}" '
@@ -196,7 +196,7 @@ def block_corners(c: np.ndarray, axis: np.ndarray, unit: float = 1.0) -> np.ndar
     return np.array([c + a + b, c - a + b, c - a - b, c + a - b])
 
 
-def block(c: np.ndarray, axis: np.ndarray, colour: str = INK) -> tuple[str, list]:
+def block(c: np.ndarray, axis: np.ndarray, colour: str = INK) -> tuple[str, np.ndarray]:
     """A sliding block (crosshead, *Kreuzkopf*) centred at c, long side along ``axis``."""
     r = block_corners(c, axis)
     svg = (f'<polygon points="{_pts(r)}" fill="#fff" stroke="{colour}" stroke-width="0.5" '
@@ -205,13 +205,13 @@ def block(c: np.ndarray, axis: np.ndarray, colour: str = INK) -> tuple[str, list
 
 
 def guide(p: np.ndarray, q: np.ndarray, side: np.ndarray, offset: float = GUIDE_OFFSET,
-          colour: str = INK) -> tuple[str, list]:
+          colour: str = INK) -> tuple[str, np.ndarray]:
     """The frame's guide for a block: a line p–q (offset from the block axis) hatched outside."""
     p, q, side = (np.asarray(v, float) for v in (p, q, side))
     return hatch(p + side * offset, q + side * offset, side, depth=GUIDE_DEPTH, colour=colour), _samples(p, q)
 
 
-def slot(p: np.ndarray, q: np.ndarray, colour: str = INK, width: float = SLOT_W) -> tuple[str, list]:
+def slot(p: np.ndarray, q: np.ndarray, colour: str = INK, width: float = SLOT_W) -> tuple[str, np.ndarray]:
     """A straight slot (pin guide, *Kulisse*) from p to q: two parallel lines, rounded ends."""
     p, q = np.asarray(p, float), np.asarray(q, float)
     d = q - p
@@ -228,7 +228,7 @@ def slot(p: np.ndarray, q: np.ndarray, colour: str = INK, width: float = SLOT_W)
     return svg, np.concatenate((_samples(p + n, q + n), _samples(p - n, q - n)))
 
 
-def pitch_circle(c: np.ndarray, r: float, colour: str = INK) -> tuple[str, list]:
+def pitch_circle(c: np.ndarray, r: float, colour: str = INK) -> tuple[str, np.ndarray]:
     """A gear's pitch circle (*Teilkreis*), dash-dot."""
     c = np.asarray(c, float)
     svg = (f'<circle cx="{_f(c[0])}" cy="{_f(c[1])}" r="{_f(r)}" fill="none" stroke="{colour}" '

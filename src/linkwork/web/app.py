@@ -18,7 +18,7 @@ from contextlib import asynccontextmanager, contextmanager
 from contextvars import ContextVar
 from importlib import resources
 from pathlib import Path
-from typing import Iterator
+from typing import Iterable, Iterator
 from urllib.parse import urlsplit
 
 import numpy as np
@@ -81,6 +81,31 @@ class _BodyLimit:
             return await receive()
 
         return await self.app(scope, replay, send)
+
+
+class _KnownHosts:
+    """Answer only requests addressed to this computer by one of `hosts` (the Host header, the
+    port aside): a page of another site may make the browser resolve its own name to
+    127.0.0.1 (DNS rebinding) and would then read the working folder's files through the
+    workbench as a page of its "own" origin. Its requests carry its name as their Host."""
+
+    def __init__(self, app, hosts: frozenset[str]) -> None:
+        self.app, self.hosts = app, hosts
+
+    async def __call__(self, scope, receive, send):
+        if scope["type"] not in ("http", "websocket"):
+            return await self.app(scope, receive, send)
+        host = dict(scope.get("headers") or []).get(b"host", b"").decode("latin-1")
+        try:
+            name = urlsplit("//" + host).hostname or ""
+        except ValueError:
+            name = ""
+        if name in self.hosts:
+            return await self.app(scope, receive, send)
+        if scope["type"] == "websocket":
+            return await send({"type": "websocket.close", "code": 1008})
+        return await _error(400, f"this workbench answers requests to {', '.join(sorted(self.hosts))} "
+                                 f"only, not to '{host}'", "UnknownHost")(scope, receive, send)
 
 
 class _ServerTiming:
@@ -570,10 +595,13 @@ def _figure(mech: Mechanism, sol: Solution, req: m.DrawingRequest):
     return fig, steps
 
 
-def create_app(workdir: str | Path | None = None, *, compiled: bool = False) -> FastAPI:
+def create_app(workdir: str | Path | None = None, *, compiled: bool = False,
+               hosts: Iterable[str] | None = None) -> FastAPI:
     """The workbench application; files are opened only from the library and `workdir`.
     `compiled`: compile the kinematics' loops in the background and use them for every solve
-    (`linkwork serve`; see `compile_kernels`)."""
+    (`linkwork serve`; see `compile_kernels`). `hosts`: the only host names requests may be
+    addressed to (`linkwork serve` on this computer: its local names, see `_KnownHosts`);
+    None answers any."""
     sources = Sources(None if workdir is None else Path(workdir))
 
     @asynccontextmanager
@@ -823,5 +851,7 @@ def create_app(workdir: str | Path | None = None, *, compiled: bool = False) -> 
 
     app.mount("/static", StaticFiles(directory=STATIC, check_dir=False), name="static")
     app.add_middleware(_BodyLimit, limit=MAX_BODY)
+    if hosts is not None:
+        app.add_middleware(_KnownHosts, hosts=frozenset(hosts))
     app.add_middleware(_ServerTiming)
     return app

@@ -7,6 +7,9 @@ mechanism names are read from its own folder only (`io.profiles` keeps them ther
 
 from __future__ import annotations
 
+import os
+import re
+
 from collections import OrderedDict
 from dataclasses import dataclass
 from importlib import resources
@@ -59,18 +62,43 @@ def working_file(workdir: Path | None, name: str) -> Path:
     return path
 
 
+#: folders the list of the working folder's files does not enter (tools' and packages' trees)
+_NOT_ENTERED = {"node_modules", "__pycache__", "site-packages", "venv", "build", "dist"}
+#: how deep the list goes below the working folder, and how many files it lists at most
+_DEPTH, _LISTED = 4, 1000
+#: a mechanism file states its points (`[points]`, or `points = {…}`) at its top level
+_MECHANISM = re.compile(rb"(?m)^[ \t]*(\[points\]|points[ \t]*=)")
+
+
 def working_files(workdir: Path | None) -> list[str]:
-    """The mechanism files (.toml) of the working folder and its subfolders, relative."""
+    """The mechanism files (.toml that state points) of the working folder and its subfolders
+    to `_DEPTH` levels, relative; hidden folders and tools' trees are not entered, and the walk
+    stops at `_LISTED` files, so that a large folder (a home folder) is listed quickly."""
     if workdir is None:
         return []
     root = workdir.resolve()
-    out = []
-    for p in sorted(root.rglob("*.toml")):
-        if p.is_file() and p.resolve().is_relative_to(root):
-            out.append(p.relative_to(root).as_posix())
-        if len(out) >= 1000:
-            break
-    return out
+    out: list[str] = []
+    for folder, subfolders, files in os.walk(root):
+        here = Path(folder)
+        depth = len(here.relative_to(root).parts)
+        subfolders[:] = sorted(d for d in subfolders if not d.startswith(".") and
+                               d not in _NOT_ENTERED and depth < _DEPTH)
+        for name in sorted(files):
+            if not name.lower().endswith(".toml"):
+                continue
+            path = here / name
+            try:
+                if not path.resolve().is_relative_to(root) or not path.is_file():
+                    continue
+                with path.open("rb") as f:
+                    head = f.read(65536)
+            except OSError:
+                continue
+            if _MECHANISM.search(head):
+                out.append(path.relative_to(root).as_posix())
+                if len(out) >= _LISTED:
+                    return sorted(out)
+    return sorted(out)
 
 
 def moved(mech: Mechanism, points: dict[str, tuple[float, float]]) -> Mechanism:
