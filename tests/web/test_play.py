@@ -262,3 +262,23 @@ def test_a_frame_from_what_is_kept_is_answered_in_the_event_loop(gear):
     far = m.DrawingRequest.model_validate({"source": {"library": NAME}, "motion": True,
                                            "at": [motion.inputs[300].tolist()]})
     assert web_app.long_drawing(loaded, far)  # its samples' chunks are not solved yet
+
+
+def test_a_working_folder_file_keeps_its_mechanism_while_its_text_is_the_same(tmp_path):
+    """A file is read again for every request (it may change on disk): while its text is the
+    same the mechanism kept for it serves (and so do its kept motions); a changed text gives a
+    new one."""
+    from linkwork.io import resolve
+
+    text = resolve(f"library:{NAME}")[1]
+    (tmp_path / "gear.toml").write_text(text, encoding="utf-8")
+    sources = Sources(tmp_path)
+    first = sources.load(file="gear.toml")
+    assert sources.load(file="gear.toml") is first
+    moved = sources.load(file="gear.toml", points={"P45": [-1199.0, 350.0]})
+    assert sources.load(file="gear.toml", points={"P45": [-1199.0, 350.0]}) is moved
+    (tmp_path / "gear.toml").write_text(text.replace('name = "Heusinger', 'name = "My Heusinger'),
+                                        encoding="utf-8")
+    again = sources.load(file="gear.toml")
+    assert again is not first and again.mechanism.name.startswith("My Heusinger")
+    assert sources.load(file="gear.toml", points={"P45": [-1199.0, 350.0]}) is not moved
