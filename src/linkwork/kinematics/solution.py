@@ -101,6 +101,19 @@ class Solution:
                    np.concatenate([p.condition for p in parts]),
                    errors=np.concatenate([p.errors for p in parts]))
 
+    def sample(self, n: int) -> Solution:
+        """Sample `n` alone, as a solution of one sample with the same numbers (the solver's
+        cos θ, sin θ kept, so that its points are the very same): the workbench draws a sample
+        of a whole motion it keeps without solving it again."""
+        n = range(len(self))[n]
+        cut = slice(n, n + 1)  # copies: the whole motion's arrays stay as they are
+        trig = None if self._cos_sin is None else (self._cos_sin[0][cut].copy(),
+                                                   self._cos_sin[1][cut].copy())
+        return Solution(self.mechanism, self.inputs[cut].copy(),
+                        None if self.time is None else self.time[cut].copy(), self._C[:, cut].copy(),
+                        self.status[cut].copy(), self.condition[cut].copy(), trig=trig,
+                        errors=self.errors[cut].copy())
+
     # ------------------------------------------------------------------ basics
     def __len__(self) -> int:
         return self._C.shape[1]

@@ -35,12 +35,12 @@ from ..kinematics import Solution, Status, compiled_loops, solve, solve_at, whol
 from ..kinematics.at import require_assembled
 from ..kinematics.export import to_document
 from ..kinematics import warmup
-from ..kinematics.continuation import carried, follow, marching
-from ..kinematics.solver import plan
+from ..kinematics.continuation import carried, follow, input_weights, marching
+from ..kinematics.solver import driver_samples, plan
 from ..kinematics.warmup import compile_kernels
 from ..model import Mechanism, Prismatic
 from . import models as m
-from .sources import Loaded, Sources
+from .sources import MOTIONS, Loaded, Sources
 
 #: the largest request body accepted (a mechanism text of MAX_TEXT and its options)
 MAX_BODY = 1_000_000
@@ -264,6 +264,172 @@ def solve_request(mech: Mechanism, req: m.At, order: int | None = None,
     return solve_at(mech, values, times=times, order=order, previous=previous, asked="at or times")
 
 
+def _kept(mech: Mechanism, what, make):
+    """`make()` computed once for `mech` and kept (`sources.MOTIONS`), with the LinkworkWarnings
+    it raised and the LinkworkError it ended in: each later request gets them as the first did."""
+    def run():
+        out: list[str] = []
+        _route_warnings()
+        token = _COLLECTING.set(out)
+        try:
+            return make(), None, out
+        except LinkworkError as exc:
+            return None, exc, out
+        finally:
+            _COLLECTING.reset(token)
+
+    value, error, warned = MOTIONS.kept(mech, what, run)
+    collecting = _COLLECTING.get()
+    if collecting is not None:
+        collecting.extend(warned)
+    else:
+        for text in warned:
+            warnings.warn(text, LinkworkWarning, stacklevel=2)
+    if error is not None:
+        raise error
+    return value
+
+
+def kept_motion(mech: Mechanism, order: int = 2) -> Solution:
+    """`whole_motion(mech, order=order)`, computed once per mechanism: `/api/motion`, the
+    scene's paths and fit (order 1, as `Scene.motion`) and the samples a play draws."""
+    return _kept(mech, ("motion", order), lambda: whole_motion(mech, order=order))
+
+
+#: samples of the whole motion per solve of `_Played` (each solve's end kept: a position between
+#: samples is marched from the nearest one, at most half of this many samples away)
+PLAY_CHUNK = 10
+
+
+class _Played:
+    """The whole motion's inputs solved by inputs, as `solve_at` solves them (the drivers'
+    constant speeds, not the motion laws' rates), in chunks of `PLAY_CHUNK` samples each going
+    on from where the one before left the path (`solve(..., resume=)`: the same numbers as one
+    solve), as far as the samples asked so far need (a play asks them in order) — so that
+    every chunk's end is kept, for a position between samples to be marched from (`carried`)."""
+
+    def __init__(self, mech: Mechanism, inputs: np.ndarray) -> None:
+        self.mech, self.inputs = mech, inputs
+        self.parts: list[Solution] = []
+        self.weights = input_weights(mech)
+        self._lock = threading.Lock()
+
+    def _upto(self, n: int) -> None:
+        """Solve the chunks up to the one of sample `n`."""
+        with self._lock:
+            while len(self.parts) <= n // PLAY_CHUNK:
+                lo = len(self.parts) * PLAY_CHUNK
+                end = self.parts[-1].path_end if self.parts else None
+                self.parts.append(solve(self.mech, self.inputs[lo:lo + PLAY_CHUNK], resume=end))
+
+    def _weighted(self, values: np.ndarray | None, times: np.ndarray | None) -> np.ndarray:
+        """The inputs asked (at `times`: the laws'), in the march's metric (`input_weights`)."""
+        u = values if times is None else driver_samples(self.mech, times=times)[1]
+        return u[0] * self.weights
+
+    def nearest(self, values: np.ndarray | None, times: np.ndarray | None) -> int:
+        """The sample nearest to the inputs asked (the first of equals)."""
+        u = self._weighted(values, times)
+        return int(np.argmin(np.linalg.norm(self.inputs * self.weights - u, axis=1)))
+
+    def ready(self, n: int) -> bool:
+        """Whether sample `n` needs at most a few chunks solved (a play's next frames)."""
+        return n // PLAY_CHUNK < len(self.parts) + 2
+
+    def sample(self, n: int) -> Solution:
+        self._upto(n)
+        return self.parts[n // PLAY_CHUNK].sample(n % PLAY_CHUNK)
+
+    def carried(self, values: np.ndarray | None, times: np.ndarray | None) -> Solution:
+        """The solve at `values` (one sample's inputs) or `times` (one time), its path going on
+        from the kept chunk end nearest to its inputs (or from the design position, if that is
+        nearer): a march of a few samples' length instead of one from the design position."""
+        mech = self.mech
+        u = self._weighted(values, times)
+        self._upto(self.nearest(values, times))
+        design = np.array([mech.driver_input_at_design(d) for d in mech.drivers]) * self.weights
+        ends = [None] + [p.path_end for p in self.parts if p.path_end is not None]
+        start = ends[int(np.argmin([np.linalg.norm(u - (design if e is None else e.vertex))
+                                    for e in ends]))]
+        if times is not None:
+            return solve(mech, times=times, resume=start)
+        return solve(mech, values, resume=start)
+
+
+def _one_position(mech: Mechanism, req: m.At) -> tuple | None:
+    """(values, times) of a request for one position of a mechanism of several drivers, one
+    of them None (each as `solve` takes them); None for any other request."""
+    if len(mech.drivers) < 2 or mech.given:
+        return None
+    if req.times is not None and len(req.times) == 1:
+        return None, np.asarray(req.times, float)
+    if req.at is not None and len(req.at) == 1 and isinstance(req.at[0], list) \
+            and len(req.at[0]) == len(mech.drivers):
+        return np.asarray(req.at, float), None
+    return None
+
+
+def _from_motion(mech: Mechanism, req: m.DrawingRequest, previous: Mechanism | None) -> bool:
+    """Whether a drawing takes its position from the whole motion kept (`motion_sample`): one
+    with the whole motion, at one position of several drivers; of a moved mechanism (a drag's
+    `previous` given) only once its whole motion was asked for (the page plays it), while a
+    drag's frames carry their march from frame to frame."""
+    return req.motion and _one_position(mech, req) is not None and (
+        previous is None or MOTIONS.has(mech, ("motion", 2)))
+
+
+def _kept_play(mech: Mechanism) -> tuple[Solution, _Played]:
+    """The whole motion kept for `mech` and its inputs as `_Played` solves them."""
+    motion = kept_motion(mech)
+    return motion, _kept(mech, "played", lambda: _Played(mech, motion.inputs))
+
+
+def _played_ready(mech: Mechanism, req: m.At) -> bool:
+    """Whether `motion_sample` would take the request's position from what is kept already,
+    solving a few samples at most (so that the drawing is short work)."""
+    if not (MOTIONS.has(mech, ("motion", 2)) and MOTIONS.has(mech, "played")):
+        return False
+    values, times = _one_position(mech, req)
+    try:
+        motion, played = _kept_play(mech)
+    except LinkworkError:
+        return False  # solved alone (`solve_request`): a march from the design position
+    if times is not None and motion.time is not None and (motion.time == times[0]).any():
+        return True
+    return played.ready(played.nearest(values, times))
+
+
+def motion_sample(mech: Mechanism, req: m.At) -> Solution | None:
+    """The position a drawing asks for, from the whole motion kept for `mech`: its sample when
+    the request's input (or time) is one of its samples (to the bit), else a solve whose path
+    goes on from the kept sample nearest to it; None when there is nothing kept to take it from
+    (to be solved as `solve_request` solves it).
+
+    Only for several drivers: their solve follows the path of the inputs from the design
+    position, so that a sample far along the motion costs a march of that length, while one
+    driver's samples are solved each on its own from a march kept per mechanism. Asked by
+    `times`: the whole motion's sample at that time (it is solved by times). Asked by `at`:
+    the whole motion's inputs solved by inputs (`_Played`: `solve_at`'s rates), kept beside it.
+    The answers are `solve_at`'s to rounding (the march's path differs, not its branch)."""
+    asked = _one_position(mech, req)
+    if asked is None:
+        return None
+    values, times = asked
+    try:
+        motion, played = _kept_play(mech)
+    except LinkworkError:  # no whole motion: the position is solved (and its error given) alone
+        return None
+    if times is not None:
+        hits = np.flatnonzero(motion.time == times[0]) if motion.time is not None else ()
+        if len(hits):
+            return motion.sample(int(hits[0]))
+    else:
+        hits = np.flatnonzero((played.inputs == values[0]).all(axis=1))
+        if hits.size:
+            return played.sample(int(hits[0]))
+    return played.carried(values, times)
+
+
 def _json(doc) -> str:
     """JSON text as the API's answers write it (`JSONResponse`: NaN refused, UTF-8 kept)."""
     return json.dumps(jsonable_encoder(doc), ensure_ascii=False, allow_nan=False,
@@ -332,9 +498,12 @@ def long_drawing(loaded: Loaded, req: m.DrawingRequest) -> bool:
     Newton-solved groups a position away from the design one with no previous frame whose
     march it carries over (a march from the design position: a drag's frames carry theirs),
     or any march while another thread marches (it would wait for that one)."""
-    if req.motion:
-        return True
     mech = loaded.mechanism
+    if req.motion:  # unless the whole motion is kept, and the position is one of its samples
+        if not MOTIONS.has(mech, ("motion", 1)):
+            return True
+        if _from_motion(mech, req, loaded.previous):  # a sample, or a short march from one
+            return not _played_ready(mech, req) or marching()
     if loaded.previous is not None:  # (as the solve will: its plan takes the previous one's)
         follow(mech, loaded.previous)
     if not any(s.kind == "generic" for s in plan(mech)):
@@ -351,7 +520,9 @@ def drawing(mech: Mechanism, req: m.DrawingRequest, previous: Mechanism | None =
     scene and the SVG)."""
     stage = stage or Stages()
     with stage("solve"):
-        sol = solve_request(mech, req, previous=previous)
+        sol = motion_sample(mech, req) if _from_motion(mech, req, previous) else None
+        if sol is None:
+            sol = solve_request(mech, req, previous=previous)
     if len(sol) != 1:
         raise InputError(f"a drawing shows one position; got {len(sol)} samples")
     require_assembled(sol, 0, "the design position" if req.at is None and req.times is None
@@ -371,6 +542,14 @@ def drawing(mech: Mechanism, req: m.DrawingRequest, previous: Mechanism | None =
             "march": None if carried(mech) is None else str(carried(mech))}
 
 
+def _scene_motion(mech: Mechanism) -> Solution | None:
+    """`Scene.motion` (the whole motion to order 1, None where there is none), kept."""
+    try:
+        return kept_motion(mech, order=1)
+    except LinkworkError:
+        return None
+
+
 def _figure(mech: Mechanism, sol: Solution, req: m.DrawingRequest):
     """The scene's figure for the request's layers and construction, and the construction's
     step texts."""
@@ -378,6 +557,8 @@ def _figure(mech: Mechanism, sol: Solution, req: m.DrawingRequest):
     from ..drawing import Scene, scene_figure
 
     sc = Scene(mech, sol)
+    if req.motion:
+        sc.motion = _scene_motion(mech)  # the whole motion kept (`Scene.motion`)
     if req.view is not None and not req.construction:
         sc.scales = sc.auto_scales(length=req.view.per_mm)  # (a construction has its own)
     if not req.motion:
@@ -505,7 +686,7 @@ def create_app(workdir: str | Path | None = None, *, compiled: bool = False,
     def motion(req: m.MotionRequest):
         """`linkwork.whole_motion` (`analyze --format json` without --at)."""
         with _warnings(compiled) as warned:
-            sol = whole_motion(load(req.source).mechanism)
+            sol = kept_motion(load(req.source).mechanism)
             if req.detail == "status":
                 mech = sol.mechanism
                 single = len(mech.drivers) == 1
@@ -658,7 +839,7 @@ def create_app(workdir: str | Path | None = None, *, compiled: bool = False,
         each header with its unit, `name [unit]`)."""
         from ..kinematics.export import csv_lines
         with _warnings(compiled):
-            sol = whole_motion(load(req.source).mechanism)
+            sol = kept_motion(load(req.source).mechanism)
             text = "".join(csv_lines(sol, units=True))
         return Response(text, media_type="text/csv; charset=utf-8")
 

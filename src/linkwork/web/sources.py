@@ -135,13 +135,15 @@ class Sources:
         self._last: OrderedDict[tuple, Mechanism] = OrderedDict()
 
     def _read(self, library: str | None, file: str | None, text: str | None,
-              name: str | None) -> Loaded:
+              name: str | None, body: str | None = None) -> Loaded:
+        """`body`: the file's text, read already."""
         if library is not None:
             label, body = resolve(LIBRARY_PREFIX + library)
             return Loaded(load_text(body, source=label, base_dir=library_folder()), body, label)
         if file is not None:
             path = working_file(self.workdir, file)
-            label, body = resolve(path)
+            if body is None:
+                body = resolve(path)[1]
             return Loaded(load_text(body, source=file, base_dir=path.parent), body, file)
         assert text is not None
         if len(text) > MAX_TEXT:
@@ -157,12 +159,15 @@ class Sources:
              points: dict[str, tuple[float, float]] | None = None) -> Loaded:
         key = (library, file, text, name,
                tuple(sorted((k, tuple(map(float, v))) for k, v in (points or {}).items())))
-        # a file may change on disk between requests: read it again every time
-        if file is None:
-            with self._lock:
-                if key in self._cache:
-                    self._cache.move_to_end(key)
-                    return self._cache[key]
+        # a file may change on disk between requests: read it again every time, and take what
+        # is kept for it only while its text is the same (and it names no profile files, which
+        # may change on their own): the kept whole motions are per mechanism object
+        body = None if file is None else resolve(working_file(self.workdir, file))[1]
+        with self._lock:
+            hit = self._cache.get(key)
+            if hit is not None and (file is None or hit.text == body and not hit.mechanism.profiles):
+                self._cache.move_to_end(key)
+                return hit
         if points:  # the file as read (kept for the next frame of a drag), then moved
             with self._lock:
                 previous = self._last.get(key[:4])
@@ -170,12 +175,12 @@ class Sources:
             out = Loaded(moved(base.mechanism, points), base.text, base.label,
                          previous or base.mechanism)
         else:
-            out = self._read(library, file, text, name)
+            out = self._read(library, file, text, name, body)
         with self._lock:
-            if file is None:
-                self._cache[key] = out
-                while len(self._cache) > self.SIZE:
-                    self._cache.popitem(last=False)
+            self._cache[key] = out
+            self._cache.move_to_end(key)
+            while len(self._cache) > self.SIZE:
+                self._cache.popitem(last=False)
             self._last[key[:4]] = out.mechanism
             self._last.move_to_end(key[:4])
             while len(self._last) > self.SIZE:
@@ -185,3 +190,52 @@ class Sources:
     @staticmethod
     def library() -> list[str]:
         return library_names()
+
+
+class Motions:
+    """The last few whole motions per mechanism, and what else is solved over one (the samples
+    solved by their inputs, the scene's paths): a mechanism is immutable and compared by
+    identity, so what is computed for it once serves every later request that names it (the
+    frames of a play, each at one sample of the whole motion, with its paths drawn).
+
+    `kept(mech, what, make)`: the value kept under (mech, what), made by `make()` the first
+    time; two threads asking for the same one at once make it once (the second waits)."""
+
+    SIZE = 8  # mechanisms: the one played, the one before, a few drag results
+
+    def __init__(self) -> None:
+        self._kept: OrderedDict[Mechanism, dict] = OrderedDict()
+        self._lock = Lock()
+        self._making: dict[tuple, Lock] = {}
+
+    def has(self, mech: Mechanism, what) -> bool:
+        with self._lock:
+            return what in self._kept.get(mech, ())
+
+    def kept(self, mech: Mechanism, what, make):
+        with self._lock:
+            per = self._kept.get(mech)
+            if per is not None and what in per:
+                self._kept.move_to_end(mech)
+                return per[what]
+            making = self._making.setdefault((mech, what), Lock())
+        with making:
+            with self._lock:
+                per = self._kept.get(mech)
+                if per is not None and what in per:
+                    return per[what]
+            try:
+                value = make()
+                with self._lock:
+                    self._kept.setdefault(mech, {})[what] = value
+                    self._kept.move_to_end(mech)
+                    while len(self._kept) > self.SIZE:
+                        self._kept.popitem(last=False)
+            finally:
+                with self._lock:
+                    self._making.pop((mech, what), None)
+        return value
+
+
+#: the server's whole motions (`Motions`), shared by its requests
+MOTIONS = Motions()
