@@ -282,3 +282,21 @@ def test_a_working_folder_file_keeps_its_mechanism_while_its_text_is_the_same(tm
     again = sources.load(file="gear.toml")
     assert again is not first and again.mechanism.name.startswith("My Heusinger")
     assert sources.load(file="gear.toml", points={"P45": [-1199.0, 350.0]}) is not moved
+
+
+def test_the_centrodes_are_computed_once_a_motion_and_drawn_as_before(gear, monkeypatch):
+    """The centrodes layer depends on the whole motion alone (`Scene.of_motion`): kept with it
+    for every frame, each frame's SVG is the one drawn with them computed for that frame."""
+    mech, motion = gear
+    frames = {}
+    for k in (40, 250):
+        req = m.DrawingRequest.model_validate({"source": {"library": NAME}, "motion": True,
+                                               "times": [float(motion.time[k])],
+                                               "layers": ["mechanism", "centrodes"]})
+        frames[k] = (req, web_app.drawing(mech, req)["svg"])
+    assert "centrode-fixed-" in frames[40][1]
+    kept = web_app._kept
+    monkeypatch.setattr(web_app, "_kept", lambda mech, what, make:
+                        make() if what == "scene" else kept(mech, what, make))
+    for req, svg in frames.values():
+        assert web_app.drawing(mech, req)["svg"] == svg

@@ -225,9 +225,11 @@ def draw_instant(fig: Figure, sc, layer: str) -> None:
             if sc.motion is None:
                 continue
             from ..kinematics import solve
-            full = solve(mech, sc.motion.inputs, velocities=sc.motion.link(mech.drivers[0].driven).omega
-                         if len(mech.drivers) == 1 else None)
-            cen = centrodes(full, ln, curvature=False)
+            # the centrodes depend on the whole motion alone: once per motion, not per position
+            full = sc.of_motion(("centrode-motion",), lambda: solve(
+                mech, sc.motion.inputs, velocities=sc.motion.link(mech.drivers[0].driven).omega
+                if len(mech.drivers) == 1 else None))
+            cen = sc.of_motion(("centrodes", ln), lambda: centrodes(full, ln, curvature=False))
             fig.path(cen.fixed_xy, style=Style(stroke=COLOURS["centrode"], width=0.35), layer="centrodes",
                      ident=f"centrode-fixed-{ln}")
             _label_on_curve(fig, cen.fixed_xy, f"fixed centrode ({literal(ln)})", COLOURS["centrode"], 0.25)

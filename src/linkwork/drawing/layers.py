@@ -63,6 +63,9 @@ class Scene:
     _points: dict = field(default_factory=dict, init=False, repr=False, compare=False)
     #: what several layers compute from the solution, computed once (see `shared`)
     _shared: dict = field(default_factory=dict, init=False, repr=False, compare=False)
+    #: what depends on the whole motion only, not on the position drawn (`of_motion`), kept by
+    #: a caller that draws many positions of one motion (the workbench's frames); None: per scene
+    motion_kept: dict | None = field(default=None, repr=False, compare=False)
 
     @cached_property
     def motion(self) -> Solution | None:
@@ -83,6 +86,15 @@ class Scene:
         if key not in self._shared:
             self._shared[key] = make()
         return self._shared[key]
+
+    def of_motion(self, key: tuple, make):
+        """``make()`` of what depends only on ``motion``, computed once: in ``motion_kept`` when
+        the caller keeps it with the motion, else for this scene (`shared`)."""
+        if self.motion_kept is None:
+            return self.shared(key, make)
+        if key not in self.motion_kept:
+            self.motion_kept[key] = make()
+        return self.motion_kept[key]
 
     def pos(self, name: str) -> np.ndarray:
         return self._point(name).position[self.index]

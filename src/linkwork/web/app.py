@@ -557,8 +557,9 @@ def _figure(mech: Mechanism, sol: Solution, req: m.DrawingRequest):
     from ..drawing import Scene, scene_figure
 
     sc = Scene(mech, sol)
-    if req.motion:
-        sc.motion = _scene_motion(mech)  # the whole motion kept (`Scene.motion`)
+    if req.motion:  # the whole motion kept (`Scene.motion`), and what the layers draw of it
+        sc.motion = _scene_motion(mech)
+        sc.motion_kept = _kept(mech, "scene", dict)
     if req.view is not None and not req.construction:
         sc.scales = sc.auto_scales(length=req.view.per_mm)  # (a construction has its own)
     if not req.motion:
