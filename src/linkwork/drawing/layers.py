@@ -117,14 +117,22 @@ class Scene:
     def box(self, grow: float = 0.6) -> tuple[np.ndarray, np.ndarray]:
         """World box around the mechanism, its paths and its higher pairs' profiles, grown by
         ``grow`` times its size."""
-        pts = [self.pos(p) for p in self.mech.points] + self.profile_points()
-        if self.motion is not None:
-            for p in self.moving_points:
-                pts += list(self.motion.point(p).position[::5])
-        pts = np.array([p for p in pts if np.all(np.isfinite(p))]).reshape(-1, 2)
+        pts = self._drawn_points(5)
         lo, hi = pts.min(0), pts.max(0)
         g = grow * max(float(np.max(hi - lo)), self.mech.length_scale * 0.2)
         return lo - g, hi + g
+
+    def _drawn_points(self, step: int) -> np.ndarray:
+        """The finite ones (M, 2) of the points at the drawn position, its profiles' points and
+        every ``step``-th sample of the moving points' paths (those once per motion: `of_motion`)."""
+        here = [self.pos(p) for p in self.mech.points] + self.profile_points()
+        parts = [np.reshape(np.array(here, float), (-1, 2))]
+        if self.motion is not None:
+            parts.append(self.of_motion(("path points", step), lambda: np.concatenate(
+                [self.motion.point(p).position[::step] for p in self.moving_points]
+                or [np.empty((0, 2))])))
+        pts = np.concatenate(parts)
+        return pts[np.isfinite(pts).all(axis=1)]
 
     def profile_points(self) -> list[np.ndarray]:
         """Points of the higher pairs' profiles at the drawn position (every tenth), and the
@@ -143,11 +151,7 @@ class Scene:
 
     def extent(self) -> float:
         """Size of the drawing (mechanism, paths, profiles) in mechanism units."""
-        pts = [self.pos(p) for p in self.mech.points] + self.profile_points()
-        if self.motion is not None:
-            for p in self.moving_points:
-                pts += list(self.motion.point(p).position[::10])
-        pts = np.array([p for p in pts if np.all(np.isfinite(p))])
+        pts = self._drawn_points(10)
         return float(np.max(np.ptp(pts, axis=0))) if len(pts) > 1 else self.mech.length_scale
 
     def auto_scales(self, *, length: float | None = None, velocity: float | None = None,
