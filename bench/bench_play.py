@@ -3,8 +3,8 @@ timed by the server (its Server-Timing header).
 
 A server (as `linkwork serve` runs it, its loops compiled: bench_workbench.py's) is started; per
 case the page's requests are sent as the page sends them: `/api/motion` once, then
-`/api/drawing` at successive samples of the whole motion (`at` = the sample's inputs,
-`motion: true`, the layers of the case), the first frame apart (it computes the kept motions);
+`/api/drawing` at successive samples of the whole motion (`at` = the sample's inputs, or
+`times` = its time, `motion: true`, the layers of the case), the first frame apart (it computes the kept motions);
 the motion is played twice (the first time, the server solves the samples as they come).
 Printed: the first frame's server time, then per frame median and p95 of `app` (the request in
 the server), and the medians of its stages (solve, scene, svg, encode) and of `cpu` (the
@@ -24,9 +24,11 @@ import numpy as np
 
 from bench_workbench import start_server, wait_compiled
 
-#: (library name, layers besides "mechanism")
-CASES = [("crank-rocker", []), ("watt-i-six-bar", []), ("heusinger-valve-gear", []),
-         ("heusinger-valve-gear", ["paths", "velocities", "poles"])]
+#: (library name, layers besides "mechanism", how the frames ask: by the sample's inputs as
+#: the page does, or by its time, as a motion with time laws may be asked)
+CASES = [("crank-rocker", [], "at"), ("watt-i-six-bar", [], "at"), ("heusinger-valve-gear", [], "at"),
+         ("heusinger-valve-gear", ["paths", "velocities", "poles"], "at"),
+         ("heusinger-valve-gear", ["velocities", "centrodes"], "times")]
 STAGES = ("solve", "scene", "svg", "encode", "app", "cpu")
 
 
@@ -43,20 +45,20 @@ def post(url: str, path: str, body: dict) -> tuple[dict, dict]:
         return json.loads(r.read()), timing
 
 
-def play(url: str, name: str, layers: list[str], every: int) -> None:
+def play(url: str, name: str, layers: list[str], by: str, every: int) -> None:
     source = {"library": name}
-    motion, _ = post(url, "/api/motion", {"source": source, "detail": "status"})
-    inputs = [s["input"] for s in motion["samples"]]
+    motion, _ = post(url, "/api/motion", {"source": source, "detail": "full"})
+    inputs = [s["input" if by == "at" else "time"] for s in motion["samples"]]
     for turn in (1, 2):
         frames = []
         for k in range(0, len(inputs), every):
-            _, timing = post(url, "/api/drawing", {"source": source, "at": [inputs[k]],
+            _, timing = post(url, "/api/drawing", {"source": source, by: [inputs[k]],
                                                    "motion": True, "layers": ["mechanism", *layers]})
             frames.append(timing)
         first, rest = frames[0], frames[1:]
         app = np.array([f["app"] for f in rest])
         stages = "  ".join(f"{s} {np.median([f.get(s, 0.0) for f in rest]):6.1f}" for s in STAGES)
-        print(f"{name:22s} {'+'.join(layers) or 'default':24s} play {turn}: first "
+        print(f"{name:22s} {'+'.join(layers) or 'default':24s} by {by:5s} play {turn}: first "
               f"{first['app']:7.1f} ms; {len(rest)} frames: app p50 {np.median(app):6.1f} p95 "
               f"{np.percentile(app, 95):6.1f} ms | medians: {stages}")
 
@@ -69,9 +71,9 @@ def main() -> None:
     proc, url = start_server()
     try:
         wait_compiled(url, 120)
-        for name, layers in CASES:
+        for name, layers, by in CASES:
             if not args.only or name in args.only:
-                play(url, name, layers, args.every)
+                play(url, name, layers, by, args.every)
     finally:
         proc.terminate()
         proc.wait()
