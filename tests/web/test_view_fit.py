@@ -32,3 +32,25 @@ def test_the_view_holds_the_wheel_at_every_position(client, name):
     M, B, C = (np.asarray(mech.points[p], float) for p in ("M", "B", "C"))
     reach = np.sqrt(np.sum((C - M) ** 2) - np.sum((B - M) ** 2))
     assert np.all(lo <= C - reach) and np.all(C + reach <= hi), (lo, hi, C, reach)
+
+
+def test_a_drag_frame_with_a_held_view_does_not_march_the_whole_motion(client, monkeypatch):
+    """A drag's frame (motion left out, the view of the drawing the drag began on held) is
+    drawn from its own position: the whole motion of the moved mechanism is not computed for
+    it (it was, for the held view's scales: the valve gear's frame took 60 ms more)."""
+    from linkwork.drawing import layers
+
+    first = client.post("/api/drawing", json={"source": {"library": "crank-rocker"},
+                                              "layers": ["mechanism", "velocities"]}).json()
+    t = first["transforms"]["mechanism"]
+
+    def no_motion(*a, **k):
+        raise AssertionError("the whole motion was computed for a drag frame")
+
+    monkeypatch.setattr(layers, "whole_motion", no_motion)
+    r = client.post("/api/drawing", json={
+        "source": {"library": "crank-rocker", "points": {"C": [15.5, 25.0]}},
+        "layers": ["mechanism", "velocities"], "motion": False,
+        "view": {"lo": t["lo"], "hi": t["hi"], "per_mm": t["per_mm"]}})
+    assert r.status_code == 200, r.text
+    assert r.json()["transforms"]["mechanism"]["per_mm"] == t["per_mm"]

@@ -560,10 +560,13 @@ def _figure(mech: Mechanism, sol: Solution, req: m.DrawingRequest):
     if req.motion:  # the whole motion kept (`Scene.motion`), and what the layers draw of it
         sc.motion = _scene_motion(mech)
         sc.motion_kept = _kept(mech, "scene", dict)
-    if req.view is not None and not req.construction:
-        sc.scales = sc.auto_scales(length=req.view.per_mm)  # (a construction has its own)
     if not req.motion:
         sc.motion = None  # what the layers draw when the whole motion is not known
+    if req.view is not None and not req.construction:
+        # the held view's length scale (a construction has its own); the rest from this frame,
+        # as every frame without the whole motion (a drag's) takes them: not from a whole
+        # motion of the moved mechanism, which would be marched again for every frame
+        sc.scales = sc.auto_scales(length=req.view.per_mm)
     con = None
     steps: list[str] = []
     if req.construction:
