@@ -214,21 +214,24 @@ def _law_rates(mech: Mechanism, values: np.ndarray) -> tuple:
     the time it takes the sample's value (`MotionLaw.time_of`), which every such driver must
     reach at one time. Where none is (a law that goes back, a value outside its span, drivers
     whose laws reach their values at different times) the rates are not known: NaN, and a
-    warning naming the drivers. Constant speeds (the common case: None, the default rows) and
-    laws that stand still need no time."""
-    moving = [i for i, d in enumerate(mech.drivers)
-              if not isinstance(d.law, ConstantSpeed) and not d.law.still]
-    if not moving:
+    warning naming the drivers. Laws of one speed at every time (constant speeds, linear laws,
+    laws that stand still) need no time: their speed holds at any value."""
+    if all(isinstance(d.law, ConstantSpeed) for d in mech.drivers):
         return None, None, None, None
+    uniform = [d.law.speed if isinstance(d.law, ConstantSpeed) else d.law.uniform_speed
+               for d in mech.drivers]
+    moving = [i for i, v in enumerate(uniform) if v is None]
     N, nd = values.shape
+    rates = np.zeros((4, N, nd))
+    for i, v in enumerate(uniform):
+        if v is not None:
+            rates[0, :, i] = v
+    if not moving:
+        return tuple(rates)
     ts = np.stack([mech.drivers[i].law.time_of(values[:, i]) for i in moving], axis=-1)
     span = max(mech.drivers[i].law.duration for i in moving)
     known = np.all(np.isfinite(ts), axis=1) & \
         (np.ptp(ts, axis=1) <= 1e-9 * span if len(moving) > 1 else True)
-    rates = np.zeros((4, N, nd))
-    for i, d in enumerate(mech.drivers):
-        if isinstance(d.law, ConstantSpeed):
-            rates[0, :, i] = d.law.speed
     for k, i in enumerate(moving):
         rates[:, :, i] = mech.drivers[i].law.derivatives(np.nan_to_num(ts[:, k]))[1:5]
     if not known.all():

@@ -51,13 +51,18 @@ class MotionLaw:
         return np.where(inside, t, np.nan)
 
     @property
-    def still(self) -> bool:
-        """Whether the input stands still (a law of one value: a reversing arm set once)."""
+    def uniform_speed(self) -> float | None:
+        """The law's speed if it is the same at every time of its span (a linear law, or one
+        of one value: speed 0, a reversing arm set once), else None: at an input value its
+        rates are then known without the time."""
         T = self.duration
         if not T:
-            return False
+            return None
         rates = self.derivatives(np.linspace(0.0, T, TIME_TABLE))[1:]
-        return bool(np.all(rates == 0.0))
+        v = rates[0]
+        if np.all(rates[1:] == 0.0) and np.all(np.abs(v - v[0]) <= 1e-12 * np.abs(v[0])):
+            return float(v[0])
+        return None
 
 
 #: the table a law is inverted on (`MotionLaw.time_of`): Newton's method polishes from it
