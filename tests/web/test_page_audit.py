@@ -271,3 +271,26 @@ def test_an_edit_that_does_not_build_stops_the_old_motion(page):
     page.keyboard.press("ArrowRight")
     sol = linkwork.whole_motion(MECH)
     wait_drawn(page, lambda: drawn_input(page) == pytest.approx([sol.inputs[1, 0]], abs=1e-15), "step the motion")
+
+
+def test_a_quantity_constant_over_the_motion_is_plotted_flat_with_its_value(page):
+    """The crank pin A turns at a constant speed, so |v_A| = ω·O2A over the whole motion but for
+    rounding: plotted as a flat line with that one value, not as its rounding noise scaled to
+    the plot's height; the input labels end inside the plot."""
+    r = float(np.hypot(*np.subtract(MECH.points["A"], MECH.points["O2"])))
+    expected = MECH.drivers[0].law.speed * r
+    page.select_option("#quantity", "point:A:v")
+    page.wait_for_selector("#plot svg", timeout=30_000)
+    svg = page.locator("#plot svg")
+    assert float(svg.get_attribute("data-max")) == pytest.approx(expected, rel=1e-12)
+    ys = {round(float(p.split(",")[1]), 2)
+          for line in svg.locator("polyline.curve").evaluate_all("ls => ls.map(l => l.getAttribute('points'))")
+          for p in line.split()}
+    assert len(ys) == 1  # one height: flat
+    labels = svg.locator("text").evaluate_all("ts => ts.map(t => t.textContent)")
+    numbers = [float(t) for t in labels if t.replace(".", "", 1).isdigit()]
+    assert numbers == [pytest.approx(expected, rel=1e-4)], labels  # one value on the axis
+    box = svg.evaluate("""s => { const f = s.querySelector('rect.frame').getBBox();
+        return Array.from(s.querySelectorAll('text')).every(t => {
+            const b = t.getBBox(); return b.x >= 0 && b.x + b.width <= s.viewBox.baseVal.width + 0.5; }); }""")
+    assert box

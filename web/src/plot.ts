@@ -32,8 +32,12 @@ export function plotSvg(s: Series, current: number): string {
   const e = extremes(s.values);
   const esc = (t: string) => t.replace(/[&<>"']/g, (c) => `&#${c.charCodeAt(0)};`);
   if (!e || n < 2) return `<p>${esc(s.label)}: no values over the motion</p>`;
-  const span = e.max - e.min || Math.max(Math.abs(e.max), 1);
-  const lo = e.max === e.min ? e.min - span / 2 : e.min, hi = lo + span;
+  // a quantity constant over the motion but for rounding (|v| of a crank pin at a uniform speed)
+  // is drawn as the constant it is, not scaled up to its rounding noise
+  const flat = e.max - e.min <= 1e-9 * Math.max(Math.abs(e.max), Math.abs(e.min));
+  const mid = (e.max + e.min) / 2;
+  const span = flat ? Math.max(Math.abs(mid), 1) : e.max - e.min;
+  const lo = flat ? mid - span / 2 : e.min, hi = lo + span;
   const x = (k: number) => L + ((W - L - R) * k) / (n - 1);
   const y = (v: number) => T + ((H - T - B) * (hi - v)) / (hi - lo);
   // one polyline per run of reachable samples
@@ -51,9 +55,11 @@ export function plotSvg(s: Series, current: number): string {
   const vk = s.values[k];
   const marker = `<line class="now" x1="${x(k)}" y1="${T}" x2="${x(k)}" y2="${H - B}"/>` +
     (vk === null ? "" : `<circle class="now" cx="${x(k)}" cy="${y(vk)}" r="3"/>`);
-  const ticks = [0, Math.round((n - 1) / 2), n - 1].map((j) =>
-    `<text x="${x(j)}" y="${H - B + 14}" text-anchor="middle">${esc(s.inputs[j] ?? "")}</text>`).join("");
-  const yTicks = [e.max, e.min].map((v) =>
+  // the first and last input labels end inside the plot (centred, half of each was cut off)
+  const anchors = ["start", "middle", "end"];
+  const ticks = [0, Math.round((n - 1) / 2), n - 1].map((j, i) =>
+    `<text x="${x(j)}" y="${H - B + 14}" text-anchor="${anchors[i]}">${esc(s.inputs[j] ?? "")}</text>`).join("");
+  const yTicks = (flat ? [mid] : [e.max, e.min]).map((v) =>
     `<text x="${L - 4}" y="${y(v) + 4}" text-anchor="end">${fmt(v)}</text>` +
     `<line class="grid" x1="${L}" y1="${y(v)}" x2="${W - R}" y2="${y(v)}"/>`).join("");
   const now = vk === null ? "unreachable" : `${fmt(vk)} ${s.unit}`;
