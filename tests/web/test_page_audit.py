@@ -294,3 +294,33 @@ def test_a_quantity_constant_over_the_motion_is_plotted_flat_with_its_value(page
         return Array.from(s.querySelectorAll('text')).every(t => {
             const b = t.getBBox(); return b.x >= 0 && b.x + b.width <= s.viewBox.baseVal.width + 0.5; }); }""")
     assert box
+
+
+def test_a_pairs_numbers_read_as_a_turn_and_in_words(page):
+    """The crank's pair O2 half a turn on from its drawing: its relative angle shown in
+    (−180°, 180°], equal to the engine's modulo a turn; a sliding pair's fields in words."""
+    sol = linkwork.whole_motion(MECH)
+    page.select_option("#selection", "joint:O2")
+    wait_drawn(page, lambda: page.get_attribute("#selected", "data-selected") == "joint:O2", "select O2")
+    page.focus("#input-slider")
+    k = 200
+    for _ in range(k):
+        page.keyboard.press("ArrowRight")
+    want = float(sol.inputs[k, 0])
+    wait_drawn(page, lambda: json.loads(page.get_attribute("#selected", "data-input") or "[0]")
+               == pytest.approx([want], abs=1e-12), "the numbers at the sample")
+    rows = dict(page.locator("#selected tr").evaluate_all(
+        "trs => trs.map(r => [r.dataset.quantity, r.cells[1].textContent])"))
+    engine = math.degrees(linkwork.solve(MECH, [want]).joint("O2")["angle"][0])
+    shown = float(rows["angle"])
+    assert -180 < shown <= 180 and abs(engine) > 180  # the engine's is unwrapped here
+    assert math.remainder(shown - engine, 360) == pytest.approx(0, abs=1e-3)
+
+
+def test_a_sliding_pairs_fields_are_named_in_words(page):
+    page.select_option("#mechanism", "library:slider-crank-offset")
+    wait_drawn(page, lambda: "slider" in page.inner_text("#title").lower(), "open the slider-crank")
+    page.select_option("#selection", "joint:guide")
+    wait_drawn(page, lambda: page.get_attribute("#selected", "data-selected") == "joint:guide", "select")
+    names = page.locator("#selected tr").evaluate_all("trs => trs.map(r => r.cells[0].textContent)")
+    assert "sliding velocity" in names and not any("_" in n for n in names), names

@@ -430,6 +430,8 @@ function jointUnit(field: string, u: string): string {
   } as Record<string, string>)[field] ?? "";
 }
 
+const wrapDegrees = (d: number): number => { const w = ((d % 360) + 360) % 360; return w > 180 ? w - 360 : w; };
+
 const num = (v: number | null | undefined, digits = 4): string =>
   v === null || v === undefined || !Number.isFinite(v) ? "—" : v.toFixed(digits);
 
@@ -478,9 +480,10 @@ async function selected(d: Drawing, req: DrawingRequest): Promise<void> {
   } else {
     for (const [field, v] of Object.entries(s.joints[name] ?? {})) {
       const unit = jointUnit(field, u);
-      const label = ({ omega: "ω", alpha: "α" } as Record<string, string>)[field] ?? field;
+      const label = ({ omega: "ω", alpha: "α" } as Record<string, string>)[field] ?? field.replace(/_/g, " ");
       if (Array.isArray(v)) vec(`${label} `, v, unit, false);
-      else rows.push([label, num(field === "angle" && v !== null ? (v * 180) / Math.PI : v), unit]);
+      // a pair's angle as a turn reads it, in (−180°, 180°] (the engine's is unwrapped)
+      else rows.push([label, num(field === "angle" && v !== null ? wrapDegrees((v * 180) / Math.PI) : v), unit]);
     }
   }
   body.innerHTML = rows.map(([k, v, unit]) =>
