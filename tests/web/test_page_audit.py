@@ -8,6 +8,7 @@ from __future__ import annotations
 import json
 from datetime import datetime
 import math
+import re
 import time
 
 import numpy as np
@@ -324,3 +325,30 @@ def test_a_sliding_pairs_fields_are_named_in_words(page):
     wait_drawn(page, lambda: page.get_attribute("#selected", "data-selected") == "joint:guide", "select")
     names = page.locator("#selected tr").evaluate_all("trs => trs.map(r => r.cells[0].textContent)")
     assert "sliding velocity" in names and not any("_" in n for n in names), names
+
+
+def test_a_drag_keeps_the_vectors_scale(page):
+    """With the velocity vectors shown, a drag's frames draw them at the velocity scale of the
+    drawing the drag began on (each frame alone would pick another, and the arrows would jump
+    in length when the drag begins): the scale the legend states stays."""
+    page.check("#show-velocities")
+    wait_drawn(page, lambda: page.locator("#drawing svg #layer-velocities").count() == 1, "draw v")
+
+    def velocity_scale() -> str:
+        text = page.eval_on_selector("#drawing svg", "s => s.textContent").replace("\u2009", " ")
+        found = re.findall(r"≙ ([0-9.e+-]+) mm/s(?!²)", text)
+        assert found, text[-300:]
+        return found[0]
+
+    before = velocity_scale()
+    page.check("#edit")
+    page.wait_for_timeout(300)
+    start = _screen(page, MECH.points["B"])
+    page.mouse.move(*start)
+    page.mouse.down()
+    for k in range(1, 6):
+        page.mouse.move(start[0] + 8 * k, start[1] - 5 * k)
+        wait_drawn(page, lambda: "B" in _moved(page), "draw the first frame")
+        _settled(page)
+        assert velocity_scale() == before, f"the vectors' scale changed at step {k}"
+    page.mouse.up()

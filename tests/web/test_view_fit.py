@@ -54,3 +54,27 @@ def test_a_drag_frame_with_a_held_view_does_not_march_the_whole_motion(client, m
         "view": {"lo": t["lo"], "hi": t["hi"], "per_mm": t["per_mm"]}})
     assert r.status_code == 200, r.text
     assert r.json()["transforms"]["mechanism"]["per_mm"] == t["per_mm"]
+
+
+def test_a_drag_frame_holds_the_vectors_scales_it_is_given(client):
+    """The first drawing (the whole motion known) says its scales; a drag frame given them in
+    its view draws its vectors at those scales (its own position alone would choose others:
+    the vectors would change length when the drag begins), and says so."""
+    body = {"source": {"library": "crank-rocker"}, "layers": ["mechanism", "velocities", "accelerations"]}
+    first = client.post("/api/drawing", json=body).json()
+    scales, t = first["scales"], first["transforms"]["mechanism"]
+    assert scales["length"] == t["per_mm"] and scales["velocity"] > 0 and scales["acceleration"] > 0
+    moved = {**body, "source": {"library": "crank-rocker", "points": {"C": [15.5, 25.0]}},
+             "motion": False}
+    own = client.post("/api/drawing", json={**moved, "view": {
+        "lo": t["lo"], "hi": t["hi"], "per_mm": t["per_mm"]}}).json()["scales"]
+    held = client.post("/api/drawing", json={**moved, "view": {
+        "lo": t["lo"], "hi": t["hi"], "per_mm": t["per_mm"], "velocity_per_mm": scales["velocity"],
+        "acceleration_per_mm": scales["acceleration"]}}).json()
+    assert held["scales"] == scales
+    assert own["velocity"] != scales["velocity"]  # the frame alone would choose another
+    svg = held["svg"]
+    assert f"{scales['velocity']:g} mm/s" in svg.replace("\u2009", " ")
+    bad = client.post("/api/drawing", json={**moved, "view": {
+        "lo": t["lo"], "hi": t["hi"], "per_mm": t["per_mm"], "velocity_per_mm": -1}})
+    assert bad.status_code == 422

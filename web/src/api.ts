@@ -100,6 +100,7 @@ export interface Drawing {
   poses: Record<string, [number, number, number] | null>;
   transforms: Record<string, Transform>;
   steps: string[];
+  scales?: { length: number | null; velocity: number | null; acceleration: number | null };
   warnings: string[];
 }
 
@@ -114,7 +115,8 @@ export interface DrawingRequest {
   point?: string;
   fit?: "motion" | "drawing";
   motion?: boolean;
-  view?: { lo: XY; hi: XY; per_mm: number }; // the mechanism panel's box and scale, instead of fit
+  // the mechanism panel's box and scales, instead of fit (a drag holds those it began with)
+  view?: { lo: XY; hi: XY; per_mm: number; velocity_per_mm?: number; acceleration_per_mm?: number };
 }
 
 /** An answer of the API that is not 2xx: its message, as the server wrote it. */

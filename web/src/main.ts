@@ -176,7 +176,12 @@ function drawingRequest(): DrawingRequest {
   // began on, which the pointer is read in (fitted to the frame alone, the view would zoom)
   if (dragging || settling !== undefined) {
     req.motion = false;
-    if (held) req.view = { lo: held.lo, hi: held.hi, per_mm: held.per_mm };
+    if (held) {
+      req.view = { lo: held.lo, hi: held.hi, per_mm: held.per_mm };
+      // the vectors keep the length they had when the drag began
+      if (heldScales?.velocity) req.view.velocity_per_mm = heldScales.velocity;
+      if (heldScales?.acceleration) req.view.acceleration_per_mm = heldScales.acceleration;
+    }
   }
   const traced = Array.from(ui.pathsOf.selectedOptions).map((o) => o.value);
   if (traced.length) req.paths = traced;
@@ -858,6 +863,7 @@ function setIndex(k: number): void {
 let dragging: { name: string; transform: Transform; screen: DOMMatrix; pointer: XY | null; corrections: number } | null = null;
 // the mechanism panel's view while a drag or the keys move points: that of the drawing they began on
 let held: Transform | null = null;
+let heldScales: Drawing["scales"] | null = null; // … and its vectors' scales
 
 function screenToSvg(): DOMMatrix | null {
   const ctm = ui.drawing.querySelector("svg")?.getScreenCTM();
@@ -903,6 +909,7 @@ ui.drawing.addEventListener("pointerdown", (ev) => {
   pause();
   dragging = { name, transform: t, screen, pointer: null, corrections: 0 };
   held = t;
+  heldScales = state.drawn.scales ?? null;
   ui.drawing.setPointerCapture(ev.pointerId);
   ev.preventDefault();
 });
@@ -1068,7 +1075,10 @@ function nudge(name: string, by: XY): void {
   state.moved[name] = [at[0] + by[0], at[1] + by[1]];
   pause();
   if (settling !== undefined) window.clearTimeout(settling);
-  else held = state.drawn?.transforms["mechanism"] ?? null;
+  else {
+    held = state.drawn?.transforms["mechanism"] ?? null;
+    heldScales = state.drawn?.scales ?? null;
+  }
   settling = window.setTimeout(() => {
     settling = undefined;
     held = null;

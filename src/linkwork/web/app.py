@@ -528,7 +528,7 @@ def drawing(mech: Mechanism, req: m.DrawingRequest, previous: Mechanism | None =
     require_assembled(sol, 0, "the design position" if req.at is None and req.times is None
                       else None)
     with stage("scene"):
-        fig, steps = _figure(mech, sol, req)
+        fig, steps, scales = _figure(mech, sol, req)
     with stage("svg"):
         svg, transforms = fig.svg_and_transforms()
     return {"svg": svg, "status": str(Status(int(sol.status[0]))),
@@ -538,7 +538,7 @@ def drawing(mech: Mechanism, req: m.DrawingRequest, previous: Mechanism | None =
                        for p in mech.points for xy in [sol.point(p).position[0]]},
             "poses": {ln: (None if not np.all(np.isfinite(q)) else [float(v) for v in q])
                       for ln in mech.link_names for q in [sol.pose_derivatives(ln)[0, 0]]},
-            "transforms": transforms, "steps": steps,
+            "transforms": transforms, "steps": steps, "scales": scales,
             "march": None if carried(mech) is None else str(carried(mech))}
 
 
@@ -551,8 +551,8 @@ def _scene_motion(mech: Mechanism) -> Solution | None:
 
 
 def _figure(mech: Mechanism, sol: Solution, req: m.DrawingRequest):
-    """The scene's figure for the request's layers and construction, and the construction's
-    step texts."""
+    """The scene's figure for the request's layers and construction, the construction's step
+    texts, and the drawing's scales (units per mm: a drag holds them, `m.View`)."""
     from ..constructions import construct
     from ..drawing import Scene, scene_figure
 
@@ -566,7 +566,8 @@ def _figure(mech: Mechanism, sol: Solution, req: m.DrawingRequest):
         # the held view's length scale (a construction has its own); the rest from this frame,
         # as every frame without the whole motion (a drag's) takes them: not from a whole
         # motion of the moved mechanism, which would be marched again for every frame
-        sc.scales = sc.auto_scales(length=req.view.per_mm)
+        sc.scales = sc.auto_scales(length=req.view.per_mm, velocity=req.view.velocity_per_mm,
+                                   acceleration=req.view.acceleration_per_mm)
     con = None
     steps: list[str] = []
     if req.construction:
@@ -595,7 +596,10 @@ def _figure(mech: Mechanism, sol: Solution, req: m.DrawingRequest):
         fig.view["mechanism"] = (np.array(req.view.lo, float), np.array(req.view.hi, float))
     elif req.fit == "motion" and con is None and req.motion:
         fig.view["mechanism"] = sc.box(grow=0.12)
-    return fig, steps
+    scales = {name: None if s is None else float(s.per_mm) for name, s in (
+        ("length", sc.scales.length), ("velocity", sc.scales.velocity),
+        ("acceleration", sc.scales.acceleration))}
+    return fig, steps, scales
 
 
 def create_app(workdir: str | Path | None = None, *, compiled: bool = False,

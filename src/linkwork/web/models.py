@@ -106,6 +106,12 @@ class View(Strict):
     hi: tuple[Number, Number]
     per_mm: float = Field(gt=0, le=MAX_MAGNITUDE, allow_inf_nan=False,
                           description="world length per mm of paper")
+    velocity_per_mm: Optional[float] = Field(
+        None, gt=0, le=MAX_MAGNITUDE, allow_inf_nan=False,
+        description="velocity per mm of a drawn vector (a drawing's `scales`), else this frame's")
+    acceleration_per_mm: Optional[float] = Field(
+        None, gt=0, le=MAX_MAGNITUDE, allow_inf_nan=False,
+        description="acceleration per mm of a drawn vector, else this frame's")
 
     @model_validator(mode="after")
     def _size(self) -> "View":
@@ -233,6 +239,9 @@ class Drawing(BaseModel):
         description="per panel: x_svg = origin[0] + (x − lo[0])/per_mm, "
                     "y_svg = origin[1] + (hi[1] − y)/per_mm")
     steps: list[str] = []
+    scales: dict[str, Optional[float]] = Field(
+        default_factory=dict, description="the drawing's scales, units per mm of paper: length, "
+                                          "velocity, acceleration (null: none drawn)")
     march: Optional[str] = Field(
         None, description="a moved mechanism with Newton-solved groups: whether their march "
                           "was carried over from the drag's previous frame, or marched again "
