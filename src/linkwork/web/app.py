@@ -57,7 +57,7 @@ class _BodyLimit:
     async def __call__(self, scope, receive, send):
         if scope["type"] != "http":
             return await self.app(scope, receive, send)
-        too_large = _error(413, f"the request body is larger than {self.limit} bytes", "BodyTooLarge")
+        too_large = _error(*_too_large(self.limit))
         length = dict(scope.get("headers") or []).get(b"content-length")
         if length is not None and (not length.isdigit() or int(length) > self.limit):
             return await too_large(scope, receive, send)
@@ -180,6 +180,21 @@ def _error(status: int, message: str, kind: str) -> JSONResponse:
     return JSONResponse({"error": message, "kind": kind}, status_code=status)
 
 
+def _failure(exc: Exception) -> tuple[int, str, str]:
+    """(status, message, kind) of an answer that failed with `exc`, over HTTP and the socket
+    alike: a LinkworkError's own message (404 for an unknown mechanism, else 400), anything
+    else a 500 without a trace."""
+    if isinstance(exc, LinkworkError):
+        status = 404 if isinstance(exc, UnknownMechanismError) else 400
+        return status, str(exc), type(exc).__name__
+    return 500, f"internal error in linkwork ({type(exc).__name__}); please report it", "InternalError"
+
+
+def _too_large(limit: int) -> tuple[int, str, str]:
+    """(status, message, kind) of a request body above `limit` bytes."""
+    return 413, f"the request body is larger than {limit} bytes", "BodyTooLarge"
+
+
 def _validation_message(exc: RequestValidationError | ValidationError | list) -> str:
     parts = []
     for e in (exc if isinstance(exc, list) else exc.errors())[:5]:
@@ -217,6 +232,18 @@ def _route_warnings() -> None:
 
 
 @contextmanager
+def _collected() -> Iterator[list[str]]:
+    """The LinkworkWarnings raised inside, for this thread or task alone (`_routed`)."""
+    out: list[str] = []
+    _route_warnings()
+    token = _COLLECTING.set(out)
+    try:
+        yield out
+    finally:
+        _COLLECTING.reset(token)
+
+
+@contextmanager
 def _warnings(compiled: bool = False) -> Iterator[list[str]]:
     """Collect the LinkworkWarnings raised inside (as the command line prints them); the
     kinematics' loops run compiled inside once the server has them (`compile_kernels`).
@@ -225,14 +252,9 @@ def _warnings(compiled: bool = False) -> Iterator[list[str]]:
     requests in two threads (a long drawing in a worker thread, a drag's frame in the event
     loop) could take each other's warnings or leave a dead list in place. The list is a context
     variable instead, which each thread and task has its own of."""
-    out: list[str] = []
-    _route_warnings()
-    token = _COLLECTING.set(out)
-    try:
-        with compiled_loops(True if compiled and warmup.READY.is_set() else None):
-            yield out
-    finally:
-        _COLLECTING.reset(token)
+    with _collected() as out, \
+            compiled_loops(True if compiled and warmup.READY.is_set() else None):
+        yield out
     out[:] = dict.fromkeys(out)
 
 
@@ -268,15 +290,11 @@ def _kept(mech: Mechanism, what, make):
     """`make()` computed once for `mech` and kept (`sources.MOTIONS`), with the LinkworkWarnings
     it raised and the LinkworkError it ended in: each later request gets them as the first did."""
     def run():
-        out: list[str] = []
-        _route_warnings()
-        token = _COLLECTING.set(out)
-        try:
-            return make(), None, out
-        except LinkworkError as exc:
-            return None, exc, out
-        finally:
-            _COLLECTING.reset(token)
+        with _collected() as out:
+            try:
+                return make(), None, out
+            except LinkworkError as exc:
+                return None, exc, out
 
     value, error, warned = MOTIONS.kept(mech, what, run)
     collecting = _COLLECTING.get()
@@ -447,8 +465,8 @@ async def _socket_drawing(message: dict, answer) -> tuple[int, "Stages", str]:
     size = len(data.encode() if isinstance(data, str) else data)
     try:
         if size > MAX_BODY:
-            return 413, stage, _json({"error": f"the request body is larger than {MAX_BODY} bytes",
-                                      "kind": "BodyTooLarge"})
+            status, message, kind = _too_large(MAX_BODY)
+            return status, stage, _json({"error": message, "kind": kind})
         # as FastAPI reads a body: the JSON parsed, then the Python object validated (so that
         # the messages are the HTTP API's word for word)
         try:
@@ -462,12 +480,9 @@ async def _socket_drawing(message: dict, answer) -> tuple[int, "Stages", str]:
             return 200, stage, text
         return 422, stage, _json({"error": _validation_message(errors),
                                   "kind": "RequestValidationError"})
-    except LinkworkError as exc:
-        status = 404 if isinstance(exc, UnknownMechanismError) else 400
-        return status, stage, _json({"error": str(exc), "kind": type(exc).__name__})
     except Exception as exc:  # noqa: BLE001 - never a trace to the page, as over HTTP
-        return 500, stage, _json({"error": f"internal error in linkwork ({type(exc).__name__}); "
-                                           "please report it", "kind": "InternalError"})
+        status, message, kind = _failure(exc)
+        return status, stage, _json({"error": message, "kind": kind})
 
 
 def mechanism_info(loaded, warned: list[str]) -> dict:
@@ -625,8 +640,7 @@ def create_app(workdir: str | Path | None = None, *, compiled: bool = False,
 
     @app.exception_handler(LinkworkError)
     async def _linkwork_error(request: Request, exc: LinkworkError):
-        status = 404 if isinstance(exc, UnknownMechanismError) else 400
-        return _error(status, str(exc), type(exc).__name__)
+        return _error(*_failure(exc))
 
     @app.exception_handler(RequestValidationError)
     async def _invalid(request: Request, exc: RequestValidationError):
@@ -634,8 +648,7 @@ def create_app(workdir: str | Path | None = None, *, compiled: bool = False,
 
     @app.exception_handler(Exception)
     async def _bug(request: Request, exc: Exception):
-        return _error(500, f"internal error in linkwork ({type(exc).__name__}); please report it",
-                      "InternalError")
+        return _error(*_failure(exc))
 
     from starlette.exceptions import HTTPException
 
