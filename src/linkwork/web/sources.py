@@ -20,6 +20,7 @@ import numpy as np
 
 from ..errors import InputError, UnknownMechanismError
 from ..io import load_text, resolve
+from ..kinematics.kept import Kept
 from ..io.library import LIBRARY_PREFIX, library_names
 from ..model import Mechanism
 from ..units import MAX_MAGNITUDE
@@ -128,11 +129,10 @@ class Sources:
 
     def __init__(self, workdir: Path | None) -> None:
         self.workdir = None if workdir is None else Path(workdir).resolve()
-        self._cache: OrderedDict[tuple, Loaded] = OrderedDict()
-        self._lock = Lock()
+        self._cache = Kept(self.SIZE)  # key -> Loaded
         # per source (without moved points): the mechanism last built from it, the previous
         # frame of the next one moved
-        self._last: OrderedDict[tuple, Mechanism] = OrderedDict()
+        self._last = Kept(self.SIZE)
 
     def _read(self, library: str | None, file: str | None, text: str | None,
               name: str | None, body: str | None = None) -> Loaded:
@@ -163,28 +163,19 @@ class Sources:
         # is kept for it only while its text is the same (and it names no profile files, which
         # may change on their own): the kept whole motions are per mechanism object
         body = None if file is None else resolve(working_file(self.workdir, file))[1]
-        with self._lock:
-            hit = self._cache.get(key)
-            if hit is not None and (file is None or hit.text == body and not hit.mechanism.profiles):
-                self._cache.move_to_end(key)
-                return hit
+        hit = self._cache.get(key)
+        if hit is not None and (file is None or hit.text == body and not hit.mechanism.profiles):
+            self._cache.put(key, hit)  # (the last used)
+            return hit
         if points:  # the file as read (kept for the next frame of a drag), then moved
-            with self._lock:
-                previous = self._last.get(key[:4])
+            previous = self._last.get(key[:4])
             base = self.load(library=library, file=file, text=text, name=name)
             out = Loaded(moved(base.mechanism, points), base.text, base.label,
                          previous or base.mechanism)
         else:
             out = self._read(library, file, text, name, body)
-        with self._lock:
-            self._cache[key] = out
-            self._cache.move_to_end(key)
-            while len(self._cache) > self.SIZE:
-                self._cache.popitem(last=False)
-            self._last[key[:4]] = out.mechanism
-            self._last.move_to_end(key[:4])
-            while len(self._last) > self.SIZE:
-                self._last.popitem(last=False)
+        self._cache.put(key, out)
+        self._last.put(key[:4], out.mechanism)
         return out
 
     @staticmethod
