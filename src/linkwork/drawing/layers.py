@@ -31,6 +31,7 @@ import numpy as np
 from ..errors import InputError, LinkworkError
 from ..geometry import Circle, Line, Point
 from ..kinematics import Solution, solve, whole_motion
+from ..kinematics.at import require_assembled
 from ..model import (CircularSlot, Gear, Mechanism, Prismatic, Revolute, Slot, indexing_schedule,
                      is_intermittent)
 from ..constructions.construction import Arrow, Construction, Element, Polygon, Segment, literal
@@ -175,8 +176,7 @@ class Scene:
 def scene_at(mech: Mechanism, value: float, *, kind: str = "input") -> Scene:
     """Solve ``mech`` at one input value (or time) and wrap it as a scene."""
     sol = solve(mech, times=[value]) if kind == "time" else solve(mech, np.array([value]))
-    if not np.all(np.isfinite(sol.point(next(iter(mech.points))).position)) or sol.status[0] == 2:
-        raise InputError(f"mechanism '{mech.name}' cannot be assembled at this input")
+    require_assembled(sol)
     return Scene(mech, sol)
 
 
