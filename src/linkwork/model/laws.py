@@ -8,6 +8,7 @@ possible. Laws are immutable values.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from functools import cached_property
 
 import numpy as np
 
@@ -50,11 +51,12 @@ class MotionLaw:
         inside = (values >= lo - tol) & (values <= hi + tol)
         return np.where(inside, t, np.nan)
 
-    @property
+    @cached_property
     def uniform_speed(self) -> float | None:
         """The law's speed if it is the same at every time of its span (a linear law, or one
         of one value: speed 0, a reversing arm set once), else None: at an input value its
-        rates are then known without the time."""
+        rates are then known without the time. (Once per law: every solve by input values
+        asks, a drag's frames among them.)"""
         T = self.duration
         if not T:
             return None
